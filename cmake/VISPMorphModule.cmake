@@ -1,0 +1,50 @@
+# vispmorph_add_module(<name> DEPS <vispmorph modules> VISP <visp targets> PRIVATE_LIBS <libs>)
+#
+# Builds modules/<name> as the library vispmorph_<name> (exported as VISPMorph::<name>), ViSP style:
+# public headers in include/visp3/<name>/, sources in src/, unit tests in test/ (one Catch2 executable).
+function(vispmorph_add_module name)
+  cmake_parse_arguments(M "" "" "DEPS;VISP;PRIVATE_LIBS" ${ARGN})
+  file(GLOB_RECURSE srcs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
+  file(GLOB_RECURSE hdrs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/include/visp3/${name}/*.h)
+  set(target vispmorph_${name})
+  add_library(${target} ${srcs} ${hdrs})
+  add_library(VISPMorph::${name} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${name} OUTPUT_NAME vispmorph_${name}
+                                             VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}
+                                             POSITION_INDEPENDENT_CODE ON)
+  target_compile_features(${target} PUBLIC cxx_std_17)
+  target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+                                              $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  # ViSP targets are not namespaced and carry no include directories of their own.
+  target_include_directories(${target} SYSTEM PUBLIC "$<BUILD_INTERFACE:${VISP_INCLUDE_DIRS}>")
+  set(deps)
+  foreach(d ${M_DEPS})
+    list(APPEND deps vispmorph_${d})
+  endforeach()
+  target_link_libraries(${target} PUBLIC ${deps} ${M_VISP} PRIVATE ${M_PRIVATE_LIBS})
+  target_compile_options(${target} PRIVATE -Wall -Wextra)
+  install(TARGETS ${target} EXPORT VISPMorphTargets
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  install(DIRECTORY include/visp3 DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  set_property(GLOBAL APPEND PROPERTY VISPMORPH_MODULES ${name})
+
+  file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/*.cpp)
+  if(VISPMORPH_BUILD_TESTS AND tests)
+    add_executable(test_${name} ${tests} ${PROJECT_SOURCE_DIR}/tests/catch_main.cpp)
+    target_link_libraries(test_${name} PRIVATE ${target} Catch2::Catch2)
+    target_compile_definitions(test_${name} PRIVATE VISPMORPH_DATA_DIR="${VISPMORPH_DATA_DIR}"
+                                                    VISPMORPH_DATASETS_DIR="${VISPMORPH_DATASETS_DIR}")
+    catch_discover_tests(test_${name} TEST_PREFIX "${name}: " WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+  endif()
+endfunction()
+
+# vispmorph_add_executable(<target> <sources> LIBS <libs>): an app, tutorial or tool linked to the modules.
+function(vispmorph_add_executable target)
+  cmake_parse_arguments(E "" "" "LIBS" ${ARGN})
+  add_executable(${target} ${E_UNPARSED_ARGUMENTS})
+  target_link_libraries(${target} PRIVATE ${E_LIBS})
+  target_compile_options(${target} PRIVATE -Wall -Wextra)
+  target_compile_definitions(${target} PRIVATE VISPMORPH_DATA_DIR="${VISPMORPH_DATA_DIR}"
+                                               VISPMORPH_DATASETS_DIR="${VISPMORPH_DATASETS_DIR}")
+endfunction()

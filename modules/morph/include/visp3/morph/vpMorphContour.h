@@ -1,0 +1,101 @@
+/*!
+  \file vpMorphContour.h
+  \brief A closed polygon, the shape the morph works on.
+*/
+#ifndef VP_MORPH_CONTOUR_H
+#define VP_MORPH_CONTOUR_H
+
+#include <cstddef>
+#include <vector>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpImagePoint.h>
+
+/*!
+  \class vpMorphContour
+  \ingroup group_morph
+  \brief Closed polygon (value type) in pixel or normalised image coordinates.
+
+  Vertices are stored as (x, y) pairs: in pixels x = u (column) and y = v (row); in normalised coordinates
+  x = X/Z and y = Y/Z. The edge from the last vertex back to the first is implicit.
+
+  A valid contour has at least 3 finite vertices, no two consecutive vertices equal, and a non-zero area;
+  the constructors check this and throw vpMorphException otherwise, so every algorithm downstream can rely
+  on it. Self-intersection is not rejected at construction (linear morphs may legitimately produce it):
+  test it with isSimple().
+*/
+class vpMorphContour
+{
+public:
+  //! Coordinate system of the vertices.
+  enum Units {
+    PIXEL,     //!< x = u (column), y = v (row), in pixels.
+    NORMALIZED //!< x = X/Z, y = Y/Z (metric image plane at unit depth).
+  };
+
+  //! Empty contour (size() == 0); the only invalid state, produced only by default construction.
+  vpMorphContour() = default;
+  vpMorphContour(const std::vector<double> &x, const std::vector<double> &y, Units units = PIXEL);
+  //! From ViSP image points: x = get_u(), y = get_v().
+  explicit vpMorphContour(const std::vector<vpImagePoint> &points, Units units = PIXEL);
+
+  std::size_t size() const { return m_x.size(); }
+  bool empty() const { return m_x.empty(); }
+  Units units() const { return m_units; }
+  double x(std::size_t k) const { return m_x[k]; }
+  double y(std::size_t k) const { return m_y[k]; }
+  const std::vector<double> &xs() const { return m_x; }
+  const std::vector<double> &ys() const { return m_y; }
+  //! Vertex k as a ViSP image point (u = x, v = y).
+  vpImagePoint point(std::size_t k) const { return vpImagePoint(m_y[k], m_x[k]); }
+  std::vector<vpImagePoint> points() const;
+
+  //! Signed area (shoelace); positive when the vertices turn counter-clockwise in the (x, y) axes.
+  double signedArea() const;
+  double area() const;
+  bool isCounterClockwise() const { return signedArea() > 0.0; }
+  double perimeter() const;
+  //! Area centroid (x, y) of the polygon.
+  void centroid(double &cx, double &cy) const;
+  /*!
+    Orientation of the principal (elongation) axis of the polygon region, in radians in (-pi/2, pi/2],
+    from its second-order central moments; meaningless for a shape with isotropic moments (a disc, a square).
+  */
+  double orientation() const;
+  //! Length of edge k, from vertex k-1 to vertex k (cyclically), so edge 0 closes the polygon.
+  double edgeLength(std::size_t k) const;
+  //! Signed turning angle at vertex k in (-pi, pi]: positive for a left turn.
+  double turningAngle(std::size_t k) const;
+  //! True when no two non-adjacent edges intersect and adjacent edges do not fold back onto each other.
+  bool isSimple() const;
+
+  //! Same polygon with vertex k first.
+  vpMorphContour rotatedStart(std::size_t k) const;
+  //! Same polygon traversed the other way round (vertex 0 stays first).
+  vpMorphContour reversed() const;
+  //! Mirror image about the vertical axis through the centroid (x -> 2 cx - x); keeps the orientation sign.
+  vpMorphContour mirrored() const;
+  //! Counter-clockwise version (reversed if needed).
+  vpMorphContour counterClockwise() const;
+  /*!
+    Similarity transform about the centroid: scale by \e s, rotate by \e theta (radians, counter-clockwise
+    in the (x, y) axes), then translate by (tx, ty).
+  */
+  vpMorphContour transformed(double theta, double tx, double ty, double s = 1.0) const;
+  //! Translated and scaled so that its centroid is at the origin and its perimeter is 1.
+  vpMorphContour normalized() const;
+  //! \e n vertices equally spaced along the perimeter, starting at vertex 0.
+  vpMorphContour resampled(std::size_t n) const;
+  //! Pixel to normalised coordinates with the camera intrinsics (no distortion).
+  vpMorphContour toNormalized(const vpCameraParameters &cam) const;
+  //! Normalised to pixel coordinates with the camera intrinsics (no distortion).
+  vpMorphContour toPixels(const vpCameraParameters &cam) const;
+
+private:
+  void validate() const;
+
+  std::vector<double> m_x, m_y;
+  Units m_units = PIXEL;
+};
+
+#endif

@@ -1,0 +1,320 @@
+#include <visp3/morph/vpMorphContour.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/morph/vpMorphException.h>
+
+namespace
+{
+[[noreturn]] void fail(const std::string &what)
+{
+  throw vpMorphException(vpMorphException::badContourError, "vpMorphContour: " + what);
+}
+
+// Orientation of the triangle (p, q, r): > 0 for a left turn.
+double cross(double px, double py, double qx, double qy, double rx, double ry)
+{
+  return (qx - px) * (ry - py) - (qy - py) * (rx - px);
+}
+
+bool onSegment(double px, double py, double qx, double qy, double rx, double ry)
+{
+  return std::min(px, qx) <= rx && rx <= std::max(px, qx) && std::min(py, qy) <= ry && ry <= std::max(py, qy);
+}
+
+bool segmentsIntersect(double ax, double ay, double bx, double by, double cx, double cy, double dx, double dy)
+{
+  const double d1 = cross(cx, cy, dx, dy, ax, ay), d2 = cross(cx, cy, dx, dy, bx, by);
+  const double d3 = cross(ax, ay, bx, by, cx, cy), d4 = cross(ax, ay, bx, by, dx, dy);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
+    return true;
+  return (d1 == 0 && onSegment(cx, cy, dx, dy, ax, ay)) || (d2 == 0 && onSegment(cx, cy, dx, dy, bx, by)) ||
+         (d3 == 0 && onSegment(ax, ay, bx, by, cx, cy)) || (d4 == 0 && onSegment(ax, ay, bx, by, dx, dy));
+}
+} // namespace
+
+vpMorphContour::vpMorphContour(const std::vector<double> &x, const std::vector<double> &y, Units units)
+  : m_x(x), m_y(y), m_units(units)
+{
+  if (x.size() != y.size()) {
+    std::ostringstream os;
+    os << "x and y have different sizes (" << x.size() << " and " << y.size() << ")";
+    fail(os.str());
+  }
+  validate();
+}
+
+vpMorphContour::vpMorphContour(const std::vector<vpImagePoint> &points, Units units) : m_units(units)
+{
+  m_x.reserve(points.size());
+  m_y.reserve(points.size());
+  for (const vpImagePoint &p : points) {
+    m_x.push_back(p.get_u());
+    m_y.push_back(p.get_v());
+  }
+  validate();
+}
+
+void vpMorphContour::validate() const
+{
+  const std::size_t n = m_x.size();
+  if (n < 3) {
+    std::ostringstream os;
+    os << "a polygon needs at least 3 vertices (got " << n << ")";
+    fail(os.str());
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!std::isfinite(m_x[k]) || !std::isfinite(m_y[k])) {
+      std::ostringstream os;
+      os << "vertex " << k << " is not finite (" << m_x[k] << ", " << m_y[k] << ")";
+      fail(os.str());
+    }
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t p = (k + n - 1) % n;
+    if (m_x[k] == m_x[p] && m_y[k] == m_y[p]) {
+      std::ostringstream os;
+      os << "vertices " << p << " and " << k << " are repeated (" << m_x[k] << ", " << m_y[k] << ")";
+      fail(os.str());
+    }
+  }
+  // Zero area relative to the squared perimeter: all vertices collinear.
+  const double a = std::fabs(signedArea()), l = perimeter();
+  if (!(a > 1e-12 * l * l))
+    fail("the vertices are collinear (zero area)");
+}
+
+std::vector<vpImagePoint> vpMorphContour::points() const
+{
+  std::vector<vpImagePoint> p;
+  p.reserve(size());
+  for (std::size_t k = 0; k < size(); ++k)
+    p.push_back(point(k));
+  return p;
+}
+
+double vpMorphContour::signedArea() const
+{
+  const std::size_t n = size();
+  double a = 0.0;
+  for (std::size_t k = 0, p = n - 1; k < n; p = k++)
+    a += m_x[p] * m_y[k] - m_x[k] * m_y[p];
+  return 0.5 * a;
+}
+
+double vpMorphContour::area() const { return std::fabs(signedArea()); }
+
+double vpMorphContour::perimeter() const
+{
+  double l = 0.0;
+  for (std::size_t k = 0; k < size(); ++k)
+    l += edgeLength(k);
+  return l;
+}
+
+double vpMorphContour::edgeLength(std::size_t k) const
+{
+  const std::size_t p = (k + size() - 1) % size();
+  return std::hypot(m_x[k] - m_x[p], m_y[k] - m_y[p]);
+}
+
+double vpMorphContour::turningAngle(std::size_t k) const
+{
+  const std::size_t n = size(), p = (k + n - 1) % n, q = (k + 1) % n;
+  const double ux = m_x[k] - m_x[p], uy = m_y[k] - m_y[p];
+  const double vx = m_x[q] - m_x[k], vy = m_y[q] - m_y[k];
+  return std::atan2(ux * vy - uy * vx, ux * vx + uy * vy);
+}
+
+void vpMorphContour::centroid(double &cx, double &cy) const
+{
+  const std::size_t n = size();
+  // Shifted to vertex 0 to keep the shoelace sums well conditioned far from the origin.
+  const double ox = m_x[0], oy = m_y[0];
+  double a = 0.0, sx = 0.0, sy = 0.0;
+  for (std::size_t k = 0, p = n - 1; k < n; p = k++) {
+    const double xp = m_x[p] - ox, yp = m_y[p] - oy, xk = m_x[k] - ox, yk = m_y[k] - oy;
+    const double c = xp * yk - xk * yp;
+    a += c;
+    sx += (xp + xk) * c;
+    sy += (yp + yk) * c;
+  }
+  cx = ox + sx / (3.0 * a);
+  cy = oy + sy / (3.0 * a);
+}
+
+double vpMorphContour::orientation() const
+{
+  double cx, cy;
+  centroid(cx, cy);
+  // Second-order central moments of the polygon region (Green's theorem), signs fixed by the area sign.
+  double a = 0.0, mxx = 0.0, myy = 0.0, mxy = 0.0;
+  const std::size_t n = size();
+  for (std::size_t k = 0, p = n - 1; k < n; p = k++) {
+    const double x0 = m_x[p] - cx, y0 = m_y[p] - cy, x1 = m_x[k] - cx, y1 = m_y[k] - cy;
+    const double c = x0 * y1 - x1 * y0;
+    a += c;
+    mxx += (x0 * x0 + x0 * x1 + x1 * x1) * c;
+    myy += (y0 * y0 + y0 * y1 + y1 * y1) * c;
+    mxy += (x0 * y1 + 2 * x0 * y0 + 2 * x1 * y1 + x1 * y0) * c;
+  }
+  const double s = a < 0 ? -1.0 : 1.0;
+  mxx *= s / 12.0;
+  myy *= s / 12.0;
+  mxy *= s / 24.0;
+  double theta = 0.5 * std::atan2(2.0 * mxy, mxx - myy);
+  if (theta <= -M_PI / 2)
+    theta += M_PI;
+  return theta;
+}
+
+bool vpMorphContour::isSimple() const
+{
+  const std::size_t n = size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t i1 = (i + 1) % n;
+    // Adjacent edges fold back onto each other when the turn is exactly pi.
+    const std::size_t i2 = (i + 2) % n;
+    if (cross(m_x[i], m_y[i], m_x[i1], m_y[i1], m_x[i2], m_y[i2]) == 0.0) {
+      const double dot = (m_x[i1] - m_x[i]) * (m_x[i2] - m_x[i1]) + (m_y[i1] - m_y[i]) * (m_y[i2] - m_y[i1]);
+      if (dot < 0.0)
+        return false;
+    }
+    for (std::size_t j = i + 2; j < n; ++j) {
+      const std::size_t j1 = (j + 1) % n;
+      if (j1 == i)
+        continue; // adjacent through the closing edge
+      if (segmentsIntersect(m_x[i], m_y[i], m_x[i1], m_y[i1], m_x[j], m_y[j], m_x[j1], m_y[j1]))
+        return false;
+    }
+  }
+  return true;
+}
+
+vpMorphContour vpMorphContour::rotatedStart(std::size_t k) const
+{
+  vpMorphContour c(*this);
+  const std::size_t n = size();
+  if (n == 0)
+    return c;
+  std::rotate(c.m_x.begin(), c.m_x.begin() + (k % n), c.m_x.end());
+  std::rotate(c.m_y.begin(), c.m_y.begin() + (k % n), c.m_y.end());
+  return c;
+}
+
+vpMorphContour vpMorphContour::reversed() const
+{
+  vpMorphContour c(*this);
+  if (size() > 1) {
+    std::reverse(c.m_x.begin() + 1, c.m_x.end());
+    std::reverse(c.m_y.begin() + 1, c.m_y.end());
+  }
+  return c;
+}
+
+vpMorphContour vpMorphContour::mirrored() const
+{
+  double cx, cy;
+  centroid(cx, cy);
+  vpMorphContour c(*this);
+  for (double &x : c.m_x)
+    x = 2.0 * cx - x;
+  return c.reversed();
+}
+
+vpMorphContour vpMorphContour::counterClockwise() const { return isCounterClockwise() ? *this : reversed(); }
+
+vpMorphContour vpMorphContour::transformed(double theta, double tx, double ty, double s) const
+{
+  if (!std::isfinite(theta) || !std::isfinite(tx) || !std::isfinite(ty) || !std::isfinite(s) || s <= 0.0) {
+    std::ostringstream os;
+    os << "vpMorphContour::transformed: parameters must be finite with scale > 0 (theta " << theta << ", t (" << tx
+       << ", " << ty << "), s " << s << ")";
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  double cx, cy;
+  centroid(cx, cy);
+  const double c = std::cos(theta) * s, sn = std::sin(theta) * s;
+  vpMorphContour out(*this);
+  for (std::size_t k = 0; k < size(); ++k) {
+    const double x = m_x[k] - cx, y = m_y[k] - cy;
+    out.m_x[k] = cx + c * x - sn * y + tx;
+    out.m_y[k] = cy + sn * x + c * y + ty;
+  }
+  out.validate();
+  return out;
+}
+
+vpMorphContour vpMorphContour::normalized() const
+{
+  double cx, cy;
+  centroid(cx, cy);
+  const double s = 1.0 / perimeter();
+  vpMorphContour out(*this);
+  for (std::size_t k = 0; k < size(); ++k) {
+    out.m_x[k] = (m_x[k] - cx) * s;
+    out.m_y[k] = (m_y[k] - cy) * s;
+  }
+  return out;
+}
+
+vpMorphContour vpMorphContour::resampled(std::size_t n) const
+{
+  if (n < 3) {
+    std::ostringstream os;
+    os << "vpMorphContour::resampled: need at least 3 vertices (asked " << n << ")";
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  const std::size_t m = size();
+  const double step = perimeter() / static_cast<double>(n);
+  std::vector<double> x, y;
+  x.reserve(n);
+  y.reserve(n);
+  std::size_t k = 0;   // current edge goes from vertex k to k+1
+  double along = 0.0;  // arc length at vertex k
+  double elen = edgeLength(1 % m);
+  for (std::size_t s = 0; s < n; ++s) {
+    const double target = s * step;
+    while (along + elen < target && k + 1 < m) {
+      along += elen;
+      ++k;
+      elen = edgeLength((k + 1) % m);
+    }
+    const std::size_t k1 = (k + 1) % m;
+    const double t = elen > 0 ? std::min(1.0, std::max(0.0, (target - along) / elen)) : 0.0;
+    x.push_back(m_x[k] + t * (m_x[k1] - m_x[k]));
+    y.push_back(m_y[k] + t * (m_y[k1] - m_y[k]));
+  }
+  return vpMorphContour(x, y, m_units);
+}
+
+vpMorphContour vpMorphContour::toNormalized(const vpCameraParameters &cam) const
+{
+  if (m_units != PIXEL)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphContour::toNormalized: the contour is already in normalised coordinates");
+  vpMorphContour out(*this);
+  for (std::size_t k = 0; k < size(); ++k) {
+    out.m_x[k] = (m_x[k] - cam.get_u0()) / cam.get_px();
+    out.m_y[k] = (m_y[k] - cam.get_v0()) / cam.get_py();
+  }
+  out.m_units = NORMALIZED;
+  return out;
+}
+
+vpMorphContour vpMorphContour::toPixels(const vpCameraParameters &cam) const
+{
+  if (m_units != NORMALIZED)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphContour::toPixels: the contour is already in pixel coordinates");
+  vpMorphContour out(*this);
+  for (std::size_t k = 0; k < size(); ++k) {
+    out.m_x[k] = cam.get_u0() + m_x[k] * cam.get_px();
+    out.m_y[k] = cam.get_v0() + m_y[k] * cam.get_py();
+  }
+  out.m_units = PIXEL;
+  return out;
+}
