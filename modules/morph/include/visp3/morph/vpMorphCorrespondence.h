@@ -15,7 +15,8 @@
   \brief Result of vpMorphMatcher: which input vertex goes with which target vertex, and at what work.
 
   pairs()[k] = (i_k, j_k) are indices into the input (m vertices) and the target (n vertices).
-  Consecutive pairs advance the input, the target, or both by one vertex (cyclically); every vertex of
+  Consecutive pairs advance the input, the target, or both by one vertex (cyclically, in the direction of
+  positive signed area: backwards through the vertex list of a negatively oriented polygon); every vertex of
   each polygon appears at least once; the list starts with the starting pair and closes back onto it.
   max(m, n) <= pairs().size() <= m + n.
 */

@@ -35,9 +35,9 @@
 
   <b>Invariance.</b> Lengths and turning angles do not change under translation or rotation. With
   scale normalisation (the default, needed for recognition) both polygons are scaled to unit perimeter
-  first, so the work is scale invariant too. The two polygons are brought to the same orientation
-  (B's traversal is reversed internally when the signs of their areas differ; indices are reported in
-  the original numbering). The model is symmetric in A and B, so distance(A, B) == distance(B, A).
+  first, so the work is scale invariant too. Both polygons are traversed with positive signed area
+  (reversed internally if needed; indices are reported in the caller's numbering), so the work does not
+  depend on the direction in which vertices were listed. The model is symmetric in A and B, so distance(A, B) == distance(B, A).
 
   <b>Search.</b> Every closed path matches A's vertex 0, so the minimum over all m n starting pairs equals
   the minimum over the n paths that start at (0, b), b = 0..n-1, and end at (m, b + n) on the grid where B is
@@ -45,9 +45,7 @@
   every b (O(m n^2)); match() is exact and fast: optimal paths of different starts never need to cross
   (uncrossing two crossing paths at their shared cell keeps both costs, since costs depend only on the cell
   and the step into it), so Maes' divide and conquer solves the middle start, then recurses on each half
-  inside the band left between the bounding paths (O(mn log n)). Bands whose lower bound (the minimum of the
-  two bounding paths' costs can't be used, so: the cheapest possible cost of any path in the band, from a
-  per-row minimum) already exceeds the best work found are skipped.
+  inside the band left between the bounding paths (O(mn log n)).
   matchWindow() does the same for the starts near a given one, for tracking from frame to frame.
 
   Not thread safe (it reuses its buffers); copy one per thread.
@@ -79,25 +77,32 @@ public:
   double distance(const vpMorphContour &A, const vpMorphContour &B);
 
 private:
-  struct Problem;
+  //! A path of the grid: its cells (row, column) from the start to the end, and its extent per row.
+  struct Path {
+    std::vector<int> left, right;
+    std::vector<std::pair<int, int> > cells;
+  };
+  static void checkStart(const vpMorphContour &A, const vpMorphContour &B, std::size_t a, std::size_t b);
   void prepare(const vpMorphContour &A, const vpMorphContour &B, std::size_t a, std::size_t b);
-  double solveStart(std::size_t b, const std::vector<int> *lo, const std::vector<int> *hi, std::vector<int> *pathLo,
-                    std::vector<int> *pathHi);
-  vpMorphCorrespondence solveRange(std::size_t bFirst, std::size_t count);
-  vpMorphCorrespondence tracePath(std::size_t b);
+  double solveStart(int b, const Path *lo, const Path *hi, Path &path);
+  void solveBetween(int bLo, int bHi, const Path &lo, const Path &hi, double &bestWork, Path &best);
+  vpMorphCorrespondence solveRange(int count);
+  vpMorphCorrespondence toCorrespondence(const Path &path);
 
   vpMorphWorkModel m_model;
   bool m_normalizeScale;
 
-  // Prepared problem: per-vertex edge lengths and turning angles of A (rotated so that row 0 is the
-  // start vertex) and of B (rotated, reversed if needed, and doubled).
+  // The prepared problem: A rotated so that grid row 0 is its vertex m_a0; B rotated so that grid column 0
+  // is its vertex m_b0, traversed backwards when the orientations differ, and doubled (columns 0 .. 2n-1).
   std::size_t m_m = 0, m_n = 0, m_a0 = 0, m_b0 = 0;
-  bool m_reversedB = false;
+  bool m_reversedA = false, m_reversedB = false;
   std::vector<double> m_lenA, m_phiA, m_lenB, m_phiB;
-  // Per-cell step costs for the current problem (row-major over the (m+1) x (2n+1) grid), built once.
-  std::vector<double> m_costDiag, m_costA, m_costB;
-  std::vector<double> m_dp;
+  // Step costs: A-only steps per row, B-only steps per column, diagonal steps per cell (m x 2n, row-major).
+  std::vector<double> m_costA, m_costB, m_costDiag;
+  // Work buffers of the dynamic programme, reused from call to call.
+  std::vector<double> m_prev, m_cur;
   std::vector<unsigned char> m_step;
+  std::vector<std::size_t> m_rowOff;
 };
 
 #endif

@@ -1,0 +1,279 @@
+// Tests of the minimal-work cyclic correspondence (vpMorphMatcher): exactness of the fast search against
+// the brute-force reference, the windowed search, invariances and bad input.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+#include <set>
+
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphMatcher.h>
+
+namespace
+{
+// Random star-shaped polygon: n vertices at sorted random angles with random radii around \e r.
+vpMorphContour randomPolygon(std::mt19937 &rng, std::size_t n, double r = 100.0, double roughness = 0.4)
+{
+  std::uniform_real_distribution<double> ang(0.0, 2 * M_PI), rad(1.0 - roughness, 1.0 + roughness);
+  std::vector<double> a(n);
+  for (double &v : a)
+    v = ang(rng);
+  std::sort(a.begin(), a.end());
+  std::vector<double> x(n), y(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double rr = r * rad(rng);
+    x[k] = 320 + rr * std::cos(a[k]);
+    y[k] = 240 + rr * std::sin(a[k]);
+  }
+  return vpMorphContour(x, y);
+}
+
+vpMorphContour jittered(const vpMorphContour &c, std::mt19937 &rng, double sigma)
+{
+  std::normal_distribution<double> g(0.0, sigma);
+  std::vector<double> x = c.xs(), y = c.ys();
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    x[k] += g(rng);
+    y[k] += g(rng);
+  }
+  return vpMorphContour(x, y);
+}
+
+// The correspondence is a valid closed monotone path: steps of (1,0), (0,1), (1,1), every vertex used.
+// Indices advance in the direction of positive signed area of their polygon.
+void checkValid(const vpMorphCorrespondence &c, const vpMorphContour &A, const vpMorphContour &B)
+{
+  const std::size_t m = A.size(), n = B.size();
+  const bool backA = A.signedArea() < 0, backB = B.signedArea() < 0;
+  REQUIRE(c.inputSize() == m);
+  REQUIRE(c.targetSize() == n);
+  REQUIRE(c.size() >= std::max(m, n));
+  REQUIRE(c.size() <= m + n);
+  std::set<std::size_t> si, sj;
+  const auto &p = c.pairs();
+  std::size_t advA = 0, advB = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    si.insert(p[k].first);
+    sj.insert(p[k].second);
+    const auto &q = p[(k + 1) % p.size()];
+    const std::size_t da = backA ? (p[k].first + m - q.first) % m : (q.first + m - p[k].first) % m;
+    const std::size_t db = backB ? (p[k].second + n - q.second) % n : (q.second + n - p[k].second) % n;
+    REQUIRE(da <= 1);
+    REQUIRE(db <= 1);
+    REQUIRE(da + db >= 1);
+    advA += da;
+    advB += db;
+  }
+  REQUIRE(advA == m);
+  REQUIRE(advB == n);
+  REQUIRE(si.size() == m);
+  REQUIRE(sj.size() == n);
+}
+} // namespace
+
+TEST_CASE("work model rejects bad stiffness", "[matcher]")
+{
+  REQUIRE_THROWS_AS(vpMorphWorkModel(0.0), vpMorphException);
+  REQUIRE_THROWS_AS(vpMorphWorkModel(-1.0), vpMorphException);
+  REQUIRE_THROWS_AS(vpMorphWorkModel(NAN), vpMorphException);
+  REQUIRE_THROWS_AS(vpMorphWorkModel(1.0, -0.1), vpMorphException);
+  REQUIRE_THROWS_AS(vpMorphWorkModel(1.0, NAN), vpMorphException);
+  REQUIRE_THROWS_AS(vpMorphWorkModel(1.0, 0.1, 0.0), vpMorphException);
+  REQUIRE_THROWS_AS(vpMorphWorkModel(1.0, 0.1, 1.5), vpMorphException);
+  REQUIRE_NOTHROW(vpMorphWorkModel(2.0, 0.0, 1.0));
+  const vpMorphWorkModel w(1.0, 0.5, 0.5);
+  CHECK(w.stretching(2.0, 2.0) == 0.0);
+  CHECK(w.stretching(1.0, 3.0) == Approx(4.0 / (0.5 * 1 + 0.5 * 3)));
+  CHECK(w.stretching(2.0, 0.0) == Approx(2.0 / 0.5)); // collapse: ks L / cs
+  CHECK(w.bending(0.2, -0.3) == Approx(0.5 * 0.25));
+}
+
+TEST_CASE("fast exact search returns the brute-force minimum on 1000 random pairs", "[matcher][exact]")
+{
+  std::mt19937 rng(20261122);
+  std::uniform_int_distribution<int> size(3, 40);
+  std::uniform_real_distribution<double> ang(-M_PI, M_PI), unit(0.0, 1.0);
+  vpMorphMatcher matcher;
+  std::size_t withRelatedShapes = 0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    vpMorphContour A = randomPolygon(rng, static_cast<std::size_t>(size(rng)));
+    vpMorphContour B;
+    if (trial % 3 == 0) {
+      // Related shapes: B is A rotated, translated, scaled, noisy, resampled, or with another start.
+      B = jittered(A, rng, 3.0 * unit(rng)).transformed(ang(rng), 50 * unit(rng), -30 * unit(rng), 0.5 + unit(rng));
+      if (trial % 2 == 0)
+        B = B.resampled(static_cast<std::size_t>(size(rng)));
+      B = B.rotatedStart(static_cast<std::size_t>(size(rng)));
+      ++withRelatedShapes;
+    } else {
+      B = randomPolygon(rng, static_cast<std::size_t>(size(rng)), 80.0, 0.6 * unit(rng) + 0.05);
+    }
+    if (trial % 5 == 0)
+      B = B.reversed(); // opposite orientation is handled internally
+    const vpMorphCorrespondence ref = matcher.matchBruteForce(A, B);
+    const vpMorphCorrespondence fast = matcher.match(A, B);
+    INFO("trial " << trial << ": m = " << A.size() << ", n = " << B.size());
+    REQUIRE(fast.work() == Approx(ref.work()).epsilon(1e-9).margin(1e-12));
+    if (trial % 50 == 0) {
+      checkValid(fast, A, B);
+      checkValid(ref, A, B);
+    }
+  }
+  CHECK(withRelatedShapes > 300);
+}
+
+TEST_CASE("minimum over the n starts (0, b) equals the minimum over all m n starting pairs", "[matcher][exact]")
+{
+  std::mt19937 rng(7);
+  vpMorphMatcher matcher;
+  for (int trial = 0; trial < 20; ++trial) {
+    const vpMorphContour A = randomPolygon(rng, 5 + trial % 7), B = randomPolygon(rng, 4 + trial % 9);
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t a = 0; a < A.size(); ++a)
+      for (std::size_t b = 0; b < B.size(); ++b) {
+        const vpMorphCorrespondence c = matcher.matchFromStart(A, B, a, b);
+        REQUIRE(c.start() == std::make_pair(a, b));
+        best = std::min(best, c.work());
+      }
+    REQUIRE(matcher.matchBruteForce(A, B).work() == Approx(best).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("work of a correspondence is the sum of its stretching and bending", "[matcher]")
+{
+  std::mt19937 rng(3);
+  vpMorphMatcher matcher;
+  const vpMorphContour A = randomPolygon(rng, 17), B = randomPolygon(rng, 23);
+  const vpMorphCorrespondence c = matcher.match(A, B);
+  CHECK(c.stretchingWork() > 0.0);
+  CHECK(c.bendingWork() > 0.0);
+  CHECK(c.work() == Approx(c.stretchingWork() + c.bendingWork()));
+  // Changing the bending stiffness changes only the bending part of a fixed correspondence.
+  vpMorphMatcher stretchOnly(vpMorphWorkModel(1.0, 0.0, 0.5));
+  CHECK(stretchOnly.match(A, B).bendingWork() == 0.0);
+}
+
+TEST_CASE("windowed search is exact within its window", "[matcher][window]")
+{
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> size(6, 30);
+  vpMorphMatcher matcher;
+  for (int trial = 0; trial < 200; ++trial) {
+    const vpMorphContour A = randomPolygon(rng, static_cast<std::size_t>(size(rng)));
+    vpMorphContour B = randomPolygon(rng, static_cast<std::size_t>(size(rng)));
+    if (trial % 4 == 0)
+      B = B.reversed();
+    const std::size_t n = B.size();
+    const std::size_t a = static_cast<std::size_t>(trial) % A.size();
+    const std::size_t center = static_cast<std::size_t>(trial * 7) % n, half = 1 + trial % 4;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t d = 0; d <= 2 * half; ++d) {
+      const std::size_t b = (center + n - half + d) % n;
+      best = std::min(best, matcher.matchFromStart(A, B, a, b).work());
+    }
+    const vpMorphCorrespondence w = matcher.matchWindow(A, B, a, center, half);
+    INFO("trial " << trial);
+    REQUIRE(w.work() == Approx(best).epsilon(1e-9));
+    REQUIRE(w.start().first == a);
+    const std::size_t off = (w.start().second + n - (center + n - half) % n) % n;
+    REQUIRE(off <= 2 * half);
+    // The window never does better than the global optimum, and a full window finds it.
+    REQUIRE(w.work() >= matcher.match(A, B).work() - 1e-12);
+    REQUIRE(matcher.matchWindow(A, B, 0, center, n).work() == Approx(matcher.match(A, B).work()));
+  }
+}
+
+TEST_CASE("morph distance invariances", "[matcher][invariance]")
+{
+  std::mt19937 rng(5);
+  vpMorphMatcher matcher;
+  for (int trial = 0; trial < 20; ++trial) {
+    const vpMorphContour A = randomPolygon(rng, 12 + trial), B = randomPolygon(rng, 20 + trial % 5);
+    const double d = matcher.distance(A, B);
+    SECTION("identity") { CHECK(matcher.distance(A, A) == Approx(0.0).margin(1e-12)); }
+    CHECK(matcher.distance(A, A) == Approx(0.0).margin(1e-12));
+    CHECK(d > 0.0);
+    // Translation and rotation of either shape.
+    CHECK(matcher.distance(A.transformed(0.0, 123.0, -45.0), B) == Approx(d).epsilon(1e-9));
+    CHECK(matcher.distance(A, B.transformed(2.1 + trial, 0.0, 0.0)) == Approx(d).epsilon(1e-9));
+    // Starting vertex.
+    CHECK(matcher.distance(A.rotatedStart(trial % A.size()), B.rotatedStart(3)) == Approx(d).epsilon(1e-9));
+    // Traversal direction.
+    CHECK(matcher.distance(A.reversed(), B) == Approx(d).epsilon(1e-9));
+    // Scale, normalised for recognition.
+    CHECK(matcher.distance(A.transformed(0.0, 0.0, 0.0, 3.7), B.transformed(0.0, 0.0, 0.0, 0.4)) ==
+          Approx(d).epsilon(1e-9));
+    // Symmetry.
+    CHECK(matcher.distance(B, A) == Approx(d).epsilon(1e-9));
+  }
+  // Without scale normalisation the work is in pixel units and changes with scale.
+  vpMorphMatcher raw(vpMorphWorkModel(), false);
+  const vpMorphContour A = randomPolygon(rng, 15), B = randomPolygon(rng, 18);
+  CHECK(raw.distance(A, B.transformed(0.0, 0.0, 0.0, 2.0)) != Approx(raw.distance(A, B)));
+}
+
+TEST_CASE("a shape and a noisy rotated copy are closer than two different shapes", "[matcher]")
+{
+  std::mt19937 rng(9);
+  vpMorphMatcher matcher;
+  int ok = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    const vpMorphContour A = randomPolygon(rng, 24), B = randomPolygon(rng, 24);
+    const vpMorphContour A2 = jittered(A, rng, 1.0).transformed(1.0 + trial, 10, 20, 1.3).rotatedStart(trial % 24);
+    if (matcher.distance(A, A2) < matcher.distance(A, B))
+      ++ok;
+  }
+  CHECK(ok >= 48);
+}
+
+TEST_CASE("correspondence of a copy with another start is the shifted identity", "[matcher]")
+{
+  std::mt19937 rng(1);
+  vpMorphMatcher matcher;
+  const vpMorphContour A = randomPolygon(rng, 20);
+  const vpMorphContour B = A.transformed(2.5, 40, -10, 1.5).rotatedStart(7);
+  const vpMorphCorrespondence c = matcher.match(A, B);
+  CHECK(c.work() == Approx(0.0).margin(1e-9));
+  REQUIRE(c.size() == 20);
+  for (const auto &p : c.pairs())
+    CHECK((p.second + 7) % 20 == p.first);
+  // Opposite traversal: indices are reported in B's own numbering.
+  const vpMorphContour R = A.reversed();
+  const vpMorphCorrespondence r = matcher.match(A, R);
+  CHECK(r.work() == Approx(0.0).margin(1e-9));
+  for (const auto &p : r.pairs())
+    CHECK((20 - p.second) % 20 == p.first);
+}
+
+TEST_CASE("matcher bad input gives a clear error", "[matcher][bad-input]")
+{
+  vpMorphMatcher matcher;
+  const vpMorphContour A({0.0, 10.0, 0.0}, {0.0, 0.0, 10.0});
+  REQUIRE_THROWS_AS(matcher.match(A, vpMorphContour()), vpMorphException);
+  REQUIRE_THROWS_AS(matcher.match(vpMorphContour(), A), vpMorphException);
+  REQUIRE_THROWS_AS(matcher.matchFromStart(A, A, 3, 0), vpMorphException);
+  REQUIRE_THROWS_AS(matcher.matchWindow(A, A, 0, 5, 1), vpMorphException);
+  const vpMorphContour N({0.0, 0.1, 0.0}, {0.0, 0.0, 0.1}, vpMorphContour::NORMALIZED);
+  REQUIRE_THROWS_AS(matcher.match(A, N), vpMorphException);
+  REQUIRE_THROWS_WITH(matcher.match(A, N), Catch::Contains("units"));
+}
+
+TEST_CASE("contour validation rejects degenerate polygons", "[contour][bad-input]")
+{
+  REQUIRE_THROWS_AS((vpMorphContour({0.0, 1.0}, {0.0, 1.0})), vpMorphException);
+  REQUIRE_THROWS_AS((vpMorphContour({0.0, 1.0, 2.0}, {0.0, 1.0})), vpMorphException);
+  REQUIRE_THROWS_AS((vpMorphContour({0.0, NAN, 2.0}, {0.0, 1.0, 0.0})), vpMorphException);
+  REQUIRE_THROWS_AS((vpMorphContour({0.0, INFINITY, 2.0}, {0.0, 1.0, 0.0})), vpMorphException);
+  REQUIRE_THROWS_AS((vpMorphContour({0.0, 1.0, 1.0, 0.0}, {0.0, 0.0, 0.0, 1.0})), vpMorphException); // repeated
+  REQUIRE_THROWS_AS((vpMorphContour({0.0, 1.0, 2.0, 3.0}, {0.0, 1.0, 2.0, 3.0})), vpMorphException); // collinear
+  REQUIRE_THROWS_WITH(vpMorphContour(std::vector<double>{0.0, 1.0, 2.0}, std::vector<double>{0.0, 1.0, 2.0}),
+                      Catch::Contains("collinear"));
+  // A bow tie is a valid contour but not simple.
+  const vpMorphContour bow({0.0, 10.0, 10.0, 0.0}, {0.0, 10.0, 0.0, 20.0});
+  CHECK_FALSE(bow.isSimple());
+  CHECK(vpMorphContour({0.0, 10.0, 10.0, 0.0}, {0.0, 0.0, 10.0, 10.0}).isSimple());
+  const vpMorphContour sq({0.0, 10.0, 10.0, 0.0}, {0.0, 0.0, 10.0, 10.0});
+  REQUIRE_THROWS_AS(sq.transformed(NAN, 0, 0), vpMorphException);
+  REQUIRE_THROWS_AS(sq.transformed(0, 0, 0, 0.0), vpMorphException);
+  REQUIRE_THROWS_AS(sq.resampled(2), vpMorphException);
+}
