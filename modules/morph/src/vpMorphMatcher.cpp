@@ -11,7 +11,7 @@ namespace
 {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Step that entered a cell.
-enum : unsigned char { STEP_DIAG = 0, STEP_A = 1, STEP_B = 2 };
+constexpr unsigned char STEP_DIAG = 0, STEP_A = 1, STEP_B = 2;
 } // namespace
 
 vpMorphMatcher::vpMorphMatcher(const vpMorphWorkModel &model, bool normalizeScale)
@@ -87,8 +87,11 @@ void vpMorphMatcher::prepare(const vpMorphContour &A, const vpMorphContour &B, s
   for (std::size_t i = 0; i < m; ++i)
     m_costA[i] = m_model.stretching(m_lenA[i], 0.0) + kb * m_phiA[i] * m_phiA[i];
   m_costB.resize(2 * n);
-  for (std::size_t j = 0; j < 2 * n; ++j)
+  m_prefB.resize(2 * n);
+  for (std::size_t j = 0; j < 2 * n; ++j) {
     m_costB[j] = m_model.stretching(0.0, m_lenB[j]) + kb * m_phiB[j] * m_phiB[j];
+    m_prefB[j] = (j ? m_prefB[j - 1] : 0.0) + m_costB[j];
+  }
   m_costDiag.resize(m * 2 * n);
   for (std::size_t i = 0; i < m; ++i) {
     double *row = &m_costDiag[i * 2 * n];
@@ -113,18 +116,20 @@ double vpMorphMatcher::solveStart(int b, const Path *lo, const Path *hi, Path &p
   for (int i = 0; i <= m; ++i)
     m_rowOff[i + 1] = m_rowOff[i] + static_cast<std::size_t>(std::max(0, R(i) - L(i) + 1));
   m_step.resize(m_rowOff[m + 1]);
-  m_prev.assign(W + 1, kInf);
-  m_cur.assign(W + 1, kInf);
+  // Rolling rows, offset by one cell so that column -1 exists.
+  m_prev.assign(W + 2, kInf);
+  m_cur.assign(W + 2, kInf);
 
   // Row 0: A's vertex 0 matched to B's b, b+1, ...: only B steps. The start cell's own step is the one
   // that closes the path into (m, b + n), charged there.
   int pl = b, pr = R(0);
   {
     unsigned char *st = &m_step[m_rowOff[0]] - b;
-    m_prev[b] = 0.0;
+    double *prev = m_prev.data() + 1;
+    prev[b] = 0.0;
     st[b] = STEP_DIAG;
     for (int j = b + 1; j <= pr; ++j) {
-      m_prev[j] = m_prev[j - 1] + m_costB[j];
+      prev[j] = prev[j - 1] + m_costB[j];
       st[j] = STEP_B;
     }
   }
@@ -133,37 +138,36 @@ double vpMorphMatcher::solveStart(int b, const Path *lo, const Path *hi, Path &p
     const int ii = (i == m) ? 0 : i; // row m is A's vertex 0 again
     const double *cd = &m_costDiag[static_cast<std::size_t>(ii) * W];
     const double ca = m_costA[ii];
+    const double *pB = m_prefB.data();
     unsigned char *st = &m_step[m_rowOff[i]] - l;
-    // m_prev holds row i-1 on [pl, pr] and +inf elsewhere; l >= pl always.
-    double left = kInf;
+    // prev[j] = D[i-1][j], +inf outside [pl, pr]; prev[-1] exists (+inf) thanks to the one-cell offset.
+    const double *prev = m_prev.data() + 1;
+    double *cur = m_cur.data() + 1;
+    // With P[j] the prefix sum of the B-step costs, D[i][j] - P[j] is the running minimum of
+    // min(diagonal, A step) - P[j] along the row, so the serial part is a bare minimum (no add in the chain).
+    // Pass 1, independent cells (vectorisable): best of the diagonal and the A step, minus P[j].
     for (int j = l; j <= r; ++j) {
-      const double up = m_prev[j] + ca;
-      const double dg = (j > pl) ? m_prev[j - 1] + cd[j] : kInf;
-      const double lf = left + m_costB[j];
-      double best = dg;
-      unsigned char s = STEP_DIAG;
-      if (up < best) {
-        best = up;
-        s = STEP_A;
-      }
-      if (lf < best) {
-        best = lf;
-        s = STEP_B;
-      }
-      m_cur[j] = best;
-      st[j] = s;
-      left = best;
+      const double up = prev[j] + ca, dg = prev[j - 1] + cd[j];
+      cur[j] = (up < dg ? up : dg) - pB[j];
+      st[j] = up < dg ? STEP_A : STEP_DIAG;
+    }
+    // Pass 2, serial: running minimum, then back to D[i][j].
+    double run = cur[l];
+    cur[l] += pB[l];
+    for (int j = l + 1; j <= r; ++j) {
+      const double y = cur[j];
+      st[j] = run < y ? STEP_B : st[j];
+      run = run < y ? run : y;
+      cur[j] = run + pB[j];
     }
     for (int j = pl; j <= pr; ++j) // forget row i-1 so that m_prev is +inf outside row i's range
-      m_prev[j] = kInf;
+      m_prev[j + 1] = kInf;
     std::swap(m_prev, m_cur);
     pl = l;
     pr = r;
   }
   const int end = b + n;
-  const double work = (end >= pl && end <= pr) ? m_prev[end] : kInf;
-  for (int j = pl; j <= pr; ++j)
-    m_prev[j] = kInf;
+  const double work = (end >= pl && end <= pr) ? m_prev[end + 1] : kInf;
   if (!std::isfinite(work))
     return work;
 

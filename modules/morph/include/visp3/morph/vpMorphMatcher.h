@@ -99,6 +99,8 @@ private:
   std::vector<double> m_lenA, m_phiA, m_lenB, m_phiB;
   // Step costs: A-only steps per row, B-only steps per column, diagonal steps per cell (m x 2n, row-major).
   std::vector<double> m_costA, m_costB, m_costDiag;
+  std::vector<double> m_prefB; // prefix sums of m_costB
+
   // Work buffers of the dynamic programme, reused from call to call.
   std::vector<double> m_prev, m_cur;
   std::vector<unsigned char> m_step;
