@@ -26,7 +26,8 @@ function(vispmorph_add_module name)
   install(TARGETS ${target} EXPORT VISPMorphTargets
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-  install(DIRECTORY include/visp3 DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  # Headers only: editor backups and temporary files next to them are not part of the package.
+  install(DIRECTORY include/visp3 DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
   set_property(GLOBAL APPEND PROPERTY VISPMORPH_MODULES ${name})
 
   file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/*.cpp)
