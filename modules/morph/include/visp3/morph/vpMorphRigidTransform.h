@@ -1,0 +1,147 @@
+/*!
+  \file vpMorphRigidTransform.h
+  \brief The rigid part of a morph: a 2-D similarity about an explicit centre, and its estimators.
+*/
+#ifndef VP_MORPH_RIGID_TRANSFORM_H
+#define VP_MORPH_RIGID_TRANSFORM_H
+
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpMatrix.h>
+#include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphCorrespondence.h>
+
+/*!
+  \class vpMorphRigidTransform
+  \ingroup group_morph
+  \brief 2-D similarity \f$ x' = s R(\theta) (x - c) + c + t \f$ with an explicit centre \f$c\f$ (value type).
+
+  The centre is part of the parametrisation, not of the transform: the same map can be written about any
+  centre. It matters for interpolated(): with \f$c\f$ at the shape's centroid, the intermediate transforms
+  rotate the shape about itself while its centroid moves on a straight line, instead of swinging it around
+  the image origin. The estimators always return the transform written about the input polygon's area
+  centroid for that reason.
+
+  Angles are in radians, counter-clockwise in the (x, y) axes (clockwise on screen for pixel contours,
+  whose y axis points down), normalised to (-pi, pi] so that interpolation takes the short way round.
+
+  <b>Scale.</b> The paper's rigid part is rotation + translation. We estimate a scale too by default,
+  because for an eye-in-hand camera a depth change between the current and the desired view is a uniform
+  scale of the image, not a deformation: leaving it to Eq. 1 would make the intermediate contours shrink
+  or grow non-uniformly. Pass withScale = false for the paper's rotation + translation (scale fixed to 1).
+
+  <b>Estimators.</b> Both use only the corresponded vertex pairs of a vpMorphCorrespondence and give each
+  pair the weight of the contour length it stands for (half of the adjacent corresponded segments, on the
+  input and on the target, each normalised by its perimeter), so that a densely sampled part of a polygon
+  does not outweigh a sparsely sampled one.
+  - fitElongation(): the paper's method, from the principal axes ("elongation vectors") of the two
+    corresponded point sets.
+  - fitLeastSquares(): weighted 2-D Procrustes (Umeyama, closed form in 2-D) over all pairs, made robust
+    by iteratively reweighted least squares. More accurate on noisy contours and well posed for shapes
+    with isotropic moments (a square, a disc), where the elongation axis does not exist.
+*/
+class vpMorphRigidTransform
+{
+public:
+  //! Robust loss used by fitLeastSquares().
+  enum RobustLoss {
+    NO_ROBUST, //!< Plain weighted least squares (outliers drag the fit).
+    HUBER,     //!< Huber IRLS: bounded influence, convex, always converges.
+    TUKEY      //!< Huber warm start, then Tukey biweight IRLS: outliers get weight 0 (default).
+  };
+
+  //! Identity about the origin.
+  vpMorphRigidTransform() = default;
+  /*!
+    \param theta Rotation (radians), normalised to (-pi, pi].
+    \param tx, ty Translation, in the units of the contours.
+    \param scale Uniform scale, finite and > 0.
+    \param cx, cy Centre of the rotation and scale.
+    \throw vpMorphException::badParameterError on a non-finite value or scale <= 0.
+  */
+  vpMorphRigidTransform(double theta, double tx, double ty, double scale = 1.0, double cx = 0.0, double cy = 0.0);
+
+  double theta() const { return m_theta; }
+  double tx() const { return m_tx; }
+  double ty() const { return m_ty; }
+  double scale() const { return m_scale; }
+  double cx() const { return m_cx; }
+  double cy() const { return m_cy; }
+  void centre(double &cx, double &cy) const
+  {
+    cx = m_cx;
+    cy = m_cy;
+  }
+
+  //! Transformed point (x, y) -> (xo, yo).
+  void apply(double x, double y, double &xo, double &yo) const;
+  //! Transformed image point; u is x and v is y, as in vpMorphContour.
+  vpImagePoint apply(const vpImagePoint &p) const;
+  //! Transformed contour (same vertex order and units).
+  vpMorphContour apply(const vpMorphContour &c) const;
+
+  /*!
+    The fraction \e alpha in [0, 1] of this transform, about the same centre: angle alpha*theta, translation
+    alpha*t, scale s^alpha (geometric, so that halving twice equals quartering). alpha = 0 is the identity,
+    alpha = 1 this transform.
+    \throw vpMorphException::badParameterError if alpha is not finite or outside [0, 1].
+  */
+  vpMorphRigidTransform interpolated(double alpha) const;
+  //! Inverse map, written about the image c + t of this centre (so its translation is -t).
+  vpMorphRigidTransform inverse() const;
+  //! Composition: (a * b).apply(x) == a.apply(b.apply(x)); written about b's centre.
+  vpMorphRigidTransform operator*(const vpMorphRigidTransform &b) const;
+  //! Same map, written about another centre (interpolation then rotates about that centre).
+  vpMorphRigidTransform recentred(double cx, double cy) const;
+  //! 3x3 homogeneous matrix of the map, [sR, b; 0 0 1] with b = c + t - sRc.
+  vpMatrix toMatrix() const;
+
+  /*!
+    The paper's estimator (section 2): the elongation vector of each shape is the principal (major) axis
+    of its corresponded point set \f$\{A_{i_k}\}\f$, \f$\{B_{j_k}\}\f$ (weighted second-order moments).
+    Translation = difference of the centres (weighted means); rotation = angle between the two axes,
+    with the 180 deg ambiguity of an axis resolved by the correspondence (the sign that makes the
+    corresponded points agree best); scale (if \e withScale) = ratio of the RMS spreads.
+
+    Why the corresponded point sets rather than the polygon regions: the paper derives the elongation
+    vectors from the correspondence; paired point sets with the same weights make the estimate exact for
+    an exact similarity whatever the vertex sampling, and keep both shapes' moments consistent when part
+    of a contour is matched to a single vertex. Region moments would ignore the correspondence entirely.
+
+    Ill-posed when either point set has (nearly) isotropic second moments (a square, a disc, a regular
+    polygon): the axis is then arbitrary. \e anisotropy (if not null) receives
+    \f$\min_{A,B} (\lambda_1 - \lambda_2) / (\lambda_1 + \lambda_2)\f$ in [0, 1]: below about 0.05 the
+    rotation is unreliable; use fitLeastSquares() instead.
+    \throw vpMorphException on empty contours, different units, or a correspondence that does not fit them.
+  */
+  static vpMorphRigidTransform fitElongation(const vpMorphContour &input, const vpMorphContour &target,
+                                             const vpMorphCorrespondence &correspondence, bool withScale = true,
+                                             double *anisotropy = nullptr);
+
+  /*!
+    Robust weighted least-squares similarity over all corresponded pairs: minimises
+    \f$\sum_k w_k \rho_k \| s R (A_{i_k} - c) + c + t - B_{j_k} \|^2\f$ (closed-form weighted 2-D Procrustes),
+    with \f$w_k\f$ the length weights and \f$\rho_k\f$ IRLS weights from the residual norms in units of a
+    robust scale \f$\sigma = 1.4826\,\mathrm{MAD}\f$ of the pooled residual components. Huber threshold
+    2 sigma, Tukey 5 sigma (the 1-D constants 1.345 and 4.685 widened for 2-D residual norms). TUKEY starts
+    from a converged Huber fit, because the biweight needs a good start. Occluded or deformed parts of a
+    contour then stop dragging the rigid part, and stay for Eq. 1 to morph.
+    \param maxIterations IRLS iterations per stage (Huber, then Tukey), >= 1.
+    \throw vpMorphException on empty contours, different units, or a correspondence that does not fit them.
+  */
+  static vpMorphRigidTransform fitLeastSquares(const vpMorphContour &input, const vpMorphContour &target,
+                                               const vpMorphCorrespondence &correspondence, bool withScale = true,
+                                               RobustLoss loss = TUKEY, unsigned int maxIterations = 30);
+
+  /*!
+    Checks that \e correspondence fits the two contours (non-empty contours, same units, sizes equal to the
+    contours', indices in range, every vertex of each contour used at least once).
+    \throw vpMorphException::badContourError on an empty contour, badParameterError otherwise.
+  */
+  static void checkCorrespondence(const vpMorphContour &input, const vpMorphContour &target,
+                                  const vpMorphCorrespondence &correspondence, const char *caller);
+
+private:
+  double m_theta = 0.0, m_tx = 0.0, m_ty = 0.0, m_scale = 1.0, m_cx = 0.0, m_cy = 0.0;
+};
+
+#endif

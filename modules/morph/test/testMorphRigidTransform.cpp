@@ -1,0 +1,332 @@
+// Tests of vpMorphRigidTransform: the similarity itself, and the elongation vs least-squares estimators.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
+
+namespace
+{
+double angleError(double a, double b)
+{
+  double d = std::remainder(a - b, 2.0 * M_PI);
+  return std::fabs(d);
+}
+
+// Random star-shaped polygon about (cx, cy): sorted angles, radii in [rmin, rmax], x stretched by `stretch`.
+vpMorphContour starPolygon(std::mt19937 &rng, std::size_t n, double stretch = 1.5, double rmin = 60.0,
+                           double rmax = 100.0, double cx = 320.0, double cy = 240.0)
+{
+  std::uniform_real_distribution<double> jitter(-0.35, 0.35), radius(rmin, rmax);
+  std::vector<double> x(n), y(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double a = 2.0 * M_PI * (k + jitter(rng)) / n;
+    const double r = radius(rng);
+    x[k] = cx + stretch * r * std::cos(a);
+    y[k] = cy + r * std::sin(a);
+  }
+  return vpMorphContour(x, y);
+}
+
+// Identity correspondence with the target's vertex numbering shifted by `shift` (target j = i + shift).
+vpMorphCorrespondence shiftedIdentity(std::size_t n, std::size_t shift)
+{
+  std::vector<std::pair<std::size_t, std::size_t> > p;
+  for (std::size_t k = 0; k < n; ++k)
+    p.emplace_back(k, (k + shift) % n);
+  return vpMorphCorrespondence(n, n, p, 0.0, 0.0);
+}
+
+// Target vertex (k + shift) % n = T(input vertex k) + noise; perturb(k) may displace it further.
+template <class F>
+vpMorphContour makeTarget(const vpMorphContour &A, const vpMorphRigidTransform &T, std::size_t shift,
+                          std::mt19937 &rng, double sigma, F perturb)
+{
+  const std::size_t n = A.size();
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<double> x(n), y(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    double xo, yo;
+    T.apply(A.x(k), A.y(k), xo, yo);
+    perturb(k, xo, yo);
+    x[(k + shift) % n] = xo + sigma * noise(rng);
+    y[(k + shift) % n] = yo + sigma * noise(rng);
+  }
+  return vpMorphContour(x, y, A.units());
+}
+
+vpMorphContour addNoise(const vpMorphContour &A, std::mt19937 &rng, double sigma)
+{
+  std::normal_distribution<double> noise(0.0, sigma);
+  std::vector<double> x = A.xs(), y = A.ys();
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    x[k] += noise(rng);
+    y[k] += noise(rng);
+  }
+  return vpMorphContour(x, y, A.units());
+}
+
+vpMorphRigidTransform randomSimilarity(std::mt19937 &rng, const vpMorphContour &A)
+{
+  std::uniform_real_distribution<double> th(-M_PI, M_PI), t(-80.0, 80.0), s(0.7, 1.4);
+  double cx, cy;
+  A.centroid(cx, cy);
+  return vpMorphRigidTransform(th(rng), t(rng), t(rng), s(rng), cx, cy);
+}
+
+// Largest distance between the fitted image of an input vertex and where the true transform puts it.
+double maxVertexError(const vpMorphContour &A, const vpMorphRigidTransform &fit, const vpMorphRigidTransform &truth)
+{
+  double e = 0.0;
+  for (std::size_t k = 0; k < A.size(); ++k) {
+    double x0, y0, x1, y1;
+    fit.apply(A.x(k), A.y(k), x0, y0);
+    truth.apply(A.x(k), A.y(k), x1, y1);
+    e = std::max(e, std::hypot(x1 - x0, y1 - y0));
+  }
+  return e;
+}
+} // namespace
+
+TEST_CASE("vpMorphRigidTransform: apply, inverse, composition, interpolation", "[morph][rigid]")
+{
+  const vpMorphRigidTransform T(0.7, 12.0, -5.0, 1.3, 100.0, 50.0);
+  double x, y, xb, yb;
+  T.apply(100.0, 50.0, x, y); // the centre moves by t only
+  CHECK(x == Approx(112.0));
+  CHECK(y == Approx(45.0));
+
+  T.apply(130.0, 20.0, x, y);
+  T.inverse().apply(x, y, xb, yb);
+  CHECK(xb == Approx(130.0).margin(1e-9));
+  CHECK(yb == Approx(20.0).margin(1e-9));
+
+  const vpMorphRigidTransform U(-2.0, 3.0, 4.0, 0.8, -10.0, 7.0);
+  double x1, y1, x2, y2;
+  U.apply(30.0, 40.0, x, y);
+  T.apply(x, y, x1, y1);
+  (T * U).apply(30.0, 40.0, x2, y2);
+  CHECK(x2 == Approx(x1).margin(1e-9));
+  CHECK(y2 == Approx(y1).margin(1e-9));
+
+  const vpMatrix M = T.toMatrix();
+  T.apply(3.0, 4.0, x, y);
+  CHECK(M[0][0] * 3 + M[0][1] * 4 + M[0][2] == Approx(x));
+  CHECK(M[1][0] * 3 + M[1][1] * 4 + M[1][2] == Approx(y));
+
+  const vpMorphRigidTransform R = T.recentred(-40.0, 8.0);
+  R.apply(55.0, -3.0, x1, y1);
+  T.apply(55.0, -3.0, x2, y2);
+  CHECK(x1 == Approx(x2).margin(1e-9));
+  CHECK(y1 == Approx(y2).margin(1e-9));
+
+  // Interpolation: geometric scale, linear angle and translation, about the same centre.
+  const vpMorphRigidTransform H = T.interpolated(0.5);
+  CHECK(H.theta() == Approx(0.35));
+  CHECK(H.scale() == Approx(std::sqrt(1.3)));
+  CHECK(H.tx() == Approx(6.0));
+  CHECK(H.cx() == 100.0);
+  const vpMorphRigidTransform I0 = T.interpolated(0.0);
+  CHECK(I0.theta() == 0.0);
+  CHECK(I0.scale() == 1.0);
+  // Angles are wrapped so that interpolation takes the short way round.
+  CHECK(vpMorphRigidTransform(1.5 * M_PI, 0, 0).theta() == Approx(-0.5 * M_PI));
+
+  CHECK_THROWS_AS(T.interpolated(1.5), vpMorphException);
+  CHECK_THROWS_AS(T.interpolated(-0.1), vpMorphException);
+  CHECK_THROWS_AS(T.interpolated(std::numeric_limits<double>::quiet_NaN()), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform(std::numeric_limits<double>::quiet_NaN(), 0, 0), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform(0, 0, 0, 0.0), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform(0, 0, 0, -1.0), vpMorphException);
+}
+
+TEST_CASE("vpMorphRigidTransform: both estimators recover an exact similarity", "[morph][rigid]")
+{
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 50; ++trial) {
+    const vpMorphContour A = starPolygon(rng, 12 + trial % 20);
+    const vpMorphRigidTransform truth = randomSimilarity(rng, A);
+    const std::size_t shift = trial % A.size();
+    const vpMorphContour B = makeTarget(A, truth, shift, rng, 0.0, [](std::size_t, double &, double &) {});
+    const vpMorphCorrespondence c = shiftedIdentity(A.size(), shift);
+
+    const vpMorphRigidTransform e = vpMorphRigidTransform::fitElongation(A, B, c);
+    const vpMorphRigidTransform l = vpMorphRigidTransform::fitLeastSquares(A, B, c);
+    CHECK(angleError(e.theta(), truth.theta()) < 1e-9);
+    CHECK(angleError(l.theta(), truth.theta()) < 1e-9);
+    CHECK(e.scale() == Approx(truth.scale()).epsilon(1e-9));
+    CHECK(l.scale() == Approx(truth.scale()).epsilon(1e-9));
+    CHECK(maxVertexError(A, e, truth) < 1e-7);
+    CHECK(maxVertexError(A, l, truth) < 1e-7);
+    // Written about the input's area centroid, so interpolation rotates the shape about itself.
+    double cx, cy;
+    A.centroid(cx, cy);
+    CHECK(l.cx() == Approx(cx));
+    CHECK(e.cy() == Approx(cy));
+  }
+}
+
+TEST_CASE("vpMorphRigidTransform: rotation + translation only (scale fixed to 1)", "[morph][rigid]")
+{
+  std::mt19937 rng(11);
+  const vpMorphContour A = starPolygon(rng, 25);
+  double cx, cy;
+  A.centroid(cx, cy);
+  const vpMorphRigidTransform truth(2.5, 30.0, -12.0, 1.0, cx, cy);
+  const vpMorphContour B = makeTarget(A, truth, 3, rng, 0.0, [](std::size_t, double &, double &) {});
+  const vpMorphCorrespondence c = shiftedIdentity(A.size(), 3);
+  for (const vpMorphRigidTransform &f : {vpMorphRigidTransform::fitElongation(A, B, c, false),
+                                         vpMorphRigidTransform::fitLeastSquares(A, B, c, false)}) {
+    CHECK(f.scale() == 1.0);
+    CHECK(angleError(f.theta(), 2.5) < 1e-9);
+    CHECK(maxVertexError(A, f, truth) < 1e-7);
+  }
+  // With a true scale of 1.25 and scale fixed, the rotation is still right and the centroids still match.
+  const vpMorphRigidTransform scaled(2.5, 30.0, -12.0, 1.25, cx, cy);
+  const vpMorphContour B2 = makeTarget(A, scaled, 3, rng, 0.0, [](std::size_t, double &, double &) {});
+  const vpMorphRigidTransform f = vpMorphRigidTransform::fitLeastSquares(A, B2, c, false, vpMorphRigidTransform::NO_ROBUST);
+  CHECK(f.scale() == 1.0);
+  CHECK(angleError(f.theta(), 2.5) < 1e-9);
+}
+
+TEST_CASE("vpMorphRigidTransform: least squares beats elongation on noisy contours", "[morph][rigid][accuracy]")
+{
+  std::mt19937 rng(2024);
+  const int trials = 300;
+  const double sigma = 2.0; // px, on input and target vertices (shapes are ~300 x 200 px)
+  double errE = 0.0, errL = 0.0, errP = 0.0, maxE = 0.0, maxL = 0.0;
+  double terrE = 0.0, terrL = 0.0;
+  int lsBetter = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    const vpMorphContour A0 = starPolygon(rng, 16 + trial % 25);
+    const vpMorphRigidTransform truth = randomSimilarity(rng, A0);
+    const std::size_t shift = trial % A0.size();
+    const vpMorphContour B = makeTarget(A0, truth, shift, rng, sigma, [](std::size_t, double &, double &) {});
+    const vpMorphContour A = addNoise(A0, rng, sigma);
+    const vpMorphCorrespondence c = shiftedIdentity(A.size(), shift);
+    const vpMorphRigidTransform e = vpMorphRigidTransform::fitElongation(A, B, c);
+    const vpMorphRigidTransform l = vpMorphRigidTransform::fitLeastSquares(A, B, c);
+    const vpMorphRigidTransform p = vpMorphRigidTransform::fitLeastSquares(A, B, c, true, vpMorphRigidTransform::NO_ROBUST);
+    const double ee = angleError(e.theta(), truth.theta()), el = angleError(l.theta(), truth.theta());
+    errE += ee;
+    errL += el;
+    errP += angleError(p.theta(), truth.theta());
+    maxE = std::max(maxE, ee);
+    maxL = std::max(maxL, el);
+    terrE += maxVertexError(A0, e, truth);
+    terrL += maxVertexError(A0, l, truth);
+    lsBetter += el < ee;
+  }
+  errE /= trials;
+  errL /= trials;
+  errP /= trials;
+  std::printf("[rigid accuracy, noise %.1f px, %d seeded star polygons] mean |rotation error| (deg): elongation %.4f "
+              "(max %.3f), least squares Tukey %.4f (max %.3f), plain LS %.4f; LS better in %d/%d; mean max vertex "
+              "error (px): elongation %.3f, LS %.3f\n",
+              sigma, trials, errE * 180 / M_PI, maxE * 180 / M_PI, errL * 180 / M_PI, maxL * 180 / M_PI,
+              errP * 180 / M_PI, lsBetter, trials, terrE / trials, terrL / trials);
+  REQUIRE(errL < errE);
+  REQUIRE(terrL < terrE);
+}
+
+TEST_CASE("vpMorphRigidTransform: robust least squares ignores a deformed part of the contour",
+          "[morph][rigid][accuracy]")
+{
+  std::mt19937 rng(99);
+  const int trials = 200;
+  double errE = 0.0, errP = 0.0, errH = 0.0, errT = 0.0;
+  for (int trial = 0; trial < trials; ++trial) {
+    const vpMorphContour A = starPolygon(rng, 30);
+    const vpMorphRigidTransform truth = randomSimilarity(rng, A);
+    // 20 % of consecutive vertices pushed 40 px away from the centre (an occluder or a deformation).
+    const std::size_t first = rng() % A.size(), count = A.size() / 5;
+    double tcx, tcy;
+    truth.apply(truth.cx(), truth.cy(), tcx, tcy);
+    const vpMorphContour B = makeTarget(A, truth, 0, rng, 1.0, [&](std::size_t k, double &x, double &y) {
+      if ((k + A.size() - first) % A.size() < count) {
+        const double dx = x - tcx, dy = y - tcy, r = std::hypot(dx, dy);
+        x += 40.0 * dx / r;
+        y += 40.0 * dy / r;
+      }
+    });
+    const vpMorphCorrespondence c = shiftedIdentity(A.size(), 0);
+    errE += angleError(vpMorphRigidTransform::fitElongation(A, B, c).theta(), truth.theta());
+    errP += angleError(vpMorphRigidTransform::fitLeastSquares(A, B, c, true, vpMorphRigidTransform::NO_ROBUST).theta(),
+                       truth.theta());
+    errH += angleError(vpMorphRigidTransform::fitLeastSquares(A, B, c, true, vpMorphRigidTransform::HUBER).theta(),
+                       truth.theta());
+    errT += angleError(vpMorphRigidTransform::fitLeastSquares(A, B, c).theta(), truth.theta());
+  }
+  const double k = 180.0 / M_PI / trials;
+  std::printf("[rigid robustness, 20%% of vertices displaced 40 px, noise 1 px, %d trials] mean |rotation error| "
+              "(deg): elongation %.3f, plain LS %.3f, Huber %.3f, Tukey %.3f\n",
+              trials, errE * k, errP * k, errH * k, errT * k);
+  REQUIRE(errT < errP);
+  REQUIRE(errT < errE);
+  REQUIRE(errH < errP);
+}
+
+TEST_CASE("vpMorphRigidTransform: isotropic shapes make elongation ill-posed, least squares still works",
+          "[morph][rigid]")
+{
+  // A square and a regular 24-gon ("disc"): isotropic second moments, no elongation axis.
+  std::vector<vpMorphContour> shapes;
+  shapes.emplace_back(std::vector<double>{100, 200, 200, 100}, std::vector<double>{100, 100, 200, 200});
+  std::vector<double> x, y;
+  for (int k = 0; k < 24; ++k) {
+    x.push_back(300 + 80 * std::cos(2 * M_PI * k / 24));
+    y.push_back(200 + 80 * std::sin(2 * M_PI * k / 24));
+  }
+  shapes.emplace_back(x, y);
+  std::mt19937 rng(5);
+  for (const vpMorphContour &A : shapes) {
+    double cx, cy;
+    A.centroid(cx, cy);
+    for (double theta : {0.3, 1.2, -2.0, 3.0}) {
+      const vpMorphRigidTransform truth(theta, 15.0, -25.0, 1.2, cx, cy);
+      const std::size_t shift = 1;
+      const vpMorphContour B = makeTarget(A, truth, shift, rng, 0.0, [](std::size_t, double &, double &) {});
+      const vpMorphCorrespondence c = shiftedIdentity(A.size(), shift);
+      double anisotropy = -1.0;
+      vpMorphRigidTransform::fitElongation(A, B, c, true, &anisotropy);
+      CHECK(anisotropy < 1e-6); // the caller can tell the axis is meaningless
+      const vpMorphRigidTransform l = vpMorphRigidTransform::fitLeastSquares(A, B, c);
+      CHECK(angleError(l.theta(), theta) < 1e-9);
+      CHECK(maxVertexError(A, l, truth) < 1e-7);
+      // With noise the least-squares fit degrades gracefully.
+      const vpMorphContour Bn = addNoise(B, rng, 1.0);
+      CHECK(angleError(vpMorphRigidTransform::fitLeastSquares(A, Bn, c).theta(), theta) < 0.05);
+    }
+  }
+}
+
+TEST_CASE("vpMorphRigidTransform: bad input is rejected with vpMorphException", "[morph][rigid]")
+{
+  std::mt19937 rng(3);
+  const vpMorphContour A = starPolygon(rng, 10);
+  const vpMorphContour B = starPolygon(rng, 10);
+  const vpMorphCorrespondence c = shiftedIdentity(10, 0);
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitLeastSquares(vpMorphContour(), B, c), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitElongation(A, vpMorphContour(), c), vpMorphException);
+  const vpMorphContour Bn(B.xs(), B.ys(), vpMorphContour::NORMALIZED);
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitLeastSquares(A, Bn, c), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitLeastSquares(A, B, shiftedIdentity(9, 0)), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitLeastSquares(A, B, vpMorphCorrespondence()), vpMorphException);
+  std::vector<std::pair<std::size_t, std::size_t> > p = c.pairs();
+  p[3].second = 42; // out of range
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitElongation(A, B, vpMorphCorrespondence(10, 10, p, 0, 0)), vpMorphException);
+  p = c.pairs();
+  p[3] = p[2]; // input vertex 3 and target vertex 3 missing
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitElongation(A, B, vpMorphCorrespondence(10, 10, p, 0, 0)), vpMorphException);
+  try {
+    vpMorphRigidTransform::fitLeastSquares(A, Bn, c);
+  } catch (const vpMorphException &e) {
+    CHECK(e.getCode() == vpMorphException::badParameterError);
+    CHECK(e.getStringMessage().find("units") != std::string::npos);
+  }
+}
