@@ -1,0 +1,62 @@
+/*!
+  \file vpMorphDrawing.h
+  \brief Headless pictures of morph sequences (PNG), like the paper's Figures 1 and 4.
+*/
+#ifndef VP_MORPH_DRAWING_H
+#define VP_MORPH_DRAWING_H
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpColor.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpRGBa.h>
+#include <visp3/morph/vpMorph.h>
+#include <visp3/morph/vpMorphContour.h>
+
+/*!
+  \class vpMorphDrawing
+  \ingroup group_morph
+  \brief Draws morph sequences into images without a display (vpImageDraw), for reports and tests.
+
+  All tiles share one scale and offset, fitted to the union bounding box of every frame and the input,
+  so that the motion from tile to tile is visible (per-tile fitting would hide translation and scale).
+  The input is drawn as a thin grey outline in every tile as a reference; each frame is drawn in colour,
+  rigid frames in blue and deformation frames in orange; the first and last tiles (initial and final pose)
+  get a black border, as in the paper. Frame numbers use ViSP's built-in monospace vpFont.
+  The y axis points down, as in images (pixel contours are drawn where they are in the image).
+*/
+class vpMorphDrawing
+{
+public:
+  //! Colour of rigid-rectification frames.
+  static const vpColor rigidColor;
+  //! Colour of deformation frames.
+  static const vpColor deformationColor;
+  //! Colour of the input outline drawn in every tile.
+  static const vpColor inputColor;
+
+  /*!
+    One tile per frame, tileSize x tileSize pixels, in \e columns columns (0: automatic, at most 8 per row,
+    rows balanced). frames[k] for k < \e rigidFrames are drawn in rigidColor, the others in deformationColor.
+    \throw vpMorphException::badParameterError if frames is empty, tileSize < 32, or a contour is empty.
+  */
+  static vpImage<vpRGBa> sequenceStrip(const vpMorphContour &input, const std::vector<vpMorphContour> &frames,
+                                       unsigned int tileSize = 200, unsigned int columns = 0,
+                                       std::size_t rigidFrames = 0);
+  /*!
+    The paper's figure for a morph: morph.sequenceWithInput(n), i.e. the input (initial pose) in the first
+    tile, then the rigid frames, then the deformation frames, ending on the target (final pose).
+  */
+  static vpImage<vpRGBa> sequenceStrip(const vpMorph &morph, std::size_t n, unsigned int tileSize = 200,
+                                       unsigned int columns = 0);
+
+  /*!
+    Writes \e image as PNG (format from the extension, as vpImageIo does), creating parent directories.
+    \throw vpMorphException::ioError if a directory cannot be created or the file cannot be written.
+  */
+  static void write(const vpImage<vpRGBa> &image, const std::string &pngPath);
+};
+
+#endif
