@@ -39,8 +39,8 @@ vpMorph::vpMorph(const vpMorphContour &input, const vpMorphContour &target, cons
 {
 }
 
-vpMorph::vpMorph(const vpMorphContour &input, const vpMorphContour &target,
-                 const vpMorphCorrespondence &correspondence, Estimator estimator, bool withScale)
+vpMorph::vpMorph(const vpMorphContour &input, const vpMorphContour &target, const vpMorphCorrespondence &correspondence,
+                 Estimator estimator, bool withScale)
   : m_input(input), m_target(target), m_estimator(estimator), m_withScale(withScale), m_corr(correspondence)
 {
   checkContours(input, target);
@@ -83,7 +83,7 @@ vpMorphContour vpMorph::at(double t) const
   if (t == 1.0)
     return m_target;
 
-  std::vector<std::pair<std::size_t, std::size_t> > pairs = m_corr.pairs();
+  std::vector<std::pair<std::size_t, std::size_t>> pairs = m_corr.pairs();
   if (pairs.size() > 1 && pairs.back() == pairs.front())
     pairs.pop_back();
   std::vector<double> x, y;

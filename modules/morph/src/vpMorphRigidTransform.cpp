@@ -25,7 +25,8 @@ double wrapAngle(double a)
 }
 
 // Corresponded point sets P_k = A_{i_k}, Q_k = B_{j_k} with their per-pair length weights.
-struct PairSet {
+struct PairSet
+{
   std::vector<Eigen::Vector2d> P, Q;
   std::vector<double> w;
 };
@@ -33,7 +34,7 @@ struct PairSet {
 PairSet buildPairs(const vpMorphContour &A, const vpMorphContour &B, const vpMorphCorrespondence &c)
 {
   PairSet s;
-  std::vector<std::pair<std::size_t, std::size_t> > pairs = c.pairs();
+  std::vector<std::pair<std::size_t, std::size_t>> pairs = c.pairs();
   // A list that repeats its starting pair at the end is the same cycle.
   if (pairs.size() > 1 && pairs.back() == pairs.front())
     pairs.pop_back();
@@ -65,7 +66,8 @@ PairSet buildPairs(const vpMorphContour &A, const vpMorphContour &B, const vpMor
 }
 
 // Similarity x' = s R(theta) (x - muP) + muQ.
-struct Similarity {
+struct Similarity
+{
   double theta = 0.0, scale = 1.0;
   Eigen::Vector2d muP = Eigen::Vector2d::Zero(), muQ = Eigen::Vector2d::Zero();
   Eigen::Vector2d operator()(const Eigen::Vector2d &x) const
@@ -319,8 +321,7 @@ vpMorphRigidTransform vpMorphRigidTransform::fitElongation(const vpMorphContour 
   return toTransform(T, input);
 }
 
-vpMorphRigidTransform vpMorphRigidTransform::fitLeastSquares(const vpMorphContour &input,
-                                                             const vpMorphContour &target,
+vpMorphRigidTransform vpMorphRigidTransform::fitLeastSquares(const vpMorphContour &input, const vpMorphContour &target,
                                                              const vpMorphCorrespondence &corr, bool withScale,
                                                              RobustLoss loss, unsigned int maxIterations)
 {

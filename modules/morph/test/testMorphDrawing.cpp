@@ -92,7 +92,9 @@ TEST_CASE("vpMorphDrawing: bad input", "[morph][drawing]")
     CHECK(e.getCode() == vpMorphException::ioError);
   }
   // A parent "directory" that is a file: cannot be created.
-  { std::ofstream("morph_test_output/a_file") << "x"; }
+  {
+    std::ofstream("morph_test_output/a_file") << "x";
+  }
   CHECK_THROWS_AS(vpMorphDrawing::write(vpMorphDrawing::sequenceStrip(A, {A}, 64), "morph_test_output/a_file/x.png"),
                   vpMorphException);
 }

@@ -27,7 +27,7 @@ vpMorphContour keyShape()
 
 vpMorphCorrespondence shiftedIdentity(std::size_t n, std::size_t shift)
 {
-  std::vector<std::pair<std::size_t, std::size_t> > p;
+  std::vector<std::pair<std::size_t, std::size_t>> p;
   for (std::size_t k = 0; k < n; ++k)
     p.emplace_back(k, (k + shift) % n);
   return vpMorphCorrespondence(n, n, p, 0.0, 0.0);
@@ -190,7 +190,7 @@ TEST_CASE("vpMorph: coincident consecutive vertices are merged", "[morph][vpMorp
 {
   const vpMorphContour A = keyShape();
   const vpMorphContour B = A.transformed(0.4, 10.0, 5.0);
-  std::vector<std::pair<std::size_t, std::size_t> > p = shiftedIdentity(A.size(), 0).pairs();
+  std::vector<std::pair<std::size_t, std::size_t>> p = shiftedIdentity(A.size(), 0).pairs();
   p.insert(p.begin() + 4, p[3]); // pair 3 twice: the same point twice at every t
   const vpMorph m(A, B, vpMorphCorrespondence(A.size(), B.size(), p, 0, 0));
   CHECK(m.at(0.5).size() == A.size());
