@@ -1,0 +1,407 @@
+#include <visp3/morph/vpMorphPolygonApproximation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+#include <visp3/morph/vpMorphException.h>
+
+namespace
+{
+[[noreturn]] void fail(const std::string &what)
+{
+  throw vpMorphException(vpMorphException::badContourError, "vpMorphPolygonApproximation: " + what);
+}
+
+struct Pt {
+  double x, y;
+};
+
+// Errors of the chain pixels a..b (unwrapped indices, inclusive) against the segment from pixel a to pixel b.
+struct EdgeError {
+  double sum = 0.0, max = 0.0, tol = 1.0;
+  std::size_t count = 0;
+  std::ptrdiff_t argmax = -1; // unwrapped index of the farthest interior pixel
+  double mean() const { return count ? sum / static_cast<double>(count) : 0.0; }
+};
+
+class Chain
+{
+public:
+  explicit Chain(const std::vector<Pt> &p) : m_p(p), m_n(static_cast<std::ptrdiff_t>(p.size())) {}
+
+  const Pt &at(std::ptrdiff_t i) const { return m_p[static_cast<std::size_t>(((i % m_n) + m_n) % m_n)]; }
+  std::ptrdiff_t size() const { return m_n; }
+
+  static double segDist(const Pt &a, const Pt &b, const Pt &q)
+  {
+    const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
+    if (l2 <= 0.0)
+      return std::hypot(q.x - a.x, q.y - a.y);
+    double t = ((q.x - a.x) * dx + (q.y - a.y) * dy) / l2;
+    t = std::min(1.0, std::max(0.0, t));
+    return std::hypot(q.x - (a.x + t * dx), q.y - (a.y + t * dy));
+  }
+
+  EdgeError error(std::ptrdiff_t a, std::ptrdiff_t b) const
+  {
+    EdgeError e;
+    const Pt &pa = at(a), &pb = at(b);
+    e.tol = vpMorphPolygonApproximation::tolerance(pa.x, pa.y, pb.x, pb.y);
+    for (std::ptrdiff_t i = a + 1; i < b; ++i) {
+      const double d = segDist(pa, pb, at(i));
+      e.sum += d;
+      if (d > e.max) {
+        e.max = d;
+        e.argmax = i;
+      }
+    }
+    e.count = static_cast<std::size_t>(std::max<std::ptrdiff_t>(b - a + 1, 1));
+    return e;
+  }
+
+  // L1 error only (the quantity refinement minimises).
+  double l1(std::ptrdiff_t a, std::ptrdiff_t b) const
+  {
+    const Pt &pa = at(a), &pb = at(b);
+    double s = 0.0;
+    for (std::ptrdiff_t i = a + 1; i < b; ++i)
+      s += segDist(pa, pb, at(i));
+    return s;
+  }
+
+private:
+  const std::vector<Pt> &m_p;
+  std::ptrdiff_t m_n;
+};
+
+// Andrew's monotone chain: indices of the convex hull vertices.
+std::vector<std::size_t> hullIndices(const std::vector<Pt> &p)
+{
+  std::vector<std::size_t> idx(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    idx[i] = i;
+  std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
+    return p[a].x < p[b].x || (p[a].x == p[b].x && (p[a].y < p[b].y || (p[a].y == p[b].y && a < b)));
+  });
+  idx.erase(std::unique(idx.begin(), idx.end(),
+                        [&](std::size_t a, std::size_t b) { return p[a].x == p[b].x && p[a].y == p[b].y; }),
+            idx.end());
+  if (idx.size() < 3)
+    return idx;
+  auto cross = [&](std::size_t o, std::size_t a, std::size_t b) {
+    return (p[a].x - p[o].x) * (p[b].y - p[o].y) - (p[a].y - p[o].y) * (p[b].x - p[o].x);
+  };
+  std::vector<std::size_t> h(2 * idx.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < idx.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], idx[i]) <= 0)
+      --k;
+    h[k++] = idx[i];
+  }
+  for (std::size_t i = idx.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(h[k - 2], h[k - 1], idx[i]) <= 0)
+      --k;
+    h[k++] = idx[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+// Lexicographic order on pixel coordinates, for start-independent tie breaking.
+bool lessPt(const Pt &a, const Pt &b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
+
+// Vertices as strictly increasing unwrapped chain indices spanning less than one turn.
+using Vertices = std::vector<std::ptrdiff_t>;
+
+std::ptrdiff_t prevOf(const Vertices &v, std::size_t j, std::ptrdiff_t n)
+{
+  return j == 0 ? v.back() - n : v[j - 1];
+}
+std::ptrdiff_t nextOf(const Vertices &v, std::size_t j, std::ptrdiff_t n)
+{
+  return j + 1 == v.size() ? v.front() + n : v[j + 1];
+}
+
+void splitArc(const Chain &c, std::ptrdiff_t a, std::ptrdiff_t b, Vertices &out)
+{
+  std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> stack{{a, b}};
+  while (!stack.empty()) {
+    const auto r = stack.back();
+    stack.pop_back();
+    if (r.second - r.first < 2)
+      continue;
+    const EdgeError e = c.error(r.first, r.second);
+    if (e.argmax >= 0 && e.max > e.tol) {
+      out.push_back(e.argmax);
+      stack.push_back({r.first, e.argmax});
+      stack.push_back({e.argmax, r.second});
+    }
+  }
+}
+
+// One Gauss-Seidel sweep of L1 placement; returns true if a vertex moved.
+bool refineSweep(const Chain &c, Vertices &v)
+{
+  const std::ptrdiff_t n = c.size();
+  bool moved = false;
+  for (std::size_t j = 0; j < v.size(); ++j) {
+    const std::ptrdiff_t p = prevOf(v, j, n), q = nextOf(v, j, n);
+    double best = c.l1(p, v[j]) + c.l1(v[j], q);
+    std::ptrdiff_t arg = v[j];
+    for (std::ptrdiff_t k = p + 1; k < q; ++k) {
+      if (k == v[j])
+        continue;
+      const double cost = c.l1(p, k) + c.l1(k, q);
+      if (cost < best - 1e-9) {
+        best = cost;
+        arg = k;
+      }
+    }
+    if (arg != v[j]) {
+      v[j] = arg;
+      moved = true;
+    }
+  }
+  return moved;
+}
+
+void refine(const Chain &c, Vertices &v)
+{
+  // Each move strictly lowers the total L1 error, so the loop ends; the cap is only a guard against
+  // floating-point cycling.
+  for (int sweep = 0; sweep < 100 && refineSweep(c, v); ++sweep) {
+  }
+}
+
+// Merge score of vertex j, or a negative value when it must stay.
+double mergeScore(const Chain &c, const Vertices &v, std::size_t j)
+{
+  const std::ptrdiff_t n = c.size();
+  const EdgeError e = c.error(prevOf(v, j, n), nextOf(v, j, n));
+  if (e.mean() <= 0.75 * e.tol && e.max <= 2.0 * e.tol)
+    return e.mean() / e.tol;
+  return -1.0;
+}
+
+void merge(const Chain &c, Vertices &v)
+{
+  std::vector<double> score(v.size());
+  for (std::size_t j = 0; j < v.size(); ++j)
+    score[j] = mergeScore(c, v, j);
+  while (v.size() > 3) {
+    std::size_t best = v.size();
+    for (std::size_t j = 0; j < v.size(); ++j)
+      if (score[j] >= 0.0 && (best == v.size() || score[j] < score[best]))
+        best = j;
+    if (best == v.size())
+      break;
+    v.erase(v.begin() + static_cast<std::ptrdiff_t>(best));
+    score.erase(score.begin() + static_cast<std::ptrdiff_t>(best));
+    const std::size_t m = v.size();
+    const std::size_t jp = (best + m - 1) % m, jn = best % m;
+    score[jp] = mergeScore(c, v, jp);
+    score[jn] = mergeScore(c, v, jn);
+  }
+}
+
+// Polygon from vertex indices: consecutive repeated pixels removed, counter-clockwise in (x, y).
+bool toContour(const std::vector<Pt> &p, const Vertices &v, vpMorphContour &out)
+{
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+  std::vector<double> xs, ys;
+  for (std::ptrdiff_t i : v) {
+    const Pt &q = p[static_cast<std::size_t>(((i % n) + n) % n)];
+    if (!xs.empty() && xs.back() == q.x && ys.back() == q.y)
+      continue;
+    xs.push_back(q.x);
+    ys.push_back(q.y);
+  }
+  while (xs.size() > 1 && xs.back() == xs.front() && ys.back() == ys.front()) {
+    xs.pop_back();
+    ys.pop_back();
+  }
+  if (xs.size() < 3)
+    return false;
+  double a = 0.0;
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    const std::size_t k1 = (k + 1) % xs.size();
+    a += xs[k] * ys[k1] - xs[k1] * ys[k];
+  }
+  if (std::fabs(a) < 1e-12)
+    return false;
+  out = vpMorphContour(xs, ys, vpMorphContour::PIXEL);
+  if (a < 0.0)
+    out = out.reversed();
+  return out.isSimple();
+}
+
+// Last resort: drop the vertex whose removal best restores simplicity, one at a time.
+bool repair(const std::vector<Pt> &p, Vertices v, vpMorphContour &out)
+{
+  while (v.size() > 3) {
+    bool done = false;
+    for (std::size_t j = 0; j < v.size() && !done; ++j) {
+      Vertices w(v);
+      w.erase(w.begin() + static_cast<std::ptrdiff_t>(j));
+      vpMorphContour c;
+      try {
+        if (toContour(p, w, c)) {
+          out = c;
+          return true;
+        }
+      } catch (const vpMorphException &) {
+      }
+    }
+    // No single removal suffices: drop the vertex closest to its neighbours' chord and try again.
+    std::size_t drop = 0;
+    double dmin = std::numeric_limits<double>::max();
+    const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+    Chain c(p);
+    for (std::size_t j = 0; j < v.size(); ++j) {
+      const double d = Chain::segDist(c.at(prevOf(v, j, n)), c.at(nextOf(v, j, n)), c.at(v[j]));
+      if (d < dmin) {
+        dmin = d;
+        drop = j;
+      }
+    }
+    v.erase(v.begin() + static_cast<std::ptrdiff_t>(drop));
+  }
+  return false;
+}
+
+std::vector<Pt> toPts(const std::vector<vpImagePoint> &chain)
+{
+  std::vector<Pt> p;
+  p.reserve(chain.size());
+  for (const vpImagePoint &ip : chain) {
+    if (!std::isfinite(ip.get_u()) || !std::isfinite(ip.get_v()))
+      fail("the chain has a non-finite point");
+    Pt q{ip.get_u(), ip.get_v()};
+    if (!p.empty() && p.back().x == q.x && p.back().y == q.y)
+      continue; // a repeated pixel carries no shape
+    p.push_back(q);
+  }
+  while (p.size() > 1 && p.back().x == p.front().x && p.back().y == p.front().y)
+    p.pop_back();
+  return p;
+}
+
+// The three stages; fills the intermediate vertex sets so that a fallback can use them.
+void stages(const std::vector<Pt> &p, Vertices &split, Vertices &refined, Vertices &merged)
+{
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+  Chain c(p);
+
+  // Mutually farthest pixels: diameter of the convex hull.
+  const std::vector<std::size_t> h = hullIndices(p);
+  if (h.size() < 3)
+    fail("the chain encloses no area (all its pixels are collinear)");
+  std::size_t ia = h[0], ib = h[1];
+  double best = -1.0;
+  for (std::size_t i = 0; i < h.size(); ++i)
+    for (std::size_t j = i + 1; j < h.size(); ++j) {
+      std::size_t a = h[i], b = h[j];
+      if (lessPt(p[b], p[a]))
+        std::swap(a, b);
+      const double d = (p[a].x - p[b].x) * (p[a].x - p[b].x) + (p[a].y - p[b].y) * (p[a].y - p[b].y);
+      const bool tie = d == best && (lessPt(p[a], p[ia]) || (p[a].x == p[ia].x && p[a].y == p[ia].y &&
+                                                              lessPt(p[b], p[ib])));
+      if (d > best || tie) {
+        best = d;
+        ia = a;
+        ib = b;
+      }
+    }
+  std::ptrdiff_t a = static_cast<std::ptrdiff_t>(std::min(ia, ib)), b = static_cast<std::ptrdiff_t>(std::max(ia, ib));
+
+  split = {a, b};
+  splitArc(c, a, b, split);
+  splitArc(c, b, a + n, split);
+  for (std::ptrdiff_t &i : split)
+    if (i >= n)
+      i -= n;
+  std::sort(split.begin(), split.end());
+  if (split.size() < 3) {
+    // Thin shape: both arcs are within the digitisation bound of the diameter; keep their extremes.
+    const EdgeError e1 = c.error(a, b), e2 = c.error(b, a + n);
+    if (e1.argmax >= 0 && e1.max > 0.0)
+      split.push_back(e1.argmax);
+    if (e2.argmax >= 0 && e2.max > 0.0)
+      split.push_back(e2.argmax >= n ? e2.argmax - n : e2.argmax);
+    std::sort(split.begin(), split.end());
+    if (split.size() < 3)
+      fail("the chain encloses no area (all its pixels lie on one segment)");
+  }
+
+  refined = split;
+  refine(c, refined);
+  // Merging changes the neighbours that the L1 placement depends on, and re-placed vertices may allow
+  // further merges: alternate until no vertex is removed (V decreases at each round, so this ends).
+  merged = refined;
+  for (;;) {
+    const std::size_t before = merged.size();
+    merge(c, merged);
+    refine(c, merged);
+    if (merged.size() == before)
+      break;
+  }
+}
+} // namespace
+
+double vpMorphPolygonApproximation::tolerance(double x0, double y0, double x1, double y1)
+{
+  const double dx = x1 - x0, dy = y1 - y0, l = std::hypot(dx, dy);
+  if (l <= 0.0)
+    return 1.0;
+  return (std::fabs(dx) + std::fabs(dy)) / l;
+}
+
+std::vector<std::size_t> vpMorphPolygonApproximation::vertexIndices(const std::vector<vpImagePoint> &chain)
+{
+  const std::vector<Pt> p = toPts(chain);
+  if (p.size() != chain.size())
+    fail("vertexIndices() needs a chain without repeated consecutive pixels");
+  if (p.size() < 3) {
+    std::ostringstream os;
+    os << "a closed chain needs at least 3 distinct pixels (got " << p.size() << ")";
+    fail(os.str());
+  }
+  Vertices s, r, m;
+  stages(p, s, r, m);
+  std::vector<std::size_t> out;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+  for (std::ptrdiff_t i : m)
+    out.push_back(static_cast<std::size_t>(((i % n) + n) % n));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+vpMorphContour vpMorphPolygonApproximation::approximate(const std::vector<vpImagePoint> &chain)
+{
+  const std::vector<Pt> p = toPts(chain);
+  if (p.size() < 3) {
+    std::ostringstream os;
+    os << "a closed chain needs at least 3 distinct pixels (got " << p.size() << ")";
+    fail(os.str());
+  }
+  Vertices split, refined, merged;
+  stages(p, split, refined, merged);
+
+  vpMorphContour out;
+  for (const Vertices *v : {&merged, &refined, &split}) {
+    try {
+      if (toContour(p, *v, out))
+        return out;
+    } catch (const vpMorphException &) {
+      // a degenerate stage result: try the previous stage
+    }
+  }
+  if (repair(p, split, out))
+    return out;
+  std::ostringstream os;
+  os << "no simple polygon could be formed from the " << p.size() << "-pixel chain";
+  fail(os.str());
+}
