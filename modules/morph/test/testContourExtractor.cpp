@@ -1,0 +1,428 @@
+// Tests of the automatic contour extraction (vpMorphContourExtractor) and of the parameterless polygonal
+// approximation (vpMorphPolygonApproximation): polarity, colour, regions, noise stability, accuracy, border,
+// datasets and bad input.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <random>
+#include <string>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphPolygonApproximation.h>
+
+namespace
+{
+struct Poly {
+  std::vector<double> x, y;
+};
+
+// A ten-vertex, non-convex polygon (about 300 x 220 px) with acute and obtuse corners.
+Poly testPolygon(double cx = 320, double cy = 240, double theta = 0.0)
+{
+  const double px[] = {0, 120, 150, 90, 160, 40, -80, -60, -140, -100};
+  const double py[] = {-100, -90, -20, 10, 80, 120, 100, 30, 0, -80};
+  Poly p;
+  for (int k = 0; k < 10; ++k) {
+    p.x.push_back(cx + std::cos(theta) * px[k] - std::sin(theta) * py[k]);
+    p.y.push_back(cy + std::sin(theta) * px[k] + std::cos(theta) * py[k]);
+  }
+  return p;
+}
+
+// Renders the polygons with area anti-aliasing (8x supersampling): grey level = coverage, object = obj,
+// background = bg, then adds Gaussian noise of std sigma (seeded).
+vpImage<unsigned char> render(const std::vector<Poly> &polys, unsigned char obj, unsigned char bg, double sigma = 0.0,
+                              unsigned int seed = 0, int w = 640, int h = 480)
+{
+  const int S = 8;
+  cv::Mat big(h * S, w * S, CV_8UC1, cv::Scalar(255));
+  std::vector<std::vector<cv::Point> > pts;
+  for (const Poly &p : polys) {
+    pts.emplace_back();
+    for (std::size_t k = 0; k < p.x.size(); ++k)
+      pts.back().emplace_back(cvRound((p.x[k] + 0.5) * S - 0.5), cvRound((p.y[k] + 0.5) * S - 0.5));
+  }
+  cv::fillPoly(big, pts, cv::Scalar(0));
+  cv::Mat cover;
+  cv::resize(big, cover, cv::Size(w, h), 0, 0, cv::INTER_AREA); // 255 = background, 0 = object
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0.0, sigma);
+  vpImage<unsigned char> I(static_cast<unsigned int>(h), static_cast<unsigned int>(w));
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const double a = cover.at<unsigned char>(r, c) / 255.0;
+      const double v = a * bg + (1.0 - a) * obj + (sigma > 0 ? g(rng) : 0.0);
+      I[r][c] = cv::saturate_cast<unsigned char>(v);
+    }
+  return I;
+}
+
+double segDist(double ax, double ay, double bx, double by, double px, double py)
+{
+  const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+  double t = l2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / l2 : 0.0;
+  t = std::max(0.0, std::min(1.0, t));
+  return std::hypot(px - ax - t * dx, py - ay - t * dy);
+}
+
+double distToOutline(const std::vector<double> &X, const std::vector<double> &Y, double px, double py)
+{
+  double m = 1e300;
+  for (std::size_t k = 0; k < X.size(); ++k) {
+    const std::size_t k1 = (k + 1) % X.size();
+    m = std::min(m, segDist(X[k], Y[k], X[k1], Y[k1], px, py));
+  }
+  return m;
+}
+
+// Largest distance from the polygon c (sampled along its edges) to the outline (X, Y).
+double maxDistTo(const vpMorphContour &c, const std::vector<double> &X, const std::vector<double> &Y)
+{
+  double h = 0.0;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const std::size_t k1 = (k + 1) % c.size();
+    for (int s = 0; s <= 20; ++s) {
+      const double t = s / 20.0;
+      h = std::max(h, distToOutline(X, Y, c.x(k) + t * (c.x(k1) - c.x(k)), c.y(k) + t * (c.y(k1) - c.y(k))));
+    }
+  }
+  return h;
+}
+
+vpImage<vpRGBa> toRGBa(const vpImage<unsigned char> &I, bool tint)
+{
+  vpImage<vpRGBa> C(I.getHeight(), I.getWidth());
+  for (unsigned int r = 0; r < I.getHeight(); ++r)
+    for (unsigned int c = 0; c < I.getWidth(); ++c) {
+      const unsigned char v = I[r][c];
+      C[r][c] = tint ? vpRGBa(v, static_cast<unsigned char>(v / 2), static_cast<unsigned char>(255 - v / 2))
+                     : vpRGBa(v, v, v);
+    }
+  return C;
+}
+
+bool readPng(const std::string &file, vpImage<unsigned char> &I)
+{
+  const cv::Mat m = cv::imread(file, cv::IMREAD_GRAYSCALE);
+  if (m.empty())
+    return false;
+  I.resize(static_cast<unsigned int>(m.rows), static_cast<unsigned int>(m.cols));
+  for (int r = 0; r < m.rows; ++r)
+    std::copy(m.ptr<unsigned char>(r), m.ptr<unsigned char>(r) + m.cols, I[static_cast<unsigned int>(r)]);
+  return true;
+}
+
+void checkValid(const vpMorphContour &c)
+{
+  REQUIRE(c.size() >= 3);
+  CHECK(c.units() == vpMorphContour::PIXEL);
+  CHECK(c.isSimple());
+  CHECK(c.signedArea() > 0.0);
+}
+} // namespace
+
+TEST_CASE("extractor: dark object on light background and light on dark give the same polygon", "[extract]")
+{
+  const Poly p = testPolygon();
+  const vpMorphContour dark = vpMorphContourExtractor().extract(render({p}, 30, 220));
+  const vpMorphContour light = vpMorphContourExtractor().extract(render({p}, 220, 30));
+  checkValid(dark);
+  checkValid(light);
+  CHECK(dark.size() == 10);
+  CHECK(light.size() == dark.size());
+  CHECK(dark.area() == Approx(light.area()).epsilon(0.01));
+  CHECK(maxDistTo(dark, p.x, p.y) < 1.5);
+  CHECK(maxDistTo(light, p.x, p.y) < 1.5);
+  // The polygon covers the object (within the digitisation inset).
+  double trueArea = 0.0;
+  for (std::size_t k = 0; k < p.x.size(); ++k) {
+    const std::size_t k1 = (k + 1) % p.x.size();
+    trueArea += 0.5 * (p.x[k] * p.y[k1] - p.x[k1] * p.y[k]);
+  }
+  CHECK(dark.area() == Approx(std::fabs(trueArea)).epsilon(0.02));
+}
+
+TEST_CASE("extractor: grey and RGBa images agree", "[extract]")
+{
+  const vpImage<unsigned char> I = render({testPolygon(300, 250, 0.7)}, 40, 200);
+  const vpMorphContour g = vpMorphContourExtractor().extract(I);
+  const vpMorphContour c = vpMorphContourExtractor().extract(toRGBa(I, false));
+  const vpMorphContour t = vpMorphContourExtractor().extract(toRGBa(I, true));
+  checkValid(g);
+  checkValid(c);
+  checkValid(t);
+  CHECK(c.size() == g.size());
+  CHECK(c.area() == Approx(g.area()).epsilon(0.01));
+  CHECK(t.area() == Approx(g.area()).epsilon(0.02));
+  CHECK(vpMorphContourExtractor().boundary(toRGBa(I, false)).size() == vpMorphContourExtractor().boundary(I).size());
+}
+
+TEST_CASE("extractor: largest object first, extractAll returns every region", "[extract]")
+{
+  Poly small, big = testPolygon(380, 260);
+  // A 40 x 30 rectangle (top left) and a triangle (bottom left).
+  small.x = {20, 60, 60, 20};
+  small.y = {20, 20, 50, 50};
+  Poly tri;
+  tri.x = {30, 110, 40};
+  tri.y = {400, 440, 460};
+  const vpImage<unsigned char> I = render({small, big, tri}, 0, 255);
+  const vpMorphContourExtractor ex;
+  const vpMorphContour largest = ex.extract(I);
+  const std::vector<vpMorphContour> all = ex.extractAll(I);
+  REQUIRE(all.size() == 3);
+  for (const vpMorphContour &c : all)
+    checkValid(c);
+  CHECK(all[0].area() == Approx(largest.area()));
+  CHECK(all[0].area() > all[1].area());
+  CHECK(all[1].area() > all[2].area());
+  CHECK(all[2].size() == 4); // the rectangle
+  CHECK(all[1].size() == 3); // the triangle
+  CHECK(maxDistTo(all[2], small.x, small.y) <= 1.0 + 1e-9);
+  CHECK(ex.boundaries(I).size() == 3);
+  // The boundary of the largest is an 8-connected closed chain.
+  const std::vector<vpImagePoint> b = ex.boundary(I);
+  REQUIRE(b.size() > 100);
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    const vpImagePoint &p = b[k], &q = b[(k + 1) % b.size()];
+    CHECK(std::max(std::fabs(p.get_u() - q.get_u()), std::fabs(p.get_v() - q.get_v())) == 1.0);
+  }
+  // The object mask marks the shapes, not the background.
+  const vpImage<unsigned char> M = ex.objectMask(I);
+  CHECK(M[240][380] == 255);
+  CHECK(M[5][600] == 0);
+}
+
+TEST_CASE("approximation: vertex count is stable under image noise and sub-pixel motion", "[approx][noise]")
+{
+  // 40 renderings of the same 10-vertex polygon, each with a random sub-pixel offset, a small rotation and
+  // Gaussian noise (sigma 20 grey levels on a contrast of 150): the boundary jitters by about one pixel.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> off(-0.5, 0.5), rot(-0.05, 0.05);
+  std::map<std::size_t, int> counts;
+  std::vector<double> errs;
+  for (unsigned int trial = 0; trial < 40; ++trial) {
+    const Poly p = testPolygon(320 + off(rng), 240 + off(rng), rot(rng));
+    const vpMorphContour c = vpMorphContourExtractor().extract(render({p}, 50, 200, 20.0, 100 + trial));
+    checkValid(c);
+    counts[c.size()]++;
+    errs.push_back(maxDistTo(c, p.x, p.y));
+  }
+  std::sort(errs.begin(), errs.end());
+  const std::size_t vmin = counts.begin()->first, vmax = counts.rbegin()->first;
+  std::string hist;
+  for (const auto &kv : counts)
+    hist += std::to_string(kv.first) + "x" + std::to_string(kv.second) + " ";
+  INFO("vertex counts: " << hist << "; median / max distance to the true outline: " << errs[errs.size() / 2]
+                         << " / " << errs.back());
+  CHECK(vmin >= 10);
+  CHECK(vmax - vmin <= 3);
+  CHECK(counts[10] >= 30); // the true count in at least 3 renderings out of 4
+  CHECK(errs[errs.size() / 2] < 1.5);
+  CHECK(errs.back() < 2.0);
+}
+
+TEST_CASE("approximation: exact on clean polygons, start-point independent, parameter-free tolerance",
+          "[approx]")
+{
+  const vpImage<unsigned char> I = render({testPolygon(320, 240, 0.3)}, 0, 255);
+  const std::vector<vpImagePoint> chain = vpMorphContourExtractor().boundary(I);
+  const vpMorphContour ref = vpMorphPolygonApproximation::approximate(chain);
+  checkValid(ref);
+  CHECK(ref.size() == 10);
+  for (std::size_t shift : {std::size_t(1), chain.size() / 3, chain.size() - 7}) {
+    std::vector<vpImagePoint> rotated(chain);
+    std::rotate(rotated.begin(), rotated.begin() + static_cast<std::ptrdiff_t>(shift), rotated.end());
+    const vpMorphContour c = vpMorphPolygonApproximation::approximate(rotated);
+    REQUIRE(c.size() == ref.size());
+    CHECK(c.area() == Approx(ref.area()));
+  }
+  // Reversed chain: same polygon, still counter-clockwise.
+  std::vector<vpImagePoint> rev(chain.rbegin(), chain.rend());
+  const vpMorphContour r = vpMorphPolygonApproximation::approximate(rev);
+  CHECK(r.size() == ref.size());
+  CHECK(r.signedArea() == Approx(ref.signedArea()));
+  CHECK(vpMorphPolygonApproximation::vertexIndices(chain).size() == ref.size());
+
+  CHECK(vpMorphPolygonApproximation::tolerance(0, 0, 10, 0) == Approx(1.0));
+  CHECK(vpMorphPolygonApproximation::tolerance(0, 0, 10, 10) == Approx(std::sqrt(2.0)));
+  CHECK(vpMorphPolygonApproximation::tolerance(0, 0, 0, 0) == Approx(1.0));
+
+  // A digital circle: many vertices, all within the digitisation bound of the true circle.
+  vpImage<unsigned char> D(200, 200, 0);
+  for (unsigned int v = 0; v < 200; ++v)
+    for (unsigned int u = 0; u < 200; ++u)
+      if (std::hypot(u - 100.0, v - 100.0) <= 70.0)
+        D[v][u] = 255;
+  const vpMorphContour circ = vpMorphContourExtractor().extract(D);
+  checkValid(circ);
+  CHECK(circ.size() >= 12);
+  for (std::size_t k = 0; k < circ.size(); ++k)
+    CHECK(std::hypot(circ.x(k) - 100.0, circ.y(k) - 100.0) == Approx(70.0).margin(1.5));
+}
+
+TEST_CASE("approximation: bad chains throw", "[approx][bad]")
+{
+  std::vector<vpImagePoint> two{vpImagePoint(0, 0), vpImagePoint(0, 1)};
+  REQUIRE_THROWS_AS(vpMorphPolygonApproximation::approximate(two), vpMorphException);
+  REQUIRE_THROWS_AS(vpMorphPolygonApproximation::approximate({}), vpMorphException);
+  // A one-pixel-wide line traced out and back: no area.
+  std::vector<vpImagePoint> line;
+  for (int u = 0; u <= 10; ++u)
+    line.emplace_back(5, u);
+  for (int u = 9; u >= 1; --u)
+    line.emplace_back(5, u);
+  REQUIRE_THROWS_AS(vpMorphPolygonApproximation::approximate(line), vpMorphException);
+}
+
+TEST_CASE("extractor: an object touching or crossing the image border is closed along the border", "[extract]")
+{
+  Poly p;
+  p.x = {-50, 200, 260, -50};
+  p.y = {100, 80, 300, 360};
+  const vpImage<unsigned char> I = render({p}, 0, 255);
+  const vpMorphContour c = vpMorphContourExtractor().extract(I);
+  checkValid(c);
+  double umin = 1e9;
+  for (std::size_t k = 0; k < c.size(); ++k)
+    umin = std::min(umin, c.x(k));
+  CHECK(umin == 0.0); // closed along column 0
+  CHECK(c.size() >= 4);
+  CHECK(c.size() <= 6);
+
+  // A corner object covering part of two borders.
+  Poly q;
+  q.x = {400, 640, 640, 500};
+  q.y = {-10, -10, 200, 150};
+  const vpMorphContour d = vpMorphContourExtractor().extract(render({q}, 255, 0));
+  checkValid(d);
+}
+
+TEST_CASE("extractor: MPEG-7 and Kimia-99 samples", "[extract][datasets]")
+{
+  const std::string root = VISPMORPH_DATASETS_DIR;
+  const char *mpeg7[] = {"apple-1.png", "bat-1.png", "device0-1.png", "key-1.png", "horse-1.png", "Bone-1.png"};
+  const char *kimia[] = {"bunny04.png", "calf1.png", "cat1.png", "bonefishes.png"};
+  vpImage<unsigned char> I;
+  if (!readPng(root + "/mpeg7/apple-1.png", I)) {
+    WARN("datasets not found in " << root << ": skipping");
+    return;
+  }
+  const vpMorphContourExtractor ex;
+  for (const char *f : mpeg7) {
+    INFO("mpeg7/" << f);
+    if (!readPng(root + "/mpeg7/" + f, I)) {
+      WARN("missing mpeg7/" << f);
+      continue;
+    }
+    const vpMorphContour c = ex.extract(I);
+    checkValid(c);
+    // The polygon covers the object: its area is close to the object mask's (holes excluded, they are not
+    // part of the outer boundary, so the polygon can only be larger).
+    const vpImage<unsigned char> M = ex.objectMask(I);
+    double white = 0;
+    for (unsigned int k = 0; k < M.getSize(); ++k)
+      white += M.bitmap[k] != 0;
+    CHECK(M[0][0] == 0); // MPEG-7: white shape on black, the object is the white class
+    CHECK(c.area() > 0.5 * white);
+    CHECK(c.size() < ex.boundary(I).size() / 2);
+  }
+  for (const char *f : kimia) {
+    INFO("kimia99/" << f);
+    if (!readPng(root + "/kimia99/" + f, I)) {
+      WARN("missing kimia99/" << f);
+      continue;
+    }
+    const vpMorphContour c = ex.extract(I);
+    checkValid(c);
+    const vpImage<unsigned char> M = ex.objectMask(I);
+    CHECK(M[0][0] == 0); // Kimia-99: black shape on white, the object is the dark class
+    CHECK(c.size() >= 8);
+  }
+}
+
+TEST_CASE("extractor: bad images throw vpMorphException", "[extract][bad]")
+{
+  const vpMorphContourExtractor ex;
+  auto isBadImage = [](const vpMorphException &e) { return e.getCode() == vpMorphException::badImageError; };
+
+  SECTION("empty")
+  {
+    vpImage<unsigned char> E;
+    REQUIRE_THROWS_AS(ex.extract(E), vpMorphException);
+    REQUIRE_THROWS_AS(ex.extract(vpImage<vpRGBa>()), vpMorphException);
+    REQUIRE_THROWS_AS(ex.extractAll(E), vpMorphException);
+    REQUIRE_THROWS_AS(ex.boundary(E), vpMorphException);
+    try {
+      ex.extract(E);
+    } catch (const vpMorphException &e) {
+      CHECK(isBadImage(e));
+      CHECK(std::string(e.getMessage()).find("empty") != std::string::npos);
+    }
+  }
+  SECTION("too small")
+  {
+    vpImage<unsigned char> S(2, 5, 0);
+    S[0][2] = 255;
+    REQUIRE_THROWS_AS(ex.extract(S), vpMorphException);
+    vpImage<unsigned char> T(40, 2, 0);
+    REQUIRE_THROWS_AS(ex.extract(T), vpMorphException);
+  }
+  SECTION("uniform")
+  {
+    vpImage<unsigned char> U(100, 100, 128);
+    REQUIRE_THROWS_AS(ex.extract(U), vpMorphException);
+    REQUIRE_THROWS_AS(ex.extract(vpImage<vpRGBa>(50, 60, vpRGBa(10, 20, 30))), vpMorphException);
+    try {
+      ex.extract(U);
+    } catch (const vpMorphException &e) {
+      CHECK(isBadImage(e));
+      CHECK(std::string(e.getMessage()).find("uniform") != std::string::npos);
+    }
+  }
+  SECTION("only specks below the validity floor")
+  {
+    vpImage<unsigned char> K(100, 100, 0);
+    K[10][10] = 255;
+    K[50][50] = K[50][51] = 255;
+    K[80][20] = K[81][20] = K[80][21] = K[81][21] = 255; // 2x2: encloses 1 square pixel
+    K[30][70] = K[31][71] = K[32][72] = 255;             // a diagonal line: no area
+    REQUIRE_THROWS_AS(ex.extract(K), vpMorphException);
+    REQUIRE_THROWS_AS(ex.extractAll(K), vpMorphException);
+    try {
+      ex.extract(K);
+    } catch (const vpMorphException &e) {
+      CHECK(isBadImage(e));
+      CHECK(std::string(e.getMessage()).find("no object") != std::string::npos);
+    }
+    // A 3x3 block reaches the floor and is found.
+    for (unsigned int v = 60; v < 63; ++v)
+      for (unsigned int u = 60; u < 63; ++u)
+        K[v][u] = 255;
+    // (a 3x3 square is a triangle within the digitisation bound: its corners are only sqrt(2) px off the diagonal)
+    const vpMorphContour c = ex.extract(K);
+    checkValid(c);
+    CHECK(c.size() >= 3);
+  }
+  SECTION("checkerboard noise: no crash, no hang")
+  {
+    vpImage<unsigned char> N(64, 64);
+    std::mt19937 rng(3);
+    for (unsigned int k = 0; k < N.getSize(); ++k)
+      N.bitmap[k] = static_cast<unsigned char>(rng() & 0xff);
+    try {
+      const std::vector<vpMorphContour> all = ex.extractAll(N);
+      for (const vpMorphContour &c : all)
+        CHECK(c.isSimple());
+    } catch (const vpMorphException &) {
+      SUCCEED("rejected with a clear exception");
+    }
+  }
+}
