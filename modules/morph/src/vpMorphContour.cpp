@@ -118,7 +118,8 @@ double vpMorphContour::perimeter() const
 double vpMorphContour::edgeLength(std::size_t k) const
 {
   const std::size_t p = (k + size() - 1) % size();
-  return std::hypot(m_x[k] - m_x[p], m_y[k] - m_y[p]);
+  const double dx = m_x[k] - m_x[p], dy = m_y[k] - m_y[p];
+  return std::sqrt(dx * dx + dy * dy); // no hypot: its overflow care is not needed here and it is slow
 }
 
 double vpMorphContour::turningAngle(std::size_t k) const

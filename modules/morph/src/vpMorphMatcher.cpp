@@ -10,8 +10,48 @@
 namespace
 {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Step that entered a cell.
-constexpr unsigned char STEP_DIAG = 0, STEP_A = 1, STEP_B = 2;
+// One row of the dynamic programme on columns [l, r]: D[i][j] = min(D[i-1][j-1] + cd[j], D[i-1][j] + ca,
+// D[i][j-1] + cB[j]). With P[j] the prefix sum of cB, D[i][j] - P[j] is the running minimum of
+// y[j] = min(diagonal, A step) - P[j] along the row: the serial part is a bare minimum, run as two
+// independent chains over the two halves of the row (then the first half's minimum is carried into the
+// second), and the rest vectorises. prev must be +inf where the previous row has no cell.
+inline void dpRow(const double *__restrict prev, const double *__restrict cd, double ca, const double *__restrict cB,
+                  const double *__restrict pB, int l, int r, double *__restrict cur)
+{
+  if (r - l < 16) {
+    // Short rows (the narrow bands deep in Maes' recursion): one plain pass, no set-up to amortise.
+    double left = kInf;
+    for (int j = l; j <= r; ++j) {
+      const double up = prev[j] + ca, dg = prev[j - 1] + cd[j], lf = left + cB[j];
+      double best = up < dg ? up : dg;
+      best = lf < best ? lf : best;
+      cur[j] = best;
+      left = best;
+    }
+    return;
+  }
+  for (int j = l; j <= r; ++j) {
+    const double up = prev[j] + ca, dg = prev[j - 1] + cd[j];
+    cur[j] = (up < dg ? up : dg) - pB[j];
+  }
+  const int half = (r - l + 1) / 2, mid = l + half;
+  double run0 = cur[l], run1 = cur[mid];
+  for (int t = 0; t < half; ++t) {
+    const double y0 = cur[l + t], y1 = cur[mid + t];
+    run0 = y0 < run0 ? y0 : run0;
+    run1 = y1 < run1 ? y1 : run1;
+    cur[l + t] = run0;
+    cur[mid + t] = run1;
+  }
+  if (mid + half <= r) { // odd length: the last cell
+    const double y = cur[r];
+    cur[r] = y < run1 ? y : run1;
+  }
+  for (int j = mid; j <= r; ++j)
+    cur[j] = cur[j] < run0 ? cur[j] : run0;
+  for (int j = l; j <= r; ++j)
+    cur[j] += pB[j];
+}
 } // namespace
 
 vpMorphMatcher::vpMorphMatcher(const vpMorphWorkModel &model, bool normalizeScale)
@@ -92,120 +132,136 @@ void vpMorphMatcher::prepare(const vpMorphContour &A, const vpMorphContour &B, s
     m_costB[j] = m_model.stretching(0.0, m_lenB[j]) + kb * m_phiB[j] * m_phiB[j];
     m_prefB[j] = (j ? m_prefB[j - 1] : 0.0) + m_costB[j];
   }
+  // Diagonal steps: Eq. 2 + Eq. 3 written out so that the loop vectorises (same values as
+  // vpMorphWorkModel::stretching() and bending()).
   m_costDiag.resize(m * 2 * n);
+  const double ks = m_model.ks(), cs = m_model.cs();
+  const double *__restrict lB = m_lenB.data(), *__restrict pB = m_phiB.data();
   for (std::size_t i = 0; i < m; ++i) {
-    double *row = &m_costDiag[i * 2 * n];
-    for (std::size_t j = 0; j < n; ++j)
-      row[j] = m_model.stretching(m_lenA[i], m_lenB[j]) + m_model.bending(m_phiA[i], m_phiB[j]);
+    double *__restrict row = &m_costDiag[i * 2 * n];
+    const double lA = m_lenA[i], pA = m_phiA[i];
+    for (std::size_t j = 0; j < n; ++j) {
+      const double lmin = lA < lB[j] ? lA : lB[j], lmax = lA < lB[j] ? lB[j] : lA;
+      const double dl = lB[j] - lA, dp = pB[j] - pA;
+      row[j] = ks * dl * dl / ((1.0 - cs) * lmin + cs * lmax) + kb * dp * dp;
+    }
     std::copy(row, row + n, row + n);
   }
 }
 
 // Minimal work of a path from (0, b) to (m, b + n) whose row i stays within the columns spanned by the path
-// \e lo (leftmost) and the path \e hi (rightmost) in that row; null bounds: unconstrained. Writes the path.
-double vpMorphMatcher::solveStart(int b, const Path *lo, const Path *hi, Path &path)
+// \e lo (leftmost) and the path \e hi (rightmost) in that row; null bounds: unconstrained. On request, traces
+// the path back: its extent per row (\e extent) and its cells from (0, b) to (m, b + n) (\e cells).
+double vpMorphMatcher::solveStart(int b, const Path *lo, const Path *hi, Path *extent,
+                                  std::vector<std::pair<int, int> > *cells)
 {
   const int m = static_cast<int>(m_m), n = static_cast<int>(m_n), W = 2 * n;
-  // Column range of row i. Row 0 starts at b by definition; the end cell (m, b + n) is inside any band
+  // Column range of each row. Row 0 starts at b by definition; the end cell (m, b + n) is inside any band
   // whose bounding starts enclose b.
-  auto L = [&](int i) { return (i == 0 || !lo) ? b : std::max(b, lo->left[i]); };
-  auto R = [&](int i) { return std::min(hi ? hi->right[i] : b + n, W - 1); };
-
+  m_L.resize(m + 2);
+  m_R.resize(m + 2);
+  for (int i = 0; i <= m; ++i) {
+    m_L[i] = (i == 0 || !lo) ? b : std::max(b, lo->left[i]);
+    m_R[i] = std::min(hi ? hi->right[i] : b + n, W - 1);
+  }
+  m_L[m + 1] = m_L[m];
+  m_R[m + 1] = m_R[m];
+  // The table D of the band, row by row. Row i is stored on columns [L(i) - 1, R(i + 1)], padded with +inf on
+  // both sides, so that row i+1 reads its neighbours without bound checks.
   m_rowOff.resize(m + 2);
   m_rowOff[0] = 0;
   for (int i = 0; i <= m; ++i)
-    m_rowOff[i + 1] = m_rowOff[i] + static_cast<std::size_t>(std::max(0, R(i) - L(i) + 1));
-  m_step.resize(m_rowOff[m + 1]);
-  // Rolling rows, offset by one cell so that column -1 exists.
-  m_prev.assign(W + 2, kInf);
-  m_cur.assign(W + 2, kInf);
+    m_rowOff[i + 1] = m_rowOff[i] + static_cast<std::size_t>(m_R[i + 1] - m_L[i] + 2);
+  m_table.resize(m_rowOff[m + 1]);
+  double *const table = m_table.data();
+  auto row = [&](int i) { return table + m_rowOff[i] - (m_L[i] - 1); }; // row(i)[j] = D[i][j]
 
-  // Row 0: A's vertex 0 matched to B's b, b+1, ...: only B steps. The start cell's own step is the one
-  // that closes the path into (m, b + n), charged there.
-  int pl = b, pr = R(0);
   {
-    unsigned char *st = &m_step[m_rowOff[0]] - b;
-    double *prev = m_prev.data() + 1;
-    prev[b] = 0.0;
-    st[b] = STEP_DIAG;
-    for (int j = b + 1; j <= pr; ++j) {
-      prev[j] = prev[j - 1] + m_costB[j];
-      st[j] = STEP_B;
-    }
+    double *d = row(0);
+    d[b - 1] = kInf;
+    d[b] = 0.0; // the start cell; its own step is the one that closes the path into (m, b + n), charged there
+    for (int j = b + 1; j <= m_R[0]; ++j)
+      d[j] = d[j - 1] + m_costB[j]; // A's vertex 0 matched to B's b, b+1, ...: only B steps
+    for (int j = m_R[0] + 1; j <= m_R[1]; ++j)
+      d[j] = kInf;
   }
   for (int i = 1; i <= m; ++i) {
-    const int l = L(i), r = R(i);
+    const int l = m_L[i], r = m_R[i];
     const int ii = (i == m) ? 0 : i; // row m is A's vertex 0 again
-    const double *cd = &m_costDiag[static_cast<std::size_t>(ii) * W];
-    const double ca = m_costA[ii];
-    const double *pB = m_prefB.data();
-    unsigned char *st = &m_step[m_rowOff[i]] - l;
-    // prev[j] = D[i-1][j], +inf outside [pl, pr]; prev[-1] exists (+inf) thanks to the one-cell offset.
-    const double *prev = m_prev.data() + 1;
-    double *cur = m_cur.data() + 1;
-    // With P[j] the prefix sum of the B-step costs, D[i][j] - P[j] is the running minimum of
-    // min(diagonal, A step) - P[j] along the row, so the serial part is a bare minimum (no add in the chain).
-    // Pass 1, independent cells (vectorisable): best of the diagonal and the A step, minus P[j].
-    for (int j = l; j <= r; ++j) {
-      const double up = prev[j] + ca, dg = prev[j - 1] + cd[j];
-      cur[j] = (up < dg ? up : dg) - pB[j];
-      st[j] = up < dg ? STEP_A : STEP_DIAG;
-    }
-    // Pass 2, serial: running minimum, then back to D[i][j].
-    double run = cur[l];
-    cur[l] += pB[l];
-    for (int j = l + 1; j <= r; ++j) {
-      const double y = cur[j];
-      st[j] = run < y ? STEP_B : st[j];
-      run = run < y ? run : y;
-      cur[j] = run + pB[j];
-    }
-    for (int j = pl; j <= pr; ++j) // forget row i-1 so that m_prev is +inf outside row i's range
-      m_prev[j + 1] = kInf;
-    std::swap(m_prev, m_cur);
-    pl = l;
-    pr = r;
+    double *d = row(i);
+    d[l - 1] = kInf;
+    dpRow(row(i - 1), &m_costDiag[static_cast<std::size_t>(ii) * W], m_costA[ii], m_costB.data(), m_prefB.data(), l, r,
+          d);
+    for (int j = r + 1; j <= m_R[i + 1]; ++j)
+      d[j] = kInf;
   }
   const int end = b + n;
-  const double work = (end >= pl && end <= pr) ? m_prev[end + 1] : kInf;
-  if (!std::isfinite(work))
+  const double work = (end >= m_L[m] && end <= m_R[m]) ? row(m)[end] : kInf;
+  if (!std::isfinite(work) || (!extent && !cells))
     return work;
 
-  path.left.assign(m + 1, std::numeric_limits<int>::max());
-  path.right.assign(m + 1, std::numeric_limits<int>::min());
-  path.cells.clear();
+  // Trace back: at each cell, the predecessor that gives the least sum (the choice the programme made, up to
+  // rounding ties, which are equally optimal).
+  if (extent) {
+    extent->left.assign(m + 1, std::numeric_limits<int>::max());
+    extent->right.assign(m + 1, std::numeric_limits<int>::min());
+  }
+  if (cells)
+    cells->clear();
   int i = m, j = end;
   for (;;) {
-    path.left[i] = std::min(path.left[i], j);
-    path.right[i] = std::max(path.right[i], j);
+    if (extent) {
+      extent->left[i] = std::min(extent->left[i], j);
+      extent->right[i] = std::max(extent->right[i], j);
+    }
+    if (cells)
+      cells->emplace_back(i, j);
     if (i == 0 && j == b)
       break;
-    path.cells.emplace_back(i, j);
-    const unsigned char s = m_step[m_rowOff[i] + static_cast<std::size_t>(j - L(i))];
-    if (s != STEP_B)
-      --i;
-    if (s != STEP_A)
+    if (i == 0) {
       --j;
+      continue;
+    }
+    const int ii = (i == m) ? 0 : i;
+    const double *p = row(i - 1);
+    const double dg = p[j - 1] + m_costDiag[static_cast<std::size_t>(ii) * W + j];
+    const double up = p[j] + m_costA[ii];
+    const double lf = (j > m_L[i]) ? row(i)[j - 1] + m_costB[j] : kInf;
+    if (dg <= up && dg <= lf) {
+      --i;
+      --j;
+    } else if (up <= lf) {
+      --i;
+    } else {
+      --j;
+    }
   }
-  path.cells.emplace_back(0, b);
-  std::reverse(path.cells.begin(), path.cells.end()); // (0, b) ... (m, b + n)
+  if (cells)
+    std::reverse(cells->begin(), cells->end()); // (0, b) ... (m, b + n)
   return work;
 }
 
 // Maes' divide and conquer: the optimal paths of starts bLo < b < bHi lie between those of bLo and bHi.
-void vpMorphMatcher::solveBetween(int bLo, int bHi, const Path &lo, const Path &hi, double &bestWork, Path &best)
+void vpMorphMatcher::solveBetween(int bLo, int bHi, const Path &lo, const Path &hi, std::size_t depth, Best &best)
 {
   if (bHi - bLo < 2)
     return;
   const int mid = bLo + (bHi - bLo) / 2;
-  Path p;
-  const double w = solveStart(mid, &lo, &hi, p);
-  if (w < bestWork) {
-    bestWork = w;
-    best = p;
+  // The mid path bounds the halves only if they still hold starts to solve.
+  const bool leaf = (mid - bLo < 2) && (bHi - mid < 2);
+  Path &p = m_pool[depth];
+  const double w = solveStart(mid, &lo, &hi, leaf ? nullptr : &p, nullptr);
+  if (w < best.work) {
+    best.work = w;
+    best.b = mid;
+    best.lo = lo;
+    best.hi = hi;
+    best.bounded = true;
   }
-  solveBetween(bLo, mid, lo, p, bestWork, best);
-  solveBetween(mid, bHi, p, hi, bestWork, best);
+  if (!leaf) {
+    solveBetween(bLo, mid, lo, p, depth + 1, best);
+    solveBetween(mid, bHi, p, hi, depth + 1, best);
+  }
 }
 
 // Best path over the starts 0 .. count-1 of the prepared problem (count <= n).
@@ -213,8 +269,9 @@ vpMorphCorrespondence vpMorphMatcher::solveRange(int count)
 {
   const int n = static_cast<int>(m_n);
   Path first, last;
-  double bestWork = solveStart(0, nullptr, nullptr, first);
-  Path best = first;
+  Best best;
+  best.work = solveStart(0, nullptr, nullptr, &first, nullptr);
+  best.b = 0;
   if (count > 1) {
     if (count == n) {
       // Start n is start 0 again, shifted by one period of the doubled grid.
@@ -224,29 +281,37 @@ vpMorphCorrespondence vpMorphMatcher::solveRange(int count)
       for (int &c : last.right)
         c += n;
     } else {
-      const double w = solveStart(count - 1, nullptr, nullptr, last);
-      if (w < bestWork) {
-        bestWork = w;
-        best = last;
+      const double w = solveStart(count - 1, nullptr, nullptr, &last, nullptr);
+      if (w < best.work) {
+        best.work = w;
+        best.b = count - 1;
       }
     }
-    solveBetween(0, count == n ? n : count - 1, first, last, bestWork, best);
+    // One bounding path per recursion level, allocated once (the recursion keeps references to them).
+    std::size_t levels = 1;
+    while ((1 << levels) < count + 1)
+      ++levels;
+    m_pool.resize(levels + 1);
+    solveBetween(0, count == n ? n : count - 1, first, last, 0, best);
   }
-  return toCorrespondence(best);
+  // Trace the winner again, in the same band, to get its cells.
+  std::vector<std::pair<int, int> > cells;
+  solveStart(best.b, best.bounded ? &best.lo : nullptr, best.bounded ? &best.hi : nullptr, nullptr, &cells);
+  return toCorrespondence(cells);
 }
 
-vpMorphCorrespondence vpMorphMatcher::toCorrespondence(const Path &path)
+vpMorphCorrespondence vpMorphMatcher::toCorrespondence(const std::vector<std::pair<int, int> > &cells)
 {
   const std::size_t m = m_m, n = m_n;
   std::vector<std::pair<std::size_t, std::size_t> > pairs;
-  pairs.reserve(path.cells.size());
+  pairs.reserve(cells.size());
   double stretching = 0.0, bending = 0.0;
-  for (std::size_t k = 0; k + 1 < path.cells.size(); ++k) {
-    const int i = path.cells[k].first, j = path.cells[k].second;
+  for (std::size_t k = 0; k + 1 < cells.size(); ++k) {
+    const int i = cells[k].first, j = cells[k].second;
     const std::size_t ra = (m_a0 + static_cast<std::size_t>(i)) % m, rb = (m_b0 + static_cast<std::size_t>(j)) % n;
     pairs.emplace_back(m_reversedA ? (m - ra) % m : ra, m_reversedB ? (n - rb) % n : rb);
     // Work of the step into the next cell (the last one closes the path onto the start).
-    const int i1 = path.cells[k + 1].first, j1 = path.cells[k + 1].second;
+    const int i1 = cells[k + 1].first, j1 = cells[k + 1].second;
     const std::size_t ii = static_cast<std::size_t>(i1) % m;
     const double lA = (i1 != i) ? m_lenA[ii] : 0.0, lB = (j1 != j) ? m_lenB[j1] : 0.0;
     const double pA = (i1 != i) ? m_phiA[ii] : 0.0, pB = (j1 != j) ? m_phiB[j1] : 0.0;
@@ -263,24 +328,26 @@ vpMorphCorrespondence vpMorphMatcher::matchFromStart(const vpMorphContour &A, co
   prepare(A, B, A.signedArea() < 0 ? (A.size() - a) % A.size() : a, 0);
   // Column of target vertex b in the positive traversal.
   const int col = static_cast<int>(m_reversedB ? (m_n - b) % m_n : b);
-  Path p;
-  solveStart(col, nullptr, nullptr, p);
-  return toCorrespondence(p);
+  std::vector<std::pair<int, int> > cells;
+  solveStart(col, nullptr, nullptr, nullptr, &cells);
+  return toCorrespondence(cells);
 }
 
 vpMorphCorrespondence vpMorphMatcher::matchBruteForce(const vpMorphContour &A, const vpMorphContour &B)
 {
   prepare(A, B, 0, 0);
-  Path p, best;
   double bestWork = kInf;
+  int bestB = 0;
   for (int b = 0; b < static_cast<int>(m_n); ++b) {
-    const double w = solveStart(b, nullptr, nullptr, p);
+    const double w = solveStart(b, nullptr, nullptr, nullptr, nullptr);
     if (w < bestWork) {
       bestWork = w;
-      best = p;
+      bestB = b;
     }
   }
-  return toCorrespondence(best);
+  std::vector<std::pair<int, int> > cells;
+  solveStart(bestB, nullptr, nullptr, nullptr, &cells);
+  return toCorrespondence(cells);
 }
 
 vpMorphCorrespondence vpMorphMatcher::match(const vpMorphContour &A, const vpMorphContour &B)

@@ -77,17 +77,23 @@ public:
   double distance(const vpMorphContour &A, const vpMorphContour &B);
 
 private:
-  //! A path of the grid: its cells (row, column) from the start to the end, and its extent per row.
+  //! The columns a path of the grid spans in each row (leftmost, rightmost): the bounds of Maes' bands.
   struct Path {
     std::vector<int> left, right;
-    std::vector<std::pair<int, int> > cells;
+  };
+  //! Best start found so far, with the band it was solved in.
+  struct Best {
+    double work = 0.0;
+    int b = 0;
+    bool bounded = false;
+    Path lo, hi;
   };
   static void checkStart(const vpMorphContour &A, const vpMorphContour &B, std::size_t a, std::size_t b);
   void prepare(const vpMorphContour &A, const vpMorphContour &B, std::size_t a, std::size_t b);
-  double solveStart(int b, const Path *lo, const Path *hi, Path &path);
-  void solveBetween(int bLo, int bHi, const Path &lo, const Path &hi, double &bestWork, Path &best);
+  double solveStart(int b, const Path *lo, const Path *hi, Path *extent, std::vector<std::pair<int, int> > *cells);
+  void solveBetween(int bLo, int bHi, const Path &lo, const Path &hi, std::size_t depth, Best &best);
   vpMorphCorrespondence solveRange(int count);
-  vpMorphCorrespondence toCorrespondence(const Path &path);
+  vpMorphCorrespondence toCorrespondence(const std::vector<std::pair<int, int> > &cells);
 
   vpMorphWorkModel m_model;
   bool m_normalizeScale;
@@ -102,9 +108,10 @@ private:
   std::vector<double> m_prefB; // prefix sums of m_costB
 
   // Work buffers of the dynamic programme, reused from call to call.
-  std::vector<double> m_prev, m_cur;
-  std::vector<unsigned char> m_step;
-  std::vector<std::size_t> m_rowOff;
+  std::vector<double> m_table;          // D over the band, row by row
+  std::vector<std::size_t> m_rowOff;    // where each row starts in m_table
+  std::vector<int> m_L, m_R;            // column range of each row of the band
+  std::vector<Path> m_pool;             // bounding paths, one per recursion level
 };
 
 #endif
