@@ -1,0 +1,272 @@
+/*!
+  \file vispmorph-make-data.cpp
+  \brief Generates the project's object silhouettes reproducibly from polygons defined in code.
+
+  Usage: vispmorph-make-data OUTDIR
+
+  Writes OUTDIR/objects/<name>.png and OUTDIR/objects/<name>-deformed.png for the six tool-like objects of the
+  paper's experiments (key, pliers, wedge, wrench, screwdriver, hammer), and two demo views
+  OUTDIR/demo/key-view.png and OUTDIR/demo/pliers-view.png. Images are 640x480, white background, black
+  object (about 200-300 px long), binary. Every shape is a union of polygons built here, so the data can be
+  regenerated bit for bit; each image is checked by extracting its contour with vpMorphContourExtractor.
+*/
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+#include <visp3/core/vpImage.h>
+#include <visp3/io/vpImageIo.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphException.h>
+
+namespace
+{
+struct P {
+  double x, y;
+};
+using Poly = std::vector<P>;
+using Shape = std::vector<Poly>; // union of filled polygons; a polygon marked as hole is drawn in white
+struct Part {
+  Poly poly;
+  bool hole;
+};
+using Parts = std::vector<Part>;
+
+const double kPi = 3.14159265358979323846;
+
+Poly rect(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+// Regular polygon approximating a circle arc from a0 to a1 (radians), n segments.
+Poly arc(double cx, double cy, double r, double a0, double a1, int n)
+{
+  Poly p;
+  for (int k = 0; k <= n; ++k) {
+    const double a = a0 + (a1 - a0) * k / n;
+    p.push_back({cx + r * std::cos(a), cy + r * std::sin(a)});
+  }
+  return p;
+}
+
+Poly circle(double cx, double cy, double r, int n = 32)
+{
+  Poly p = arc(cx, cy, r, 0, 2 * kPi, n);
+  p.pop_back();
+  return p;
+}
+
+P rotate(const P &p, double a, double cx = 0, double cy = 0)
+{
+  const double c = std::cos(a), s = std::sin(a);
+  return {cx + c * (p.x - cx) - s * (p.y - cy), cy + s * (p.x - cx) + c * (p.y - cy)};
+}
+
+// Smooth bend: points beyond x0 turn about (x0, 0) by an angle growing linearly to \e total at x0 + len.
+Parts bend(Parts parts, double x0, double len, double total)
+{
+  for (Part &pt : parts)
+    for (P &p : pt.poly)
+      if (p.x > x0)
+        p = rotate(p, total * std::min(1.0, (p.x - x0) / len), x0, 0);
+  return parts;
+}
+
+// Key: round bow with a hole, a blade, teeth along the lower edge. Deformed: the blade is bent by 12 deg.
+Parts key(bool deformed)
+{
+  Parts k;
+  k.push_back({circle(-85, 0, 45), false});
+  k.push_back({circle(-100, 0, 14, 20), true});
+  Poly blade{{-50, -13}, {120, -13}, {135, 0}, {120, 10}};
+  // teeth: (x, depth) from the tip back towards the bow
+  const double teeth[][2] = {{112, 22}, {100, 16}, {88, 28}, {76, 18}, {64, 26}, {52, 14}, {40, 10}};
+  for (const auto &t : teeth)
+    blade.push_back({t[0], 10 + t[1] * 0.9}), blade.push_back({t[0] - 6, 10});
+  blade.push_back({-50, 10});
+  k.push_back({blade, false});
+  return deformed ? bend(k, -30, 160, 12 * kPi / 180) : k;
+}
+
+// Pliers: two crossed arms (jaw + handle) about a pivot. Deformed: opened wider (jaws 40 deg apart, not 8).
+Parts pliers(bool deformed)
+{
+  const double half = (deformed ? 20.0 : 4.0) * kPi / 180;
+  Parts out;
+  for (double side : {-1.0, 1.0}) {
+    // Arm in its own frame: jaw towards +x on one side of the axis, handle towards -x on the other side.
+    Poly jaw{{-8, 0}, {10, -14 * side}, {70, -12 * side}, {100, -3 * side}, {100, 1 * side}, {10, 3 * side}};
+    Poly handle{{8, 0}, {-15, 10 * side}, {-150, 26 * side}, {-158, 20 * side}, {-155, 10 * side},
+                {-20, -3 * side}};
+    for (Poly *p : {&jaw, &handle}) {
+      for (P &q : *p)
+        q = rotate(q, side * half);
+      out.push_back({*p, false});
+    }
+  }
+  out.push_back({circle(0, 0, 17, 24), false});
+  out.push_back({circle(0, 0, 5, 12), true});
+  return out;
+}
+
+// Wedge (door stop): a long thin triangle with a finger notch. Deformed: the top face sags by 10 px.
+Parts wedge(bool deformed)
+{
+  Poly w{{-120, 40}, {-120, -30}, {-90, -36}};
+  const double sag = deformed ? 10.0 : 0.0;
+  for (int k = 1; k <= 10; ++k) {
+    const double t = k / 10.0, x = -90 + 220 * t;
+    w.push_back({x, -36 + 34 * t + sag * 4 * t * (1 - t)});
+  }
+  w.push_back({130, 40});
+  // finger notch in the base
+  w.push_back({-40, 40});
+  w.push_back({-55, 28});
+  w.push_back({-75, 28});
+  w.push_back({-90, 40});
+  return {{w, false}};
+}
+
+// Open-end wrench with a ring at the other end. Deformed: the handle is bent by 15 deg.
+Parts wrench(bool deformed)
+{
+  Parts w;
+  w.push_back({{{-95, -11}, {75, -13}, {75, 13}, {-95, 11}}, false});
+  // open end: a disc with a slot facing +x
+  Poly head = arc(100, 0, 36, 0.45, 2 * kPi - 0.45, 28);
+  head.push_back({106, -14}); // parallel-sided slot
+  head.push_back({106, 14});
+  w.push_back({head, false});
+  w.push_back({circle(-115, 0, 28), false});
+  w.push_back({circle(-115, 0, 14, 12), true});
+  return deformed ? bend(w, -60, 120, -15 * kPi / 180) : w;
+}
+
+// Screwdriver: ribbed handle, ferrule, shaft and flat tip. Deformed: the shaft is bent by 10 deg.
+Parts screwdriver(bool deformed)
+{
+  Parts s;
+  Poly handle{{-140, -14}, {-130, -22}};
+  for (int k = 0; k < 5; ++k) { // ribs on the upper edge
+    const double x = -120 + 20 * k;
+    handle.push_back({x, -22});
+    handle.push_back({x + 4, -19});
+    handle.push_back({x + 8, -22});
+  }
+  handle.push_back({-20, -22});
+  handle.push_back({-10, -12});
+  handle.push_back({-10, 12});
+  handle.push_back({-20, 22});
+  handle.push_back({-130, 22});
+  handle.push_back({-140, 14});
+  s.push_back({handle, false});
+  s.push_back({rect(-12, -8, 5, 8), false});
+  s.push_back({{{0, -4}, {110, -4}, {128, -2}, {128, 2}, {110, 4}, {0, 4}}, false});
+  return deformed ? bend(s, 5, 120, 10 * kPi / 180) : s;
+}
+
+// Claw hammer: handle, head, curved claw. Deformed: the handle is bent by 12 deg.
+Parts hammer(bool deformed)
+{
+  Parts h;
+  h.push_back({{{-140, -10}, {70, -13}, {70, 13}, {-140, 12}}, false});
+  // head: striking face below, claw above (along -y), centred on x = 85
+  Poly head{{65, 70}, {105, 70}, {105, 55}, {100, 20}, {100, -20}};
+  // claw: curving back towards -x while going up, ending in a split tip
+  const Poly outer = arc(40, -20, 60, 0.0, -1.45, 10);
+  for (const P &p : outer)
+    head.push_back(p);
+  head.push_back({38, -82});
+  const Poly inner = arc(40, -20, 45, -1.5, -0.2, 10);
+  for (const P &p : inner)
+    head.push_back(p);
+  head.push_back({70, -12});
+  head.push_back({65, 20});
+  head.push_back({60, 55});
+  h.push_back({head, false});
+  // the head stays straight; the handle bends towards its free end (-x)
+  if (!deformed)
+    return h;
+  for (P &p : h[0].poly)
+    if (p.x < 40)
+      p = rotate(p, 12 * kPi / 180 * std::min(1.0, (40 - p.x) / 180), 40, 0);
+  return h;
+}
+
+// Renders parts scaled by s, rotated by theta (radians, counter-clockwise in the (u, v) axes) about the
+// object origin, which lands at image point (u0, v0).
+vpImage<unsigned char> render(const Parts &parts, double u0, double v0, double theta = 0.0, double s = 1.0)
+{
+  const int W = 640, H = 480, shift = 4; // sub-pixel vertex positions: 1/16 px
+  cv::Mat img(H, W, CV_8UC1, cv::Scalar(255));
+  for (bool holes : {false, true})
+    for (const Part &pt : parts) {
+      if (pt.hole != holes)
+        continue;
+      std::vector<cv::Point> q;
+      for (const P &p : pt.poly) {
+        const P r = rotate({p.x * s, p.y * s}, theta);
+        q.emplace_back(cvRound((u0 + r.x) * (1 << shift)), cvRound((v0 + r.y) * (1 << shift)));
+      }
+      cv::fillPoly(img, std::vector<std::vector<cv::Point> >{q}, cv::Scalar(holes ? 255 : 0), cv::LINE_8, shift);
+    }
+  vpImage<unsigned char> I(H, W);
+  for (int r = 0; r < H; ++r)
+    for (int c = 0; c < W; ++c)
+      I[static_cast<unsigned int>(r)][static_cast<unsigned int>(c)] = img.at<unsigned char>(r, c);
+  return I;
+}
+
+bool save(const vpImage<unsigned char> &I, const std::filesystem::path &file)
+{
+  vpImageIo::write(I, file.string());
+  try {
+    const vpMorphContour c = vpMorphContourExtractor().extract(I);
+    double umin = 1e9, umax = -1e9, vmin = 1e9, vmax = -1e9;
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      umin = std::min(umin, c.x(k));
+      umax = std::max(umax, c.x(k));
+      vmin = std::min(vmin, c.y(k));
+      vmax = std::max(vmax, c.y(k));
+    }
+    std::cout << file.string() << ": " << c.size() << " vertices, bounding box " << umax - umin << " x "
+              << vmax - vmin << " px" << std::endl;
+    return true;
+  } catch (const vpException &e) {
+    std::cerr << file.string() << ": contour extraction failed: " << e.getMessage() << std::endl;
+    return false;
+  }
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  if (argc != 2 || std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help") {
+    std::cerr << "Usage: " << argv[0] << " OUTDIR\n"
+              << "Writes OUTDIR/objects/<name>[-deformed].png and OUTDIR/demo/{key,pliers}-view.png.\n";
+    return argc == 2 ? EXIT_SUCCESS : EXIT_FAILURE;
+  }
+  const std::filesystem::path out(argv[1]);
+  try {
+    std::filesystem::create_directories(out / "objects");
+    std::filesystem::create_directories(out / "demo");
+    const std::vector<std::pair<std::string, std::function<Parts(bool)> > > objects{
+        {"key", key},       {"pliers", pliers},           {"wedge", wedge},
+        {"wrench", wrench}, {"screwdriver", screwdriver}, {"hammer", hammer}};
+    bool ok = true;
+    for (const auto &o : objects) {
+      ok &= save(render(o.second(false), 320, 240), out / "objects" / (o.first + ".png"));
+      ok &= save(render(o.second(true), 320, 240), out / "objects" / (o.first + "-deformed.png"));
+    }
+    ok &= save(render(key(false), 350, 220, 140 * kPi / 180), out / "demo" / "key-view.png");
+    ok &= save(render(pliers(false), 290, 255, -100 * kPi / 180, 0.9), out / "demo" / "pliers-view.png");
+    return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  } catch (const std::exception &e) {
+    std::cerr << "Error: " << e.what() << std::endl;
+    return EXIT_FAILURE;
+  }
+}
