@@ -1,0 +1,132 @@
+// Tests of the contour value type: geometry (area, centroid, orientation, perimeter, turning angles),
+// resampling, transforms and unit conversions.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphException.h>
+
+namespace
+{
+// Axis-aligned rectangle w x h with its lower-left corner at (x0, y0), counter-clockwise in (x, y).
+vpMorphContour rectangle(double x0, double y0, double w, double h)
+{
+  return vpMorphContour({x0, x0 + w, x0 + w, x0}, {y0, y0, y0 + h, y0 + h});
+}
+} // namespace
+
+TEST_CASE("contour area, centroid, perimeter and orientation", "[contour]")
+{
+  const vpMorphContour r = rectangle(10, 20, 40, 10);
+  CHECK(r.size() == 4);
+  CHECK(r.signedArea() == Approx(400));
+  CHECK(r.isCounterClockwise());
+  CHECK(r.reversed().signedArea() == Approx(-400));
+  CHECK(r.area() == Approx(400));
+  CHECK(r.perimeter() == Approx(100));
+  double cx, cy;
+  r.centroid(cx, cy);
+  CHECK(cx == Approx(30));
+  CHECK(cy == Approx(25));
+  // Elongated along x, then rotated by 30 deg: the principal axis follows.
+  CHECK(r.orientation() == Approx(0.0).margin(1e-12));
+  CHECK(r.transformed(M_PI / 6, 0, 0).orientation() == Approx(M_PI / 6));
+  CHECK(r.transformed(-2.0, 0, 0).orientation() == Approx(-2.0 + M_PI));
+  // Centroid of an L shape (not the vertex mean).
+  const vpMorphContour L({0, 2, 2, 1, 1, 0}, {0, 0, 1, 1, 3, 3});
+  L.centroid(cx, cy);
+  CHECK(L.area() == Approx(4));
+  // Two 2x1 rectangles: [0,2]x[0,1] (centroid (1, 0.5)) and [0,1]x[1,3] (centroid (0.5, 2)).
+  CHECK(cx == Approx((2 * 1.0 + 2 * 0.5) / 4));
+  CHECK(cy == Approx((2 * 0.5 + 2 * 2.0) / 4));
+}
+
+TEST_CASE("contour edges and turning angles", "[contour]")
+{
+  const vpMorphContour r = rectangle(0, 0, 4, 3);
+  CHECK(r.edgeLength(0) == Approx(3)); // from vertex 3 (0, 3) to vertex 0 (0, 0)
+  CHECK(r.edgeLength(1) == Approx(4));
+  double sum = 0;
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    CHECK(r.turningAngle(k) == Approx(M_PI / 2));
+    sum += r.turningAngle(k);
+  }
+  CHECK(sum == Approx(2 * M_PI));
+  const vpMorphContour rev = r.reversed();
+  for (std::size_t k = 0; k < rev.size(); ++k)
+    CHECK(rev.turningAngle(k) == Approx(-M_PI / 2));
+}
+
+TEST_CASE("contour start, reversal, mirror and transforms", "[contour]")
+{
+  const vpMorphContour c({0, 10, 12, 3}, {0, 1, 8, 6});
+  const vpMorphContour s = c.rotatedStart(2);
+  CHECK(s.x(0) == c.x(2));
+  CHECK(s.y(1) == c.y(3));
+  CHECK(s.x(2) == c.x(0));
+  const vpMorphContour rv = c.reversed();
+  CHECK(rv.x(0) == c.x(0));
+  CHECK(rv.x(1) == c.x(3));
+  CHECK(c.counterClockwise().isCounterClockwise());
+  CHECK(rv.counterClockwise().isCounterClockwise());
+  const vpMorphContour mi = c.mirrored();
+  CHECK(mi.area() == Approx(c.area()));
+  CHECK(mi.signedArea() * c.signedArea() > 0);
+  // Similarity about the centroid: area scales by s^2, centroid moves by t, perimeter by s.
+  double cx, cy, tx, ty;
+  c.centroid(cx, cy);
+  const vpMorphContour t = c.transformed(0.7, 5, -3, 2.0);
+  t.centroid(tx, ty);
+  CHECK(tx == Approx(cx + 5));
+  CHECK(ty == Approx(cy - 3));
+  CHECK(t.area() == Approx(4 * c.area()));
+  CHECK(t.perimeter() == Approx(2 * c.perimeter()));
+  // Normalised: centroid at the origin, unit perimeter.
+  const vpMorphContour n = c.normalized();
+  n.centroid(tx, ty);
+  CHECK(tx == Approx(0).margin(1e-12));
+  CHECK(ty == Approx(0).margin(1e-12));
+  CHECK(n.perimeter() == Approx(1));
+}
+
+TEST_CASE("contour resampling by arc length", "[contour]")
+{
+  const vpMorphContour r = rectangle(0, 0, 30, 10); // perimeter 80
+  const vpMorphContour s = r.resampled(8);          // one vertex every 10
+  REQUIRE(s.size() == 8);
+  CHECK(s.perimeter() == Approx(80));
+  CHECK(s.x(0) == Approx(0));
+  CHECK(s.y(0) == Approx(0));
+  CHECK(s.x(1) == Approx(10));
+  CHECK(s.x(3) == Approx(30));
+  CHECK(s.y(4) == Approx(10));
+  CHECK(s.x(4) == Approx(30));
+  CHECK(s.area() == Approx(r.area()));
+  const vpMorphContour dense = r.resampled(400);
+  CHECK(dense.size() == 400);
+  CHECK(dense.perimeter() == Approx(80).epsilon(1e-9));
+}
+
+TEST_CASE("contour unit conversions with the camera intrinsics", "[contour]")
+{
+  const vpCameraParameters cam(800, 800, 320, 240);
+  const vpMorphContour p({320, 400, 320}, {240, 240, 320});
+  const vpMorphContour n = p.toNormalized(cam);
+  CHECK(n.units() == vpMorphContour::NORMALIZED);
+  CHECK(n.x(1) == Approx(0.1));
+  CHECK(n.y(2) == Approx(0.1));
+  const vpMorphContour back = n.toPixels(cam);
+  CHECK(back.units() == vpMorphContour::PIXEL);
+  for (std::size_t k = 0; k < 3; ++k) {
+    CHECK(back.x(k) == Approx(p.x(k)));
+    CHECK(back.y(k) == Approx(p.y(k)));
+  }
+  REQUIRE_THROWS_AS(n.toNormalized(cam), vpMorphException);
+  REQUIRE_THROWS_AS(p.toPixels(cam), vpMorphException);
+  // vpImagePoint convention: u = x (column), v = y (row).
+  CHECK(p.point(1).get_u() == Approx(400));
+  CHECK(p.point(2).get_v() == Approx(320));
+  const vpMorphContour fromPoints(p.points());
+  CHECK(fromPoints.x(1) == Approx(400));
+}
