@@ -77,10 +77,12 @@ TEST_CASE("work model rejects bad stiffness", "[matcher]")
   REQUIRE_THROWS_AS(vpMorphWorkModel(-1.0), vpMorphException);
   REQUIRE_THROWS_AS(vpMorphWorkModel(NAN), vpMorphException);
   REQUIRE_THROWS_AS(vpMorphWorkModel(1.0, -0.1), vpMorphException);
+  REQUIRE_THROWS_AS(vpMorphWorkModel(1.0, 0.0), vpMorphException);
+  REQUIRE_THROWS_WITH(vpMorphWorkModel(-2.0), Catch::Contains("ks must be finite and > 0"));
   REQUIRE_THROWS_AS(vpMorphWorkModel(1.0, NAN), vpMorphException);
   REQUIRE_THROWS_AS(vpMorphWorkModel(1.0, 0.1, 0.0), vpMorphException);
   REQUIRE_THROWS_AS(vpMorphWorkModel(1.0, 0.1, 1.5), vpMorphException);
-  REQUIRE_NOTHROW(vpMorphWorkModel(2.0, 0.0, 1.0));
+  REQUIRE_NOTHROW(vpMorphWorkModel(2.0, 1e-6, 1.0));
   const vpMorphWorkModel w(1.0, 0.5, 0.5);
   CHECK(w.stretching(2.0, 2.0) == 0.0);
   CHECK(w.stretching(1.0, 3.0) == Approx(4.0 / (0.5 * 1 + 0.5 * 3)));
@@ -148,9 +150,15 @@ TEST_CASE("work of a correspondence is the sum of its stretching and bending", "
   CHECK(c.stretchingWork() > 0.0);
   CHECK(c.bendingWork() > 0.0);
   CHECK(c.work() == Approx(c.stretchingWork() + c.bendingWork()));
-  // Changing the bending stiffness changes only the bending part of a fixed correspondence.
-  vpMorphMatcher stretchOnly(vpMorphWorkModel(1.0, 0.0, 0.5));
-  CHECK(stretchOnly.match(A, B).bendingWork() == 0.0);
+  // The bending part of a correspondence is proportional to kb: evaluated on the same correspondence
+  // (matchFromStart at the same starting pair, with the bending made negligible), doubling kb doubles it.
+  const auto start = c.start();
+  vpMorphMatcher k1(vpMorphWorkModel(1.0, 1e-3, 0.5)), k2(vpMorphWorkModel(1.0, 2e-3, 0.5));
+  const vpMorphCorrespondence c1 = k1.matchFromStart(A, B, start.first, start.second);
+  const vpMorphCorrespondence c2 = k2.matchFromStart(A, B, start.first, start.second);
+  REQUIRE(c1.pairs() == c2.pairs());
+  CHECK(c2.bendingWork() == Approx(2 * c1.bendingWork()));
+  CHECK(c2.stretchingWork() == Approx(c1.stretchingWork()));
 }
 
 TEST_CASE("windowed search is exact within its window", "[matcher][window]")

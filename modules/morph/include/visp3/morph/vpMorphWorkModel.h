@@ -27,7 +27,7 @@ class vpMorphWorkModel
 public:
   /*!
     \param ks Stretching stiffness, finite and > 0.
-    \param kb Bending stiffness, finite and >= 0 (0: stretching only).
+    \param kb Bending stiffness, finite and > 0 (without bending the work ignores the shape of corners).
     \param cs Collapse penalty, finite, in (0, 1].
     \throw vpMorphException::badParameterError otherwise.
   */
