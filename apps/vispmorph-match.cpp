@@ -41,7 +41,8 @@ void usage(std::ostream &os)
         "  --out FILE      PNG file for the morph sequence picture\n";
 }
 
-struct Options {
+struct Options
+{
   std::string a, b, out;
   bool exact = false, json = false;
   long sequence = 0;
@@ -159,8 +160,8 @@ int main(int argc, char **argv)
                 << std::setprecision(5) << "D_morph " << corr.work() << " (stretching " << corr.stretchingWork()
                 << ", bending " << corr.bendingWork() << "), " << (o.exact ? "brute-force" : "fast exact")
                 << " search in " << std::setprecision(3) << msMatch << " ms\n"
-                << "pairs   " << corr.size() << ", starting pair (" << corr.start().first << ", "
-                << corr.start().second << ")\n"
+                << "pairs   " << corr.size() << ", starting pair (" << corr.start().first << ", " << corr.start().second
+                << ")\n"
                 << std::setprecision(2) << "rigid   rotation " << T.theta() * 180.0 / M_PI << " deg, translation ("
                 << T.tx() << ", " << T.ty() << ") px, scale " << std::setprecision(4) << T.scale() << "\n";
       if (o.sequence > 0)

@@ -38,7 +38,8 @@ vpMorphContour randomPolygon(std::mt19937 &rng, std::size_t n)
   return vpMorphContour(x, y);
 }
 
-struct Pair {
+struct Pair
+{
   vpMorphContour A, B;
 };
 
@@ -99,7 +100,8 @@ public:
     std::ostream &os = GetOutputStream();
     os << "\nspeed-up over brute force (same kernel, same process; fastest repetition)\n"
        << std::setw(6) << "N" << std::setw(14) << "brute us" << std::setw(14) << "fast us" << std::setw(10) << "fast x"
-       << std::setw(14) << "window us" << std::setw(10) << "window x" << "\n";
+       << std::setw(14) << "window us" << std::setw(10) << "window x"
+       << "\n";
     for (int n = 32; n <= 256; n *= 2) {
       const std::string s = "/" + std::to_string(n);
       if (!m_time.count("BM_brute" + s) || !m_time.count("BM_fast" + s))

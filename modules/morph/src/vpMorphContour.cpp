@@ -274,8 +274,8 @@ vpMorphContour vpMorphContour::resampled(std::size_t n) const
   std::vector<double> x, y;
   x.reserve(n);
   y.reserve(n);
-  std::size_t k = 0;   // current edge goes from vertex k to k+1
-  double along = 0.0;  // arc length at vertex k
+  std::size_t k = 0;  // current edge goes from vertex k to k+1
+  double along = 0.0; // arc length at vertex k
   double elen = edgeLength(1 % m);
   for (std::size_t s = 0; s < n; ++s) {
     const double target = s * step;

@@ -15,8 +15,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // y[j] = min(diagonal, A step) - P[j] along the row: the serial part is a bare minimum, run as two
 // independent chains over the two halves of the row (then the first half's minimum is carried into the
 // second), and the rest vectorises. prev must be +inf where the previous row has no cell.
-__attribute__((always_inline)) inline void dpRow(const double *__restrict prev, const double *__restrict cd, double ca, const double *__restrict cB,
-                  const double *__restrict pB, int l, int r, double *__restrict cur)
+__attribute__((always_inline)) inline void dpRow(const double *__restrict prev, const double *__restrict cd, double ca,
+                                                 const double *__restrict cB, const double *__restrict pB, int l, int r,
+                                                 double *__restrict cur)
 {
   if (r - l < 16) {
     // Short rows (the narrow bands deep in Maes' recursion): one plain pass, no set-up to amortise.
@@ -156,8 +157,7 @@ vpMorphMatcher::prepare(const vpMorphContour &A, const vpMorphContour &B, std::s
 // Built twice, for AVX2 and for any x86-64, and chosen at load time: the row passes vectorise 4 wide where the
 // processor allows it, and the library still runs everywhere.
 __attribute__((target_clones("avx2", "default"))) double
-vpMorphMatcher::solveStart(int b, const Path *lo, const Path *hi, Path *extent,
-                                  std::vector<std::pair<int, int> > *cells)
+vpMorphMatcher::solveStart(int b, const Path *lo, const Path *hi, Path *extent, std::vector<std::pair<int, int>> *cells)
 {
   const int m = static_cast<int>(m_m), n = static_cast<int>(m_n), W = 2 * n;
   // Column range of each row. Row 0 starts at b by definition; the end cell (m, b + n) is inside any band
@@ -299,15 +299,15 @@ vpMorphCorrespondence vpMorphMatcher::solveRange(int count)
     solveBetween(0, count == n ? n : count - 1, first, last, 0, best);
   }
   // Trace the winner again, in the same band, to get its cells.
-  std::vector<std::pair<int, int> > cells;
+  std::vector<std::pair<int, int>> cells;
   solveStart(best.b, best.bounded ? &best.lo : nullptr, best.bounded ? &best.hi : nullptr, nullptr, &cells);
   return toCorrespondence(cells);
 }
 
-vpMorphCorrespondence vpMorphMatcher::toCorrespondence(const std::vector<std::pair<int, int> > &cells)
+vpMorphCorrespondence vpMorphMatcher::toCorrespondence(const std::vector<std::pair<int, int>> &cells)
 {
   const std::size_t m = m_m, n = m_n;
-  std::vector<std::pair<std::size_t, std::size_t> > pairs;
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
   pairs.reserve(cells.size());
   double stretching = 0.0, bending = 0.0;
   for (std::size_t k = 0; k + 1 < cells.size(); ++k) {
@@ -332,7 +332,7 @@ vpMorphCorrespondence vpMorphMatcher::matchFromStart(const vpMorphContour &A, co
   prepare(A, B, A.signedArea() < 0 ? (A.size() - a) % A.size() : a, 0);
   // Column of target vertex b in the positive traversal.
   const int col = static_cast<int>(m_reversedB ? (m_n - b) % m_n : b);
-  std::vector<std::pair<int, int> > cells;
+  std::vector<std::pair<int, int>> cells;
   solveStart(col, nullptr, nullptr, nullptr, &cells);
   return toCorrespondence(cells);
 }
@@ -349,7 +349,7 @@ vpMorphCorrespondence vpMorphMatcher::matchBruteForce(const vpMorphContour &A, c
       bestB = b;
     }
   }
-  std::vector<std::pair<int, int> > cells;
+  std::vector<std::pair<int, int>> cells;
   solveStart(bestB, nullptr, nullptr, nullptr, &cells);
   return toCorrespondence(cells);
 }

@@ -9,6 +9,8 @@
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphMatcher.h>
 
+#include "testMorphShapes.h"
+
 namespace
 {
 // Random star-shaped polygon: n vertices at sorted random angles with random radii around \e r.
@@ -24,17 +26,6 @@ vpMorphContour randomPolygon(std::mt19937 &rng, std::size_t n, double r = 100.0,
     const double rr = r * rad(rng);
     x[k] = 320 + rr * std::cos(a[k]);
     y[k] = 240 + rr * std::sin(a[k]);
-  }
-  return vpMorphContour(x, y);
-}
-
-vpMorphContour jittered(const vpMorphContour &c, std::mt19937 &rng, double sigma)
-{
-  std::normal_distribution<double> g(0.0, sigma);
-  std::vector<double> x = c.xs(), y = c.ys();
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    x[k] += g(rng);
-    y[k] += g(rng);
   }
   return vpMorphContour(x, y);
 }
@@ -102,7 +93,8 @@ TEST_CASE("fast exact search returns the brute-force minimum on 1000 random pair
     vpMorphContour B;
     if (trial % 3 == 0) {
       // Related shapes: B is A rotated, translated, scaled, noisy, resampled, or with another start.
-      B = jittered(A, rng, 3.0 * unit(rng)).transformed(ang(rng), 50 * unit(rng), -30 * unit(rng), 0.5 + unit(rng));
+      B = vpMorphTest::noisy(A, rng, 3.0 * unit(rng))
+              .transformed(ang(rng), 50 * unit(rng), -30 * unit(rng), 0.5 + unit(rng));
       if (trial % 2 == 0)
         B = B.resampled(static_cast<std::size_t>(size(rng)));
       B = B.rotatedStart(static_cast<std::size_t>(size(rng)));
@@ -227,7 +219,8 @@ TEST_CASE("a shape and a noisy rotated copy are closer than two different shapes
   int ok = 0;
   for (int trial = 0; trial < 50; ++trial) {
     const vpMorphContour A = randomPolygon(rng, 24), B = randomPolygon(rng, 24);
-    const vpMorphContour A2 = jittered(A, rng, 1.0).transformed(1.0 + trial, 10, 20, 1.3).rotatedStart(trial % 24);
+    const vpMorphContour A2 =
+        vpMorphTest::noisy(A, rng, 1.0).transformed(1.0 + trial, 10, 20, 1.3).rotatedStart(trial % 24);
     if (matcher.distance(A, A2) < matcher.distance(A, B))
       ++ok;
   }

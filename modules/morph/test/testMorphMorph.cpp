@@ -10,6 +10,8 @@
 #include <visp3/morph/vpMorph.h>
 #include <visp3/morph/vpMorphException.h>
 
+#include "testMorphShapes.h"
+
 namespace
 {
 // A key: head on the left, shaft to the right with two teeth; elongated and not symmetric.
@@ -23,14 +25,6 @@ vpMorphContour keyShape()
     v.push_back(150 + 1.5 * y[k]);
   }
   return vpMorphContour(u, v);
-}
-
-vpMorphCorrespondence shiftedIdentity(std::size_t n, std::size_t shift)
-{
-  std::vector<std::pair<std::size_t, std::size_t>> p;
-  for (std::size_t k = 0; k < n; ++k)
-    p.emplace_back(k, (k + shift) % n);
-  return vpMorphCorrespondence(n, n, p, 0.0, 0.0);
 }
 
 bool sameContour(const vpMorphContour &a, const vpMorphContour &b)
@@ -64,23 +58,13 @@ int invalidFrames(const vpMorph &m, std::size_t n)
   return bad;
 }
 
-vpMorphContour noisy(const vpMorphContour &c, std::mt19937 &rng, double sigma)
-{
-  std::normal_distribution<double> n(0.0, sigma);
-  std::vector<double> x = c.xs(), y = c.ys();
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    x[k] += n(rng);
-    y[k] += n(rng);
-  }
-  return vpMorphContour(x, y, c.units());
-}
 } // namespace
 
 TEST_CASE("vpMorph: sequence sizes, split, and last frame == target", "[morph][vpMorph]")
 {
   const vpMorphContour A = keyShape();
   const vpMorphContour B = A.transformed(2.0, 80.0, 40.0, 0.8).rotatedStart(5);
-  const vpMorph m(A, B, shiftedIdentity(A.size(), A.size() - 5));
+  const vpMorph m(A, B, vpMorphTest::shiftedIdentity(A.size(), A.size() - 5));
 
   CHECK(m.sequence(0).empty());
   REQUIRE(m.sequence(1).size() == 1);
@@ -125,7 +109,7 @@ TEST_CASE("vpMorph: exact recovery of a pure similarity", "[morph][vpMorph]")
 {
   const vpMorphContour A = keyShape().resampled(40);
   const vpMorphContour B = A.transformed(-2.6, -50.0, 30.0, 1.3).rotatedStart(11);
-  const vpMorphCorrespondence c = shiftedIdentity(A.size(), A.size() - 11);
+  const vpMorphCorrespondence c = vpMorphTest::shiftedIdentity(A.size(), A.size() - 11);
   for (vpMorph::Estimator e : {vpMorph::LEAST_SQUARES, vpMorph::ELONGATION}) {
     const vpMorph m(A, B, c, e);
     CHECK(m.estimator() == e);
@@ -154,7 +138,7 @@ TEST_CASE("vpMorph: 180 deg rotation - rectification keeps the contours simple, 
   // through a single point at t = 0.5 (in 2-D, (1-t) I + t R is itself a scaled rotation).
   {
     const vpMorphContour B = key.transformed(M_PI, 60.0, -20.0);
-    const vpMorphCorrespondence c = shiftedIdentity(key.size(), 0);
+    const vpMorphCorrespondence c = vpMorphTest::shiftedIdentity(key.size(), 0);
     const vpMorph raw(key, B, c, vpMorph::NONE);
     CHECK(raw.rigidFrameCount(10) == 0);
     CHECK_THROWS_AS(raw.at(0.5), vpMorphException);
@@ -169,8 +153,8 @@ TEST_CASE("vpMorph: 180 deg rotation - rectification keeps the contours simple, 
   const int trials = 10;
   for (int trial = 0; trial < trials; ++trial) {
     const double angle = M_PI - 0.02 * trial;
-    const vpMorphContour A = noisy(key.resampled(36 + trial), rng, 0.5);
-    const vpMorphContour B = noisy(key.transformed(angle, 40.0, 25.0).resampled(29).rotatedStart(7), rng, 0.5);
+    const vpMorphContour A = vpMorphTest::noisy(key.resampled(36 + trial), rng, 0.5);
+    const vpMorphContour B = vpMorphTest::noisy(key.transformed(angle, 40.0, 25.0).resampled(29).rotatedStart(7), rng, 0.5);
     const vpMorph ls(A, B);
     const vpMorph el(A, B, ls.correspondence(), vpMorph::ELONGATION);
     const vpMorph raw(A, B, ls.correspondence(), vpMorph::NONE);
@@ -190,7 +174,7 @@ TEST_CASE("vpMorph: coincident consecutive vertices are merged", "[morph][vpMorp
 {
   const vpMorphContour A = keyShape();
   const vpMorphContour B = A.transformed(0.4, 10.0, 5.0);
-  std::vector<std::pair<std::size_t, std::size_t>> p = shiftedIdentity(A.size(), 0).pairs();
+  std::vector<std::pair<std::size_t, std::size_t>> p = vpMorphTest::shiftedIdentity(A.size(), 0).pairs();
   p.insert(p.begin() + 4, p[3]); // pair 3 twice: the same point twice at every t
   const vpMorph m(A, B, vpMorphCorrespondence(A.size(), B.size(), p, 0, 0));
   CHECK(m.at(0.5).size() == A.size());
@@ -201,14 +185,14 @@ TEST_CASE("vpMorph: bad input is rejected with vpMorphException", "[morph][vpMor
 {
   const vpMorphContour A = keyShape();
   const vpMorphContour B = A.transformed(0.4, 10.0, 5.0);
-  const vpMorphCorrespondence c = shiftedIdentity(A.size(), 0);
+  const vpMorphCorrespondence c = vpMorphTest::shiftedIdentity(A.size(), 0);
   const vpMorph m(A, B, c);
   CHECK_THROWS_AS(m.at(-0.01), vpMorphException);
   CHECK_THROWS_AS(m.at(1.01), vpMorphException);
   CHECK_THROWS_AS(m.at(std::numeric_limits<double>::quiet_NaN()), vpMorphException);
   CHECK_THROWS_AS(vpMorph(vpMorphContour(), B), vpMorphException);
   CHECK_THROWS_AS(vpMorph(A, vpMorphContour(), c), vpMorphException);
-  CHECK_THROWS_AS(vpMorph(A, B, shiftedIdentity(A.size() - 1, 0)), vpMorphException);
+  CHECK_THROWS_AS(vpMorph(A, B, vpMorphTest::shiftedIdentity(A.size() - 1, 0)), vpMorphException);
   const vpMorphContour Bn(std::vector<double>{0.1, 0.2, 0.1}, std::vector<double>{0.0, 0.1, 0.2},
                           vpMorphContour::NORMALIZED);
   try {

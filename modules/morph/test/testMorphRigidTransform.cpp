@@ -10,6 +10,8 @@
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 
+#include "testMorphShapes.h"
+
 namespace
 {
 double angleError(double a, double b)
@@ -33,15 +35,6 @@ vpMorphContour starPolygon(std::mt19937 &rng, std::size_t n, double stretch = 1.
   return vpMorphContour(x, y);
 }
 
-// Identity correspondence with the target's vertex numbering shifted by `shift` (target j = i + shift).
-vpMorphCorrespondence shiftedIdentity(std::size_t n, std::size_t shift)
-{
-  std::vector<std::pair<std::size_t, std::size_t>> p;
-  for (std::size_t k = 0; k < n; ++k)
-    p.emplace_back(k, (k + shift) % n);
-  return vpMorphCorrespondence(n, n, p, 0.0, 0.0);
-}
-
 // Target vertex (k + shift) % n = T(input vertex k) + noise; perturb(k) may displace it further.
 template <class F>
 vpMorphContour makeTarget(const vpMorphContour &A, const vpMorphRigidTransform &T, std::size_t shift, std::mt19937 &rng,
@@ -56,17 +49,6 @@ vpMorphContour makeTarget(const vpMorphContour &A, const vpMorphRigidTransform &
     perturb(k, xo, yo);
     x[(k + shift) % n] = xo + sigma * noise(rng);
     y[(k + shift) % n] = yo + sigma * noise(rng);
-  }
-  return vpMorphContour(x, y, A.units());
-}
-
-vpMorphContour addNoise(const vpMorphContour &A, std::mt19937 &rng, double sigma)
-{
-  std::normal_distribution<double> noise(0.0, sigma);
-  std::vector<double> x = A.xs(), y = A.ys();
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    x[k] += noise(rng);
-    y[k] += noise(rng);
   }
   return vpMorphContour(x, y, A.units());
 }
@@ -153,7 +135,7 @@ TEST_CASE("vpMorphRigidTransform: both estimators recover an exact similarity", 
     const vpMorphRigidTransform truth = randomSimilarity(rng, A);
     const std::size_t shift = trial % A.size();
     const vpMorphContour B = makeTarget(A, truth, shift, rng, 0.0, [](std::size_t, double &, double &) {});
-    const vpMorphCorrespondence c = shiftedIdentity(A.size(), shift);
+    const vpMorphCorrespondence c = vpMorphTest::shiftedIdentity(A.size(), shift);
 
     const vpMorphRigidTransform e = vpMorphRigidTransform::fitElongation(A, B, c);
     const vpMorphRigidTransform l = vpMorphRigidTransform::fitLeastSquares(A, B, c);
@@ -179,7 +161,7 @@ TEST_CASE("vpMorphRigidTransform: rotation + translation only (scale fixed to 1)
   A.centroid(cx, cy);
   const vpMorphRigidTransform truth(2.5, 30.0, -12.0, 1.0, cx, cy);
   const vpMorphContour B = makeTarget(A, truth, 3, rng, 0.0, [](std::size_t, double &, double &) {});
-  const vpMorphCorrespondence c = shiftedIdentity(A.size(), 3);
+  const vpMorphCorrespondence c = vpMorphTest::shiftedIdentity(A.size(), 3);
   for (const vpMorphRigidTransform &f :
        {vpMorphRigidTransform::fitElongation(A, B, c, false), vpMorphRigidTransform::fitLeastSquares(A, B, c, false)}) {
     CHECK(f.scale() == 1.0);
@@ -208,8 +190,8 @@ TEST_CASE("vpMorphRigidTransform: least squares beats elongation on noisy contou
     const vpMorphRigidTransform truth = randomSimilarity(rng, A0);
     const std::size_t shift = trial % A0.size();
     const vpMorphContour B = makeTarget(A0, truth, shift, rng, sigma, [](std::size_t, double &, double &) {});
-    const vpMorphContour A = addNoise(A0, rng, sigma);
-    const vpMorphCorrespondence c = shiftedIdentity(A.size(), shift);
+    const vpMorphContour A = vpMorphTest::noisy(A0, rng, sigma);
+    const vpMorphCorrespondence c = vpMorphTest::shiftedIdentity(A.size(), shift);
     const vpMorphRigidTransform e = vpMorphRigidTransform::fitElongation(A, B, c);
     const vpMorphRigidTransform l = vpMorphRigidTransform::fitLeastSquares(A, B, c);
     const vpMorphRigidTransform p =
@@ -256,7 +238,7 @@ TEST_CASE("vpMorphRigidTransform: robust least squares ignores a deformed part o
         y += 40.0 * dy / r;
       }
     });
-    const vpMorphCorrespondence c = shiftedIdentity(A.size(), 0);
+    const vpMorphCorrespondence c = vpMorphTest::shiftedIdentity(A.size(), 0);
     errE += angleError(vpMorphRigidTransform::fitElongation(A, B, c).theta(), truth.theta());
     errP += angleError(vpMorphRigidTransform::fitLeastSquares(A, B, c, true, vpMorphRigidTransform::NO_ROBUST).theta(),
                        truth.theta());
@@ -294,7 +276,7 @@ TEST_CASE("vpMorphRigidTransform: isotropic shapes make elongation ill-posed, le
       const vpMorphRigidTransform truth(theta, 15.0, -25.0, 1.2, cx, cy);
       const std::size_t shift = 1;
       const vpMorphContour B = makeTarget(A, truth, shift, rng, 0.0, [](std::size_t, double &, double &) {});
-      const vpMorphCorrespondence c = shiftedIdentity(A.size(), shift);
+      const vpMorphCorrespondence c = vpMorphTest::shiftedIdentity(A.size(), shift);
       double anisotropy = -1.0;
       const vpMorphRigidTransform e = vpMorphRigidTransform::fitElongation(A, B, c, true, &anisotropy);
       CHECK(anisotropy < 1e-6); // the caller can tell the axis is meaningless
@@ -303,7 +285,7 @@ TEST_CASE("vpMorphRigidTransform: isotropic shapes make elongation ill-posed, le
       CHECK(angleError(l.theta(), theta) < 1e-9);
       CHECK(maxVertexError(A, l, truth) < 1e-7);
       // With noise the least-squares fit degrades gracefully.
-      const vpMorphContour Bn = addNoise(B, rng, 1.0);
+      const vpMorphContour Bn = vpMorphTest::noisy(B, rng, 1.0);
       const double en = angleError(vpMorphRigidTransform::fitLeastSquares(A, Bn, c).theta(), theta);
       maxNoisyLsError = std::max(maxNoisyLsError, en);
       CHECK(en < 0.05);
@@ -319,12 +301,12 @@ TEST_CASE("vpMorphRigidTransform: bad input is rejected with vpMorphException", 
   std::mt19937 rng(3);
   const vpMorphContour A = starPolygon(rng, 10);
   const vpMorphContour B = starPolygon(rng, 10);
-  const vpMorphCorrespondence c = shiftedIdentity(10, 0);
+  const vpMorphCorrespondence c = vpMorphTest::shiftedIdentity(10, 0);
   CHECK_THROWS_AS(vpMorphRigidTransform::fitLeastSquares(vpMorphContour(), B, c), vpMorphException);
   CHECK_THROWS_AS(vpMorphRigidTransform::fitElongation(A, vpMorphContour(), c), vpMorphException);
   const vpMorphContour Bn(B.xs(), B.ys(), vpMorphContour::NORMALIZED);
   CHECK_THROWS_AS(vpMorphRigidTransform::fitLeastSquares(A, Bn, c), vpMorphException);
-  CHECK_THROWS_AS(vpMorphRigidTransform::fitLeastSquares(A, B, shiftedIdentity(9, 0)), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitLeastSquares(A, B, vpMorphTest::shiftedIdentity(9, 0)), vpMorphException);
   CHECK_THROWS_AS(vpMorphRigidTransform::fitLeastSquares(A, B, vpMorphCorrespondence()), vpMorphException);
   std::vector<std::pair<std::size_t, std::size_t>> p = c.pairs();
   p[3].second = 42; // out of range

@@ -24,7 +24,7 @@ class vpMorphCorrespondence
 {
 public:
   vpMorphCorrespondence() = default;
-  vpMorphCorrespondence(std::size_t m, std::size_t n, std::vector<std::pair<std::size_t, std::size_t> > pairs,
+  vpMorphCorrespondence(std::size_t m, std::size_t n, std::vector<std::pair<std::size_t, std::size_t>> pairs,
                         double stretching, double bending)
     : m_m(m), m_n(n), m_pairs(std::move(pairs)), m_stretching(stretching), m_bending(bending)
   {
@@ -32,11 +32,14 @@ public:
 
   std::size_t inputSize() const { return m_m; }
   std::size_t targetSize() const { return m_n; }
-  const std::vector<std::pair<std::size_t, std::size_t> > &pairs() const { return m_pairs; }
+  const std::vector<std::pair<std::size_t, std::size_t>> &pairs() const { return m_pairs; }
   std::size_t size() const { return m_pairs.size(); }
   bool empty() const { return m_pairs.empty(); }
   //! Starting pair (input index, target index): the first pair of the list.
-  std::pair<std::size_t, std::size_t> start() const { return m_pairs.empty() ? std::make_pair(std::size_t(0), std::size_t(0)) : m_pairs.front(); }
+  std::pair<std::size_t, std::size_t> start() const
+  {
+    return m_pairs.empty() ? std::make_pair(std::size_t(0), std::size_t(0)) : m_pairs.front();
+  }
   //! Total work E = stretching + bending (Eq. 4 when minimised over all starting pairs).
   double work() const { return m_stretching + m_bending; }
   double stretchingWork() const { return m_stretching; }
@@ -44,7 +47,7 @@ public:
 
 private:
   std::size_t m_m = 0, m_n = 0;
-  std::vector<std::pair<std::size_t, std::size_t> > m_pairs;
+  std::vector<std::pair<std::size_t, std::size_t>> m_pairs;
   double m_stretching = 0.0, m_bending = 0.0;
 };
 

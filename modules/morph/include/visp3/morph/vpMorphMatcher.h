@@ -37,7 +37,8 @@
   scale normalisation (the default, needed for recognition) both polygons are scaled to unit perimeter
   first, so the work is scale invariant too. Both polygons are traversed with positive signed area
   (reversed internally if needed; indices are reported in the caller's numbering), so the work does not
-  depend on the direction in which vertices were listed. The model is symmetric in A and B, so distance(A, B) == distance(B, A).
+  depend on the direction in which vertices were listed. The model is symmetric in A and B, so distance(A, B) ==
+  distance(B, A).
 
   <b>Search.</b> Every closed path matches A's vertex 0, so the minimum over all m n starting pairs equals
   the minimum over the n paths that start at (0, b), b = 0..n-1, and end at (m, b + n) on the grid where B is
@@ -61,8 +62,7 @@ public:
   void setScaleNormalization(bool on) { m_normalizeScale = on; }
 
   //! Minimal-work correspondence with input vertex \e a matched first to target vertex \e b.
-  vpMorphCorrespondence matchFromStart(const vpMorphContour &A, const vpMorphContour &B, std::size_t a,
-                                       std::size_t b);
+  vpMorphCorrespondence matchFromStart(const vpMorphContour &A, const vpMorphContour &B, std::size_t a, std::size_t b);
   //! Exact D_morph correspondence by running matchFromStart() from every target vertex (reference).
   vpMorphCorrespondence matchBruteForce(const vpMorphContour &A, const vpMorphContour &B);
   //! Exact D_morph correspondence, fast (divide and conquer over starts, with band pruning).
@@ -78,11 +78,13 @@ public:
 
 private:
   //! The columns a path of the grid spans in each row (leftmost, rightmost): the bounds of Maes' bands.
-  struct Path {
+  struct Path
+  {
     std::vector<int> left, right;
   };
   //! Best start found so far, with the band it was solved in.
-  struct Best {
+  struct Best
+  {
     double work = 0.0;
     int b = 0;
     bool bounded = false;
@@ -90,10 +92,10 @@ private:
   };
   static void checkStart(const vpMorphContour &A, const vpMorphContour &B, std::size_t a, std::size_t b);
   void prepare(const vpMorphContour &A, const vpMorphContour &B, std::size_t a, std::size_t b);
-  double solveStart(int b, const Path *lo, const Path *hi, Path *extent, std::vector<std::pair<int, int> > *cells);
+  double solveStart(int b, const Path *lo, const Path *hi, Path *extent, std::vector<std::pair<int, int>> *cells);
   void solveBetween(int bLo, int bHi, const Path &lo, const Path &hi, std::size_t depth, Best &best);
   vpMorphCorrespondence solveRange(int count);
-  vpMorphCorrespondence toCorrespondence(const std::vector<std::pair<int, int> > &cells);
+  vpMorphCorrespondence toCorrespondence(const std::vector<std::pair<int, int>> &cells);
 
   vpMorphWorkModel m_model;
   bool m_normalizeScale;
@@ -108,10 +110,10 @@ private:
   std::vector<double> m_prefB; // prefix sums of m_costB
 
   // Work buffers of the dynamic programme, reused from call to call.
-  std::vector<double> m_table;          // D over the band, row by row
-  std::vector<std::size_t> m_rowOff;    // where each row starts in m_table
-  std::vector<int> m_L, m_R;            // column range of each row of the band
-  std::vector<Path> m_pool;             // bounding paths, one per recursion level
+  std::vector<double> m_table;       // D over the band, row by row
+  std::vector<std::size_t> m_rowOff; // where each row starts in m_table
+  std::vector<int> m_L, m_R;         // column range of each row of the band
+  std::vector<Path> m_pool;          // bounding paths, one per recursion level
 };
 
 #endif
