@@ -10,6 +10,8 @@
 namespace
 {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Gap between two solved starts below which Maes' recursion solves the starts in between directly.
+constexpr int kDirectGap = 4;
 // One row of the dynamic programme on columns [l, r]: D[i][j] = min(D[i-1][j-1] + cd[j], D[i-1][j] + ca,
 // D[i][j-1] + cB[j]). With P[j] the prefix sum of cB, D[i][j] - P[j] is the running minimum of
 // y[j] = min(diagonal, A step) - P[j] along the row: the serial part is a bare minimum, run as two
@@ -250,22 +252,26 @@ void vpMorphMatcher::solveBetween(int bLo, int bHi, const Path &lo, const Path &
 {
   if (bHi - bLo < 2)
     return;
+  auto keep = [&](double w, int b) {
+    if (w < best.work) {
+      best.work = w;
+      best.b = b;
+      best.lo = lo;
+      best.hi = hi;
+      best.bounded = true;
+    }
+  };
+  if (bHi - bLo <= kDirectGap) {
+    // A narrow band: solving its few starts directly in it costs less than tracing mid paths to split it.
+    for (int b = bLo + 1; b < bHi; ++b)
+      keep(solveStart(b, &lo, &hi, nullptr, nullptr), b);
+    return;
+  }
   const int mid = bLo + (bHi - bLo) / 2;
-  // The mid path bounds the halves only if they still hold starts to solve.
-  const bool leaf = (mid - bLo < 2) && (bHi - mid < 2);
   Path &p = m_pool[depth];
-  const double w = solveStart(mid, &lo, &hi, leaf ? nullptr : &p, nullptr);
-  if (w < best.work) {
-    best.work = w;
-    best.b = mid;
-    best.lo = lo;
-    best.hi = hi;
-    best.bounded = true;
-  }
-  if (!leaf) {
-    solveBetween(bLo, mid, lo, p, depth + 1, best);
-    solveBetween(mid, bHi, p, hi, depth + 1, best);
-  }
+  keep(solveStart(mid, &lo, &hi, &p, nullptr), mid);
+  solveBetween(bLo, mid, lo, p, depth + 1, best);
+  solveBetween(mid, bHi, p, hi, depth + 1, best);
 }
 
 // Best path over the starts 0 .. count-1 of the prepared problem (count <= n).
