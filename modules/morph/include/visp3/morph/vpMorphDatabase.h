@@ -1,0 +1,175 @@
+/*!
+  \file vpMorphDatabase.h
+  \brief Known objects (templates), their JSON file, and recognition by least morph work with rejection.
+*/
+#ifndef VP_MORPH_DATABASE_H
+#define VP_MORPH_DATABASE_H
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphRecognition.h>
+#include <visp3/morph/vpMorphShapeDistance.h>
+#include <visp3/morph/vpMorphTemplate.h>
+
+/*!
+  \class vpMorphDatabase
+  \ingroup group_morph
+  \brief Template database: the object is the template whose morph costs the least work (the paper's
+  recognition), rejected when even that work is too large to be the same object.
+
+  \code
+  vpMorphDatabase db = vpMorphDatabase::fromImages("data/objects");  // one template per image, calibrated
+  db.save("objects.json");
+  vpMorphRecognition r = db.recognize(vpMorphContourExtractor().extract(I));
+  if (r.accepted) vpMorph morph(c, db[r.index].contour(), r.correspondence);
+  \endcode
+
+  <b>Distance.</b> A vpMorphShapeDistance, saved with the database so that it is always queried with the
+  distance it was calibrated with. Default MULTISCALE (mirrors included: a flat part turned over shows the
+  mirror image of its outline; vpMorphRecognition::mirrored says so): D_morph between the raw polygons
+  (POLYGON) confuses the tools as soon as 15 % of an outline is occluded, because a single polygon charges a
+  spurious notch as much as a real limb.
+
+  <b>Acceptance thresholds (calibrate()).</b> Calibrated from the database itself, because the scale of
+  D_morph depends on the objects and on the distance model. For each template t:
+  - within(t): the largest distance between t and perturbed copies of its own contour (perturbations()):
+    new views (the outline rotated and re-digitised, with and without grey-level noise), resampling from
+    another start, and a straight edge of background colour hiding a contiguous 20 % of the outline at sixteen
+    places (more than the 15 % the tests demand). Rotation and translation alone change nothing: D_morph is
+    invariant; what they change is the digitisation, which the re-rendered views cover.
+  - between(t): the distance from t to its nearest other template (+inf with one template).
+
+  The threshold of template t is calibrationSlack() x within(t) = 1.25 within(t): a view is taken for t
+  when it costs at most 25 % more work than the worst perturbation of t that the calibration tried (the
+  slack covers perturbations it did not try). Per template, because the variability under occlusion differs
+  widely between objects (D_morph of a hammer with its head partly hidden grows three times as much as that of
+  a wedge), so one global threshold set by the most variable object would accept unknown objects near the
+  least variable one. between(t) is kept for diagnosis: when threshold(t) >= between(t), a view of t's nearest
+  neighbour could also be accepted as t, and the caller should look at vpMorphRecognition::margin.
+  The query is accepted when its best distance is <= the threshold of its best template.
+  setThreshold() replaces every threshold by one value (e.g. chosen on a validation set).
+
+  <b>Fast querying.</b> recognize() visits the templates in increasing order of a cheap lower bound of their
+  distance (vpMorphShapeDistance::lowerBound()) and stops as soon as the bound exceeds the second-best
+  distance found: those templates can be neither the best nor the runner-up, so the result (best, runner-up,
+  distances, ties broken by the lower index) is exactly that of the exhaustive search (recognize(c, false)).
+
+  <b>Files (save(), load()).</b> JSON with "format": "vispmorph-template-database" and "version": 1; the
+  contours are stored, so images are not needed to query, but a template whose image is named and missing
+  is reported (the database no longer matches its source). save() writes a temporary file in the same
+  directory and renames it over the target: a crash never leaves a half-written database.
+
+  Not thread safe for modification; const methods may run concurrently.
+*/
+class vpMorphDatabase
+{
+public:
+  typedef vpMorphShapeDistance::Progress Progress;
+
+  explicit vpMorphDatabase(const vpMorphShapeDistance &distance = vpMorphShapeDistance(vpMorphShapeDistance::MULTISCALE));
+
+  /*!
+    One template per image of \e dir (png, jpg, jpeg, pgm, ppm, bmp, tif, tiff), named after
+    the file without its extension (sorted by that name); the largest object of each image (vpMorphContourExtractor) on all cores,
+    then calibrate(). \e progress counts the images, then the calibration steps.
+    \throw vpMorphException::ioError if \e dir is not a readable directory, holds no image or an image cannot
+    be read; badImageError if an image has no object; badParameterError on two images with the same name.
+  */
+  static vpMorphDatabase fromImages(const std::string &dir,
+                                    const vpMorphShapeDistance &distance =
+                                        vpMorphShapeDistance(vpMorphShapeDistance::MULTISCALE),
+                                    const Progress &progress = Progress());
+
+  /*!
+    Reads a database written by save().
+    \throw vpMorphException::ioError on an unreadable, malformed, truncated or wrong-version file, or (if
+    \e checkImages) a missing template image; badParameterError on duplicate names or invalid contours.
+  */
+  static vpMorphDatabase load(const std::string &path, bool checkImages = true);
+  /*!
+    Writes the database as JSON atomically (temporary file then rename); image paths are written as given.
+    \throw vpMorphException::ioError if the file cannot be written.
+  */
+  void save(const std::string &path) const;
+  //! The JSON text save() writes.
+  std::string toJson() const;
+  //! Parses the text of a database file; \e baseDir resolves relative image paths for \e checkImages.
+  static vpMorphDatabase fromJson(const std::string &text, bool checkImages = false, const std::string &baseDir = "");
+
+  /*!
+    Adds a template; the threshold is no longer calibrated (call calibrate() again) unless it was set by hand.
+    \throw vpMorphException::badParameterError on an empty contour or a name already used.
+  */
+  void add(const vpMorphTemplate &t);
+  //! Removes template \e name. \throw vpMorphException::notFoundError if unknown.
+  void remove(const std::string &name);
+
+  std::size_t size() const { return m_templates.size(); }
+  bool empty() const { return m_templates.empty(); }
+  //! \throw vpMorphException::notFoundError if out of range.
+  const vpMorphTemplate &operator[](std::size_t k) const;
+  //! \throw vpMorphException::notFoundError if unknown.
+  const vpMorphTemplate &operator[](const std::string &name) const;
+  //! Index of template \e name, or vpMorphRecognition::npos.
+  std::size_t find(const std::string &name) const;
+  const std::vector<vpMorphTemplate> &templates() const { return m_templates; }
+
+  const vpMorphShapeDistance &distance() const { return m_distance; }
+  //! Changes the distance; the calibration is dropped (unless the threshold was set by hand).
+  void setDistance(const vpMorphShapeDistance &d);
+
+  /*!
+    Calibrates the acceptance threshold (see the class description) on \e threads threads (0: all cores).
+    \throw vpMorphException::badParameterError on an empty database.
+  */
+  void calibrate(unsigned int threads = 0, const Progress &progress = Progress());
+  /*!
+    Acceptance threshold of template \e k: the value given to setThreshold() if any, otherwise
+    calibrationSlack() x within(k) once calibrated, +inf before.
+    \throw vpMorphException::notFoundError if out of range.
+  */
+  double threshold(std::size_t k) const;
+  //! One threshold for every template, instead of the calibrated ones. \throw badParameterError unless finite and > 0.
+  void setThreshold(double t);
+  //! Back to the calibrated thresholds.
+  void clearThreshold();
+  bool isThresholdManual() const { return m_manual; }
+  //! Factor between a template's threshold and the worst distance of its calibration perturbations.
+  static double calibrationSlack() { return 1.25; }
+  bool isCalibrated() const { return m_calibrated; }
+  //! within(t) and between(t) of the last calibration, per template (empty before).
+  const std::vector<double> &withinDistances() const { return m_within; }
+  const std::vector<double> &betweenDistances() const { return m_between; }
+
+  /*!
+    Recognises a contour (see the class description). \e prune = false runs the exhaustive reference search.
+    \throw vpMorphException::notFoundError on an empty database, badContourError on an empty contour.
+  */
+  vpMorphRecognition recognize(const vpMorphContour &c, bool prune = true) const;
+  //! recognize() for many contours on \e threads threads (0: all cores); \e progress counts the contours.
+  std::vector<vpMorphRecognition> recognizeAll(const std::vector<vpMorphContour> &contours, unsigned int threads = 0,
+                                               const Progress &progress = Progress()) const;
+
+  /*!
+    The perturbed copies of a contour used by calibrate() (noise, resampling, occlusions), deterministic.
+    Public so that tests and tools can see what the threshold was calibrated on.
+  */
+  static std::vector<vpMorphContour> perturbations(const vpMorphContour &c);
+
+private:
+  vpMorphRecognition search(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q, bool prune,
+                            vpMorphMatcher &matcher) const;
+  void invalidate();
+
+  vpMorphShapeDistance m_distance;
+  std::vector<vpMorphTemplate> m_templates;
+  std::vector<vpMorphShapeDistance::Shape> m_shapes;
+  double m_threshold;
+  bool m_calibrated = false, m_manual = false;
+  std::vector<double> m_within, m_between;
+};
+
+#endif

@@ -1,0 +1,44 @@
+/*!
+  \file vpMorphRecognition.h
+  \brief The answer of vpMorphDatabase::recognize(): which template, how sure, and the correspondence.
+*/
+#ifndef VP_MORPH_RECOGNITION_H
+#define VP_MORPH_RECOGNITION_H
+
+#include <cstddef>
+#include <limits>
+
+#include <visp3/morph/vpMorphCorrespondence.h>
+
+/*!
+  \class vpMorphRecognition
+  \ingroup group_morph
+  \brief Result of a recognition (value type, public fields as it only carries data).
+
+  The best template alone does not say whether the object is known: \e accepted compares its distance with
+  the database's threshold, and \e margin tells how clearly it beat the runner-up, so that a caller can ask
+  for another view when two templates are nearly as good.
+*/
+class vpMorphRecognition
+{
+public:
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+
+  std::size_t index = npos;                                         //!< best template
+  double distance = std::numeric_limits<double>::infinity();       //!< its distance (vpMorphShapeDistance)
+  std::size_t secondIndex = npos;                                   //!< runner-up (npos with one template)
+  double secondDistance = std::numeric_limits<double>::infinity(); //!< its distance
+  //! Relative gap (secondDistance - distance) / secondDistance in [0, 1]; 1 with a single template.
+  double margin = 0.0;
+  double threshold = std::numeric_limits<double>::infinity(); //!< acceptance threshold used
+  bool accepted = false;                                       //!< distance <= threshold
+  bool mirrored = false;                                       //!< the template's mirror image matched best
+  /*!
+    Minimal-work correspondence from the query contour to the best template's contour (as stored, not
+    resampled), ready for vpMorph(query, db[index].contour(), correspondence).
+  */
+  vpMorphCorrespondence correspondence;
+  std::size_t evaluated = 0; //!< templates whose distance was computed (the others were pruned by the bound)
+};
+
+#endif

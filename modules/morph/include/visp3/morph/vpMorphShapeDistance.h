@@ -1,0 +1,137 @@
+/*!
+  \file vpMorphShapeDistance.h
+  \brief The dissimilarity used for recognition and retrieval: D_morph on a chosen representation of the contours.
+*/
+#ifndef VP_MORPH_SHAPE_DISTANCE_H
+#define VP_MORPH_SHAPE_DISTANCE_H
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphMatcher.h>
+#include <visp3/morph/vpMorphWorkModel.h>
+
+/*!
+  \class vpMorphShapeDistance
+  \ingroup group_morph
+  \brief Which contours D_morph is computed on, with or without mirror images, and the batch machinery
+  (prepared shapes, a cheap lower bound for pruning, distance matrices on several cores).
+
+  D_morph itself (vpMorphMatcher) depends on how the outline was turned into a polygon. Recognition needs
+  that choice to be explicit, named and saved with a template database, so that a database is always
+  queried with the distance it was calibrated with. Models:
+  - POLYGON: the parameterless polygons themselves (vpMorphContourExtractor), no mirror image. The robot's
+    default: the correspondence is between the very vertices that the morph and the servo use, and a
+    planar object lying on a table is never seen mirrored.
+  - PAPER: the paper's recognition set-up as used in the retrieval literature: both outlines resampled to
+    points() vertices equally spaced by arc length (64), mirror images included (distance = the smaller of
+    the two), vpMorphWorkModel with only the bending weight tuned.
+  - MULTISCALE: the sum of D_morph over several versions of the outline, smoothed by a circular Gaussian of
+    increasing width and resampled to points() vertices (the same mirror choice at every scale). Fine scales
+    see details, coarse ones the overall form, which a single polygon weighs badly: one spurious notch costs as
+    much as a real limb at a single scale.
+
+  Every representation is computed once per contour (prepare()), so a matrix over N shapes costs N
+  preparations and N(N-1)/2 distances. The distance is symmetric and invariant to translation, rotation and
+  scale (the matcher normalises to unit perimeter).
+
+  <b>Lower bound.</b> lowerBound() is a cheap certificate that distance() cannot be smaller: every vertex of
+  each polygon is entered by exactly one step of a correspondence, and every step costs at least as much as
+  the cheapest step that could enter its vertex, so the sum over vertices of those minima (for either polygon,
+  take the larger) bounds D_morph from below; mirror images have the same lengths and turning angles so the
+  bound holds for them too. Used to skip templates that cannot win a recognition, without changing its result.
+*/
+class vpMorphShapeDistance
+{
+public:
+  enum Model {
+    POLYGON,   //!< Parameterless polygons as extracted, no mirror.
+    PAPER,     //!< 64 points by arc length, mirrors included.
+    MULTISCALE //!< Sum over Gaussian-smoothed scales, resampled, mirrors included.
+  };
+
+  //! A contour in the representation(s) of a model, ready for distance() and lowerBound().
+  struct Shape {
+    std::vector<vpMorphContour> forms;         //!< per scale: the form, then its mirror image if mirrors are used
+    std::vector<std::vector<double> > len;     //!< per scale: incoming edge lengths (positive traversal, unit perimeter)
+    std::vector<std::vector<double> > phi;     //!< per scale: turning angles (positive traversal)
+    std::vector<std::vector<double> > lenSort; //!< per scale: lengths sorted
+    std::vector<std::vector<double> > phiSort; //!< per scale: angles sorted
+  };
+
+  //! Progress of a batch job: \e done of \e total units; called from the calling thread only.
+  typedef std::function<void(std::size_t done, std::size_t total)> Progress;
+
+  //! The model with its default settings (POLYGON: default work model).
+  explicit vpMorphShapeDistance(Model model = POLYGON);
+  //! Named models: "polygon", "paper", "multiscale". \throw vpMorphException::badParameterError if unknown.
+  static vpMorphShapeDistance fromName(const std::string &name);
+  //! Name of the model, as accepted by fromName().
+  std::string name() const;
+
+  Model model() const { return m_model; }
+  const vpMorphWorkModel &workModel() const { return m_work; }
+  void setWorkModel(const vpMorphWorkModel &w) { m_work = w; }
+  //! Vertices per resampled outline (0 for POLYGON: the polygon as it is).
+  std::size_t points() const { return m_points; }
+  //! \throw vpMorphException::badParameterError if n < 8 for a resampling model.
+  void setPoints(std::size_t n);
+  bool mirrors() const { return m_mirrors; }
+  void setMirrors(bool on) { m_mirrors = on; }
+  //! Gaussian widths (fractions of the perimeter) of the scales; {0} for a single unsmoothed scale.
+  const std::vector<double> &scales() const { return m_scales; }
+  //! \throw vpMorphException::badParameterError on an empty list or a negative or non-finite width.
+  void setScales(const std::vector<double> &sigmas);
+
+  /*!
+    The representations of \e c used by this distance.
+    \throw vpMorphException::badContourError on an empty contour.
+  */
+  Shape prepare(const vpMorphContour &c) const;
+  /*!
+    Distance between two prepared shapes (symmetric); \e abandonAbove: once the partial sum over the scales
+    exceeds it the computation stops and returns a value > abandonAbove (exact otherwise).
+    \e mirrored (if not null) tells whether b's mirror image gave the distance.
+  */
+  double distance(const Shape &a, const Shape &b, vpMorphMatcher &matcher, double abandonAbove = -1.0,
+                  bool *mirrored = nullptr) const;
+  //! Convenience: distance between two contours.
+  double distance(const vpMorphContour &a, const vpMorphContour &b) const;
+  //! Valid lower bound of distance(a, b) (see the class description); about 1 % of a distance's cost.
+  double lowerBound(const Shape &a, const Shape &b) const;
+  //! A matcher configured with this work model (scale normalisation on).
+  vpMorphMatcher matcher() const { return vpMorphMatcher(m_work, true); }
+
+  /*!
+    prepare() for many contours on \e threads threads (0: all cores).
+  */
+  std::vector<Shape> prepareAll(const std::vector<vpMorphContour> &contours, unsigned int threads = 0,
+                                const Progress &progress = Progress()) const;
+  /*!
+    Full symmetric N x N distance matrix (row-major, zero diagonal), on \e threads threads (0: all cores),
+    one matcher per thread. \e progress receives the number of pairs done.
+  */
+  std::vector<double> matrix(const std::vector<Shape> &shapes, unsigned int threads = 0,
+                             const Progress &progress = Progress()) const;
+
+  /*!
+    Runs job(k, matcher) for k = 0 .. count-1 on \e threads threads (0: all cores), each thread with its own
+    matcher, and reports progress (units done) from the calling thread about ten times a second.
+    The first exception thrown by a job is rethrown after all threads stop.
+  */
+  void parallelFor(std::size_t count, unsigned int threads, const std::function<void(std::size_t, vpMorphMatcher &)> &job,
+                   const Progress &progress = Progress(), const std::function<std::size_t(std::size_t)> &weight =
+                                                              std::function<std::size_t(std::size_t)>()) const;
+
+private:
+  Model m_model;
+  vpMorphWorkModel m_work;
+  std::size_t m_points;
+  bool m_mirrors;
+  std::vector<double> m_scales;
+};
+
+#endif

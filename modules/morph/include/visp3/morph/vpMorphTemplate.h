@@ -1,0 +1,63 @@
+/*!
+  \file vpMorphTemplate.h
+  \brief One known object: its stored view (contour), where it came from, and the pose to align with it.
+*/
+#ifndef VP_MORPH_TEMPLATE_H
+#define VP_MORPH_TEMPLATE_H
+
+#include <map>
+#include <string>
+
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/morph/vpMorphContour.h>
+
+/*!
+  \class vpMorphTemplate
+  \ingroup group_morph
+  \brief A template of vpMorphDatabase (value type): name, contour, source image, desired pose, metadata.
+
+  In the paper each known object is stored as the view taken from the pose at which the robot must align
+  with it; recognising the object therefore also tells the servo where to go. The template keeps that pose
+  as \e cdMo (object frame in the desired camera frame, identity when unknown), the contour of the view
+  (PIXEL units, as extracted), the image it came from (so that a database can be rebuilt or audited), and
+  free-form string metadata for the application (grasp point, part number, ...).
+*/
+class vpMorphTemplate
+{
+public:
+  vpMorphTemplate() = default;
+  /*!
+    \throw vpMorphException::badParameterError on an empty name or an empty contour.
+  */
+  vpMorphTemplate(const std::string &name, const vpMorphContour &contour, const std::string &imagePath = "",
+                  const vpHomogeneousMatrix &cdMo = vpHomogeneousMatrix());
+
+  const std::string &name() const { return m_name; }
+  const vpMorphContour &contour() const { return m_contour; }
+  //! Image the contour was extracted from (empty if none); relative paths are relative to the database file.
+  const std::string &imagePath() const { return m_image; }
+  //! Desired pose: the object frame in the camera frame at alignment.
+  const vpHomogeneousMatrix &cdMo() const { return m_cdMo; }
+  const std::map<std::string, std::string> &metadata() const { return m_meta; }
+  //! Value of metadata \e key, or \e fallback when absent.
+  std::string metadata(const std::string &key, const std::string &fallback = "") const;
+
+  void setImagePath(const std::string &path) { m_image = path; }
+  void setCdMo(const vpHomogeneousMatrix &cdMo) { m_cdMo = cdMo; }
+  /*!
+    Desired pose from the in-plane pose of the paper's set-up: optical axis normal to the object plane at
+    depth \e Z (metres), object frame rotated by \e theta (radians) about it and offset by (tx, ty) metres.
+  */
+  void setPlanarPose(double tx, double ty, double Z, double theta);
+  void setMetadata(const std::string &key, const std::string &value) { m_meta[key] = value; }
+  void setMetadata(const std::map<std::string, std::string> &meta) { m_meta = meta; }
+
+private:
+  std::string m_name;
+  vpMorphContour m_contour;
+  std::string m_image;
+  vpHomogeneousMatrix m_cdMo;
+  std::map<std::string, std::string> m_meta;
+};
+
+#endif

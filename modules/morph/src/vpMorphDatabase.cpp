@@ -1,0 +1,590 @@
+#include <visp3/morph/vpMorphDatabase.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <visp3/core/vpImage.h>
+#include <visp3/io/vpImageIo.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphException.h>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace
+{
+constexpr double kInf = std::numeric_limits<double>::infinity();
+const char *kFormat = "vispmorph-template-database";
+constexpr int kVersion = 1;
+
+vpMorphException ioError(const std::string &msg) { return vpMorphException(vpMorphException::ioError, msg); }
+
+// Renders a pixel contour, filled (object 255 on background 0), into an image with a margin, after an optional
+// rotation about its centroid; \e cut (if not empty) is a polygon painted back to background (an occluder).
+// Returns the largest object's polygon, re-extracted: what a camera would see of the same outline.
+vpMorphContour renderAndExtract(const vpMorphContour &c, double theta, double noiseSigma, unsigned int seed,
+                                const std::vector<cv::Point> &cut)
+{
+  double cx, cy;
+  c.centroid(cx, cy);
+  vpMorphContour r = c.transformed(theta, 0.0, 0.0, 1.0);
+  double minx = kInf, miny = kInf, maxx = -kInf, maxy = -kInf;
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    minx = std::min(minx, r.x(k)), maxx = std::max(maxx, r.x(k));
+    miny = std::min(miny, r.y(k)), maxy = std::max(maxy, r.y(k));
+  }
+  // Work at the contour's own pixel scale, within sane limits (normalised contours are tiny).
+  const double side = std::max(maxx - minx, maxy - miny);
+  const double s = side < 100.0 ? 100.0 / side : (side > 800.0 ? 800.0 / side : 1.0);
+  const int margin = 10;
+  const int W = static_cast<int>(std::ceil((maxx - minx) * s)) + 2 * margin;
+  const int H = static_cast<int>(std::ceil((maxy - miny) * s)) + 2 * margin;
+  cv::Mat img(H, W, CV_8UC1, cv::Scalar(0));
+  std::vector<cv::Point> pts;
+  auto toPix = [&](double x, double y) {
+    return cv::Point(static_cast<int>(std::lround((x - minx) * s + margin)),
+                     static_cast<int>(std::lround((y - miny) * s + margin)));
+  };
+  for (std::size_t k = 0; k < r.size(); ++k)
+    pts.push_back(toPix(r.x(k), r.y(k)));
+  cv::fillPoly(img, std::vector<std::vector<cv::Point> >{pts}, cv::Scalar(255));
+  if (!cut.empty()) {
+    // The cut is given in the unrotated contour's coordinates (theta is 0 for occlusions).
+    std::vector<cv::Point> cp;
+    for (const cv::Point &p : cut)
+      cp.push_back(toPix(p.x, p.y));
+    cv::fillPoly(img, std::vector<std::vector<cv::Point> >{cp}, cv::Scalar(0));
+  }
+  vpImage<unsigned char> I(static_cast<unsigned int>(H), static_cast<unsigned int>(W));
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0.0, noiseSigma);
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u) {
+      double val = 40.0 + img.at<unsigned char>(v, u) * (160.0 / 255.0);
+      if (noiseSigma > 0.0)
+        val += g(rng);
+      I[v][u] = static_cast<unsigned char>(std::min(255.0, std::max(0.0, std::round(val))));
+    }
+  vpMorphContour e = vpMorphContourExtractor().extract(I);
+  return e.units() == c.units() && c.units() == vpMorphContour::PIXEL ? e
+                                                                       : vpMorphContour(e.xs(), e.ys(), c.units());
+}
+
+// The piece of outline from arc length s0 to s0 + fraction of the perimeter, closed by its chord: painting it
+// with the background hides that part of the outline behind a straight edge.
+std::vector<cv::Point> chordCut(const vpMorphContour &c, double s0, double fraction)
+{
+  const std::size_t n = 400;
+  const vpMorphContour d = c.resampled(n);
+  std::vector<cv::Point> cut;
+  const std::size_t a = static_cast<std::size_t>(s0 * n) % n, len = static_cast<std::size_t>(fraction * n);
+  for (std::size_t k = 0; k <= len; ++k) {
+    const std::size_t i = (a + k) % n;
+    cut.emplace_back(static_cast<int>(std::lround(d.x(i))), static_cast<int>(std::lround(d.y(i))));
+  }
+  return cut;
+}
+
+json poseToJson(const vpHomogeneousMatrix &M)
+{
+  json a = json::array();
+  for (unsigned int i = 0; i < 4; ++i)
+    for (unsigned int j = 0; j < 4; ++j)
+      a.push_back(M[i][j]);
+  return a;
+}
+
+template <typename T> T field(const json &j, const char *key, const std::string &where)
+{
+  if (!j.is_object() || !j.contains(key))
+    throw ioError("vpMorphDatabase: " + where + " has no \"" + key + "\" field");
+  try {
+    return j.at(key).get<T>();
+  } catch (const json::exception &e) {
+    throw ioError("vpMorphDatabase: " + where + ": field \"" + key + "\" has the wrong type (" + e.what() + ")");
+  }
+}
+
+// JSON has no infinity: +inf (no other template) is written as null.
+json finiteOrNull(const std::vector<double> &v)
+{
+  json a = json::array();
+  for (double x : v)
+    a.push_back(std::isfinite(x) ? json(x) : json(nullptr));
+  return a;
+}
+
+std::vector<double> numbersOrInf(const json &cal, const char *key)
+{
+  if (!cal.contains(key) || !cal[key].is_array())
+    throw ioError(std::string("vpMorphDatabase: \"calibration\" has no \"") + key + "\" array");
+  std::vector<double> v;
+  for (const json &x : cal[key]) {
+    if (x.is_null())
+      v.push_back(kInf);
+    else if (x.is_number() && x.get<double>() >= 0.0)
+      v.push_back(x.get<double>());
+    else
+      throw ioError(std::string("vpMorphDatabase: \"calibration\": \"") + key + "\" must hold numbers >= 0");
+  }
+  return v;
+}
+
+bool isImageFile(const fs::path &p)
+{
+  std::string e = p.extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  return e == ".png" || e == ".jpg" || e == ".jpeg" || e == ".pgm" || e == ".ppm" || e == ".bmp" || e == ".tif" ||
+         e == ".tiff";
+}
+} // namespace
+
+vpMorphDatabase::vpMorphDatabase(const vpMorphShapeDistance &distance) : m_distance(distance), m_threshold(kInf) {}
+
+void vpMorphDatabase::invalidate()
+{
+  m_calibrated = false;
+  m_within.clear();
+  m_between.clear();
+}
+
+double vpMorphDatabase::threshold(std::size_t k) const
+{
+  (void)operator[](k);
+  if (m_manual)
+    return m_threshold;
+  return m_calibrated && k < m_within.size() ? calibrationSlack() * m_within[k] : kInf;
+}
+
+void vpMorphDatabase::clearThreshold()
+{
+  m_manual = false;
+  m_threshold = kInf;
+}
+
+void vpMorphDatabase::add(const vpMorphTemplate &t)
+{
+  if (t.contour().empty() || t.name().empty())
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphDatabase::add: a template needs a name and a contour");
+  if (find(t.name()) != vpMorphRecognition::npos)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphDatabase::add: duplicate template name '" + t.name() + "'");
+  m_shapes.push_back(m_distance.prepare(t.contour()));
+  m_templates.push_back(t);
+  invalidate();
+}
+
+void vpMorphDatabase::remove(const std::string &name)
+{
+  const std::size_t k = find(name);
+  if (k == vpMorphRecognition::npos)
+    throw vpMorphException(vpMorphException::notFoundError, "vpMorphDatabase: no template named '" + name + "'");
+  m_templates.erase(m_templates.begin() + static_cast<long>(k));
+  m_shapes.erase(m_shapes.begin() + static_cast<long>(k));
+  invalidate();
+}
+
+const vpMorphTemplate &vpMorphDatabase::operator[](std::size_t k) const
+{
+  if (k >= m_templates.size()) {
+    std::ostringstream os;
+    os << "vpMorphDatabase: template index " << k << " out of range (" << m_templates.size() << " templates)";
+    throw vpMorphException(vpMorphException::notFoundError, os.str());
+  }
+  return m_templates[k];
+}
+
+const vpMorphTemplate &vpMorphDatabase::operator[](const std::string &name) const
+{
+  const std::size_t k = find(name);
+  if (k == vpMorphRecognition::npos)
+    throw vpMorphException(vpMorphException::notFoundError, "vpMorphDatabase: no template named '" + name + "'");
+  return m_templates[k];
+}
+
+std::size_t vpMorphDatabase::find(const std::string &name) const
+{
+  for (std::size_t k = 0; k < m_templates.size(); ++k)
+    if (m_templates[k].name() == name)
+      return k;
+  return vpMorphRecognition::npos;
+}
+
+void vpMorphDatabase::setDistance(const vpMorphShapeDistance &d)
+{
+  m_distance = d;
+  m_shapes.clear();
+  for (const vpMorphTemplate &t : m_templates)
+    m_shapes.push_back(m_distance.prepare(t.contour()));
+  invalidate();
+}
+
+void vpMorphDatabase::setThreshold(double t)
+{
+  if (!std::isfinite(t) || t <= 0.0)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphDatabase::setThreshold: the threshold must be finite and > 0");
+  m_threshold = t;
+  m_manual = true;
+}
+
+std::vector<vpMorphContour> vpMorphDatabase::perturbations(const vpMorphContour &c)
+{
+  std::vector<vpMorphContour> out;
+  // New views: rotated (re-digitised) and noisy images of the same outline.
+  out.push_back(renderAndExtract(c, 0.5, 0.0, 1, {}));
+  out.push_back(renderAndExtract(c, 2.0, 25.0, 2, {}));
+  out.push_back(renderAndExtract(c, -1.2, 40.0, 3, {}));
+  // The same outline sampled from another start (for resampling models).
+  out.push_back(c.rotatedStart(c.size() / 2));
+  // A straight occluding edge hiding 20 % of the outline, at sixteen places.
+  for (int k = 0; k < 16; ++k)
+    out.push_back(renderAndExtract(c, 0.0, 0.0, 10 + k, chordCut(c, 0.0625 * k + 0.03, 0.20)));
+  return out;
+}
+
+void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
+{
+  const std::size_t T = m_templates.size();
+  if (T == 0)
+    throw vpMorphException(vpMorphException::badParameterError, "vpMorphDatabase::calibrate: empty database");
+  std::vector<double> within(T, 0.0);
+  const std::size_t perRow = T > 1 ? T : 0;
+  std::vector<double> D(T * T, 0.0);
+  // Jobs 0..T-1: within(t); jobs T..2T-1: row t of the between-template matrix.
+  m_distance.parallelFor(
+      T + (perRow ? T : 0), threads,
+      [&](std::size_t k, vpMorphMatcher &matcher) {
+        if (k < T) {
+          for (const vpMorphContour &p : perturbations(m_templates[k].contour()))
+            within[k] = std::max(within[k], m_distance.distance(m_distance.prepare(p), m_shapes[k], matcher));
+        } else {
+          const std::size_t i = k - T;
+          for (std::size_t j = i + 1; j < T; ++j)
+            D[i * T + j] = D[j * T + i] = m_distance.distance(m_shapes[i], m_shapes[j], matcher);
+        }
+      },
+      progress);
+  std::vector<double> between(T, kInf);
+  for (std::size_t i = 0; i < T; ++i)
+    for (std::size_t j = 0; j < T; ++j)
+      if (i != j)
+        between[i] = std::min(between[i], D[i * T + j]);
+  m_within = within;
+  m_between = between;
+  m_calibrated = true;
+}
+
+vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q, bool prune,
+                                           vpMorphMatcher &matcher) const
+{
+  const std::size_t T = m_templates.size();
+  vpMorphRecognition r;
+  // Keeps the two best (distance, index) pairs, ordered lexicographically: ties go to the lower index.
+  auto offer = [&r](double d, std::size_t k, bool mirrored) {
+    if (d < r.distance || (d == r.distance && k < r.index)) {
+      r.secondDistance = r.distance;
+      r.secondIndex = r.index;
+      r.distance = d;
+      r.index = k;
+      r.mirrored = mirrored;
+    } else if (d < r.secondDistance || (d == r.secondDistance && k < r.secondIndex)) {
+      r.secondDistance = d;
+      r.secondIndex = k;
+    }
+  };
+  if (!prune) {
+    for (std::size_t k = 0; k < T; ++k) {
+      bool mir = false;
+      const double d = m_distance.distance(q, m_shapes[k], matcher, -1.0, &mir);
+      offer(d, k, mir);
+      ++r.evaluated;
+    }
+  } else {
+    std::vector<std::pair<double, std::size_t> > order(T);
+    for (std::size_t k = 0; k < T; ++k)
+      order[k] = std::make_pair(m_distance.lowerBound(q, m_shapes[k]), k);
+    std::sort(order.begin(), order.end());
+    for (const auto &o : order) {
+      // Every later template has a bound at least as large: none of them can enter the top two.
+      if (o.first > r.secondDistance)
+        break;
+      bool mir = false;
+      const double d = m_distance.distance(q, m_shapes[o.second], matcher,
+                                           std::isfinite(r.secondDistance) ? r.secondDistance : -1.0, &mir);
+      ++r.evaluated;
+      if (d <= r.secondDistance)
+        offer(d, o.second, mir);
+    }
+  }
+  if (T == 1)
+    r.margin = 1.0;
+  else
+    r.margin = r.secondDistance > 0.0 ? (r.secondDistance - r.distance) / r.secondDistance : 0.0;
+  r.threshold = threshold(r.index);
+  r.accepted = r.distance <= r.threshold;
+  r.correspondence = matcher.match(c, m_templates[r.index].contour());
+  return r;
+}
+
+vpMorphRecognition vpMorphDatabase::recognize(const vpMorphContour &c, bool prune) const
+{
+  if (m_templates.empty())
+    throw vpMorphException(vpMorphException::notFoundError, "vpMorphDatabase::recognize: the database is empty");
+  if (c.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::recognize: empty contour");
+  vpMorphMatcher matcher = m_distance.matcher();
+  return search(c, m_distance.prepare(c), prune, matcher);
+}
+
+std::vector<vpMorphRecognition> vpMorphDatabase::recognizeAll(const std::vector<vpMorphContour> &contours,
+                                                              unsigned int threads, const Progress &progress) const
+{
+  if (m_templates.empty())
+    throw vpMorphException(vpMorphException::notFoundError, "vpMorphDatabase::recognizeAll: the database is empty");
+  std::vector<vpMorphRecognition> out(contours.size());
+  m_distance.parallelFor(
+      contours.size(), threads,
+      [&](std::size_t k, vpMorphMatcher &matcher) {
+        if (contours[k].empty())
+          throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::recognizeAll: empty contour");
+        out[k] = search(contours[k], m_distance.prepare(contours[k]), true, matcher);
+      },
+      progress);
+  return out;
+}
+
+vpMorphDatabase vpMorphDatabase::fromImages(const std::string &dir, const vpMorphShapeDistance &distance,
+                                            const Progress &progress)
+{
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw ioError("vpMorphDatabase::fromImages: '" + dir + "' is not a readable directory");
+  std::vector<fs::path> files;
+  for (const auto &e : fs::directory_iterator(dir, ec))
+    if (e.is_regular_file() && isImageFile(e.path()))
+      files.push_back(e.path());
+  if (ec)
+    throw ioError("vpMorphDatabase::fromImages: cannot list '" + dir + "': " + ec.message());
+  if (files.empty())
+    throw ioError("vpMorphDatabase::fromImages: no image (png, jpg, pgm, ppm, bmp, tif) in '" + dir + "'");
+  std::sort(files.begin(), files.end(), [](const fs::path &a, const fs::path &b) {
+    return a.stem() < b.stem() || (a.stem() == b.stem() && a.filename() < b.filename());
+  });
+  for (std::size_t k = 1; k < files.size(); ++k)
+    if (files[k].stem() == files[k - 1].stem())
+      throw vpMorphException(vpMorphException::badParameterError,
+                             "vpMorphDatabase::fromImages: two images named '" + files[k].stem().string() + "' (" +
+                                 files[k - 1].filename().string() + ", " + files[k].filename().string() + ")");
+  std::vector<vpMorphContour> contours(files.size());
+  distance.parallelFor(
+      files.size(), 0,
+      [&](std::size_t k, vpMorphMatcher &) {
+        vpImage<unsigned char> I;
+        try {
+          vpImageIo::read(I, files[k].string());
+        } catch (const vpException &e) {
+          throw ioError("vpMorphDatabase::fromImages: cannot read image '" + files[k].string() +
+                        "': " + e.getStringMessage());
+        }
+        try {
+          contours[k] = vpMorphContourExtractor().extract(I);
+        } catch (const vpException &e) {
+          throw vpMorphException(vpMorphException::badImageError,
+                                 "vpMorphDatabase::fromImages: '" + files[k].string() + "': " + e.getStringMessage());
+        }
+      },
+      progress);
+  vpMorphDatabase db(distance);
+  for (std::size_t k = 0; k < files.size(); ++k)
+    db.add(vpMorphTemplate(files[k].stem().string(), contours[k], files[k].string()));
+  db.calibrate(0, progress);
+  return db;
+}
+
+std::string vpMorphDatabase::toJson() const
+{
+  json j;
+  j["format"] = kFormat;
+  j["version"] = kVersion;
+  const vpMorphShapeDistance &d = m_distance;
+  j["distance"] = {{"model", d.name()}, {"points", d.points()},  {"mirrors", d.mirrors()},
+                   {"scales", d.scales()}, {"ks", d.workModel().ks()}, {"kb", d.workModel().kb()},
+                   {"cs", d.workModel().cs()}};
+  json cal;
+  cal["calibrated"] = m_calibrated;
+  cal["manual"] = m_manual;
+  cal["threshold"] = m_manual ? json(m_threshold) : json(nullptr);
+  cal["slack"] = calibrationSlack();
+  cal["within"] = finiteOrNull(m_within);
+  cal["between"] = finiteOrNull(m_between);
+  j["calibration"] = cal;
+  json ts = json::array();
+  for (const vpMorphTemplate &t : m_templates) {
+    json o;
+    o["name"] = t.name();
+    o["image"] = t.imagePath();
+    o["units"] = t.contour().units() == vpMorphContour::PIXEL ? "pixel" : "normalized";
+    o["x"] = t.contour().xs();
+    o["y"] = t.contour().ys();
+    o["cdMo"] = poseToJson(t.cdMo());
+    o["metadata"] = t.metadata();
+    ts.push_back(o);
+  }
+  j["templates"] = ts;
+  return j.dump(1);
+}
+
+void vpMorphDatabase::save(const std::string &path) const
+{
+  const std::string text = toJson();
+  const fs::path target(path);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  // Temporary file in the same directory, so that the rename is atomic (same file system).
+  std::ostringstream name;
+  name << "." << target.filename().string() << ".tmp-" << std::random_device()();
+  const fs::path tmp = dir / name.str();
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f)
+      throw ioError("vpMorphDatabase::save: cannot write in '" + dir.string() + "'");
+    f << text << "\n";
+    f.flush();
+    if (!f) {
+      f.close();
+      std::remove(tmp.string().c_str());
+      throw ioError("vpMorphDatabase::save: write error on '" + tmp.string() + "' (disk full?)");
+    }
+  }
+  if (std::rename(tmp.string().c_str(), path.c_str()) != 0) {
+    std::remove(tmp.string().c_str());
+    throw ioError("vpMorphDatabase::save: cannot rename the temporary file onto '" + path + "'");
+  }
+}
+
+vpMorphDatabase vpMorphDatabase::load(const std::string &path, bool checkImages)
+{
+  std::ifstream f(path, std::ios::binary);
+  if (!f)
+    throw ioError("vpMorphDatabase::load: cannot open '" + path + "'");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const fs::path p(path);
+  try {
+    return fromJson(ss.str(), checkImages, p.has_parent_path() ? p.parent_path().string() : std::string("."));
+  } catch (const vpMorphException &e) {
+    throw vpMorphException(e.getCode(), e.getStringMessage() + " (file '" + path + "')");
+  }
+}
+
+vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkImages, const std::string &baseDir)
+{
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error &e) {
+    throw ioError(std::string("vpMorphDatabase: not valid JSON (malformed or truncated file): ") + e.what());
+  }
+  if (!j.is_object())
+    throw ioError("vpMorphDatabase: the file is not a JSON object");
+  if (!j.contains("format") || !j["format"].is_string() || j["format"].get<std::string>() != kFormat)
+    throw ioError(std::string("vpMorphDatabase: not a template database (\"format\" must be \"") + kFormat + "\")");
+  if (!j.contains("version") || !j["version"].is_number_integer())
+    throw ioError("vpMorphDatabase: missing or non-integer \"version\"");
+  const int version = j["version"].get<int>();
+  if (version != kVersion) {
+    std::ostringstream os;
+    os << "vpMorphDatabase: unsupported version " << version << " (this build reads version " << kVersion << ")";
+    throw ioError(os.str());
+  }
+  const json dj = j.contains("distance") ? j["distance"] : json();
+  vpMorphShapeDistance d = vpMorphShapeDistance::fromName(field<std::string>(dj, "model", "\"distance\""));
+  try {
+    d.setWorkModel(vpMorphWorkModel(field<double>(dj, "ks", "\"distance\""), field<double>(dj, "kb", "\"distance\""),
+                                    field<double>(dj, "cs", "\"distance\"")));
+    if (d.model() != vpMorphShapeDistance::POLYGON) {
+      d.setPoints(field<std::size_t>(dj, "points", "\"distance\""));
+      d.setScales(field<std::vector<double> >(dj, "scales", "\"distance\""));
+    }
+    d.setMirrors(field<bool>(dj, "mirrors", "\"distance\""));
+  } catch (const vpMorphException &e) {
+    if (e.getCode() == vpMorphException::ioError)
+      throw;
+    throw ioError("vpMorphDatabase: invalid \"distance\": " + e.getStringMessage());
+  }
+  vpMorphDatabase db(d);
+  if (!j.contains("templates") || !j["templates"].is_array())
+    throw ioError("vpMorphDatabase: no \"templates\" array");
+  std::size_t k = 0;
+  for (const json &o : j["templates"]) {
+    std::ostringstream where;
+    where << "template " << k++;
+    const std::string name = field<std::string>(o, "name", where.str());
+    where << " ('" << name << "')";
+    const std::string units = field<std::string>(o, "units", where.str());
+    if (units != "pixel" && units != "normalized")
+      throw ioError("vpMorphDatabase: " + where.str() + ": units must be \"pixel\" or \"normalized\"");
+    const std::vector<double> x = field<std::vector<double> >(o, "x", where.str());
+    const std::vector<double> y = field<std::vector<double> >(o, "y", where.str());
+    vpMorphContour c;
+    try {
+      c = vpMorphContour(x, y, units == "pixel" ? vpMorphContour::PIXEL : vpMorphContour::NORMALIZED);
+    } catch (const vpException &e) {
+      throw ioError("vpMorphDatabase: " + where.str() + ": invalid contour: " + e.getStringMessage());
+    }
+    const std::vector<double> m = field<std::vector<double> >(o, "cdMo", where.str());
+    if (m.size() != 16)
+      throw ioError("vpMorphDatabase: " + where.str() + ": \"cdMo\" needs 16 numbers (row-major 4x4)");
+    vpHomogeneousMatrix M;
+    for (unsigned int r = 0; r < 4; ++r)
+      for (unsigned int cc = 0; cc < 4; ++cc)
+        M[r][cc] = m[4 * r + cc];
+    const std::string image = o.contains("image") ? field<std::string>(o, "image", where.str()) : std::string();
+    if (checkImages && !image.empty()) {
+      fs::path ip(image);
+      if (ip.is_relative() && !baseDir.empty())
+        ip = fs::path(baseDir) / ip;
+      std::error_code ec;
+      if (!fs::exists(ip, ec))
+        throw ioError("vpMorphDatabase: " + where.str() + ": image '" + ip.string() + "' not found");
+    }
+    vpMorphTemplate t(name, c, image, M);
+    if (o.contains("metadata"))
+      t.setMetadata(field<std::map<std::string, std::string> >(o, "metadata", where.str()));
+    if (db.find(name) != vpMorphRecognition::npos)
+      throw vpMorphException(vpMorphException::badParameterError,
+                             "vpMorphDatabase: duplicate template name '" + name + "'");
+    db.add(t);
+  }
+  if (j.contains("calibration")) {
+    const json &cal = j["calibration"];
+    const std::string w = "\"calibration\"";
+    const bool calibrated = field<bool>(cal, "calibrated", w);
+    const bool manual = field<bool>(cal, "manual", w);
+    const json &th = cal.contains("threshold") ? cal["threshold"] : json();
+    if (!th.is_null() && !(th.is_number() && th.get<double>() > 0.0))
+      throw ioError("vpMorphDatabase: \"calibration\": threshold must be a positive number or null");
+    if (manual && th.is_null())
+      throw ioError("vpMorphDatabase: \"calibration\": a manual threshold needs a value");
+    db.m_within = numbersOrInf(cal, "within");
+    db.m_between = numbersOrInf(cal, "between");
+    if (calibrated && (db.m_within.size() != db.size() || db.m_between.size() != db.size()))
+      throw ioError("vpMorphDatabase: \"calibration\" does not match the number of templates");
+    db.m_calibrated = calibrated;
+    db.m_manual = manual;
+    db.m_threshold = manual ? th.get<double>() : kInf;
+  }
+  return db;
+}

@@ -1,0 +1,241 @@
+// Tests of the template database (vpMorphTemplate, vpMorphDatabase): building from a folder, access by index and
+// name, JSON save and load round trip, atomic save, and clear errors on malformed, truncated and wrong-version
+// files, missing images, duplicate and unknown names.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/morph/vpMorphException.h>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+std::string objectsDir() { return std::string(VISPMORPH_DATA_DIR) + "/objects"; }
+
+// A fresh scratch directory under the test's working directory.
+fs::path scratch(const std::string &name)
+{
+  const fs::path p = fs::current_path() / ("db-" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+std::string readText(const fs::path &p)
+{
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+void writeText(const fs::path &p, const std::string &s) { std::ofstream(p) << s; }
+
+// The error code and message of what \e f throws.
+template <typename F> std::pair<int, std::string> errorOf(F f)
+{
+  try {
+    f();
+  } catch (const vpMorphException &e) {
+    return {e.getCode(), e.getStringMessage()};
+  }
+  return {0, ""};
+}
+
+vpMorphContour square(double s = 10.0)
+{
+  return vpMorphContour({0, s, s, 0}, {0, 0, s, s});
+}
+
+// One database of the twelve generated images (the six tools and their deformed variants), built once.
+const vpMorphDatabase &folderDatabase()
+{
+  static const vpMorphDatabase db = vpMorphDatabase::fromImages(objectsDir());
+  return db;
+}
+} // namespace
+
+TEST_CASE("database: built from a folder of images in one call", "[database]")
+{
+  std::size_t calls = 0;
+  const vpMorphDatabase db = vpMorphDatabase::fromImages(objectsDir(), vpMorphShapeDistance(),
+                                                         [&](std::size_t, std::size_t) { ++calls; });
+  REQUIRE(db.size() == 12);
+  CHECK(calls >= 2);
+  CHECK(db.isCalibrated());
+  CHECK(std::isfinite(db.threshold(0)));
+  CHECK(db[0].name() == "hammer"); // sorted by file name
+  CHECK(db.find("key") != vpMorphRecognition::npos);
+  CHECK(db["key"].name() == "key");
+  CHECK(db["key"].imagePath() == objectsDir() + "/key.png");
+  CHECK(db.find("nothing") == vpMorphRecognition::npos);
+  CHECK(db["wrench-deformed"].contour().size() >= 3);
+  // Each template recognises itself, at distance 0.
+  for (std::size_t k = 0; k < db.size(); ++k) {
+    const vpMorphRecognition r = db.recognize(db[k].contour());
+    CHECK(r.index == k);
+    CHECK(r.distance == Approx(0.0).margin(1e-12));
+    CHECK(r.accepted);
+  }
+}
+
+TEST_CASE("database: JSON round trip keeps every field", "[database]")
+{
+  vpMorphDatabase db = folderDatabase();
+  vpMorphTemplate t("square", square(), "");
+  t.setPlanarPose(0.01, -0.02, 0.5, 0.3);
+  t.setMetadata("grasp", "centre");
+  t.setMetadata("part", "A-12");
+  db.add(t);
+  db.calibrate();
+  const fs::path dir = scratch("roundtrip");
+  const fs::path file = dir / "db.json";
+  db.save(file.string());
+  const std::string text = readText(file);
+  CHECK(text.find("\"format\": \"vispmorph-template-database\"") != std::string::npos);
+  CHECK(text.find("\"version\": 1") != std::string::npos);
+  // No temporary file is left behind.
+  std::size_t files = 0;
+  for (const auto &e : fs::directory_iterator(dir))
+    files += e.is_regular_file();
+  CHECK(files == 1);
+
+  const vpMorphDatabase back = vpMorphDatabase::load(file.string());
+  REQUIRE(back.size() == db.size());
+  for (std::size_t k = 0; k < db.size(); ++k)
+    CHECK(back.threshold(k) == db.threshold(k));
+  CHECK(back.withinDistances() == db.withinDistances());
+  CHECK(back.betweenDistances() == db.betweenDistances());
+  CHECK(back.isCalibrated());
+  CHECK(back.distance().name() == db.distance().name());
+  for (std::size_t k = 0; k < db.size(); ++k) {
+    CHECK(back[k].name() == db[k].name());
+    CHECK(back[k].imagePath() == db[k].imagePath());
+    CHECK(back[k].contour().xs() == db[k].contour().xs());
+    CHECK(back[k].contour().ys() == db[k].contour().ys());
+    CHECK(back[k].metadata() == db[k].metadata());
+  }
+  const vpMorphTemplate &s = back["square"];
+  CHECK(s.metadata("grasp") == "centre");
+  CHECK(s.metadata("absent", "none") == "none");
+  CHECK(s.cdMo()[2][3] == Approx(0.5));
+  CHECK(s.cdMo()[0][3] == Approx(0.01));
+  CHECK(std::atan2(s.cdMo()[1][0], s.cdMo()[0][0]) == Approx(0.3));
+  // The same recognition after the round trip.
+  const vpMorphRecognition a = db.recognize(db["pliers-deformed"].contour().transformed(1, 2, 3));
+  const vpMorphRecognition b = back.recognize(db["pliers-deformed"].contour().transformed(1, 2, 3));
+  CHECK(a.index == b.index);
+  CHECK(a.distance == b.distance);
+
+  // Saving over an existing file replaces it.
+  db.remove("square");
+  db.save(file.string());
+  CHECK(vpMorphDatabase::load(file.string()).size() == 12);
+  // A resampling model is saved with its settings.
+  db.setDistance(vpMorphShapeDistance(vpMorphShapeDistance::MULTISCALE));
+  db.save(file.string());
+  const vpMorphDatabase m = vpMorphDatabase::load(file.string());
+  CHECK(m.distance().name() == "multiscale");
+  CHECK(m.distance().scales() == db.distance().scales());
+  CHECK(m.distance().points() == db.distance().points());
+  CHECK_FALSE(m.isCalibrated());
+}
+
+TEST_CASE("database: bad files give clear errors", "[database]")
+{
+  const fs::path dir = scratch("bad");
+  const fs::path good = dir / "good.json";
+  folderDatabase().save(good.string());
+  const std::string text = readText(good);
+  auto loadText = [&](const std::string &s) {
+    const fs::path p = dir / "x.json";
+    writeText(p, s);
+    return errorOf([&] { vpMorphDatabase::load(p.string()); });
+  };
+  auto expectIo = [](const std::pair<int, std::string> &e, const std::string &words) {
+    CAPTURE(e.second);
+    CHECK(e.first == vpMorphException::ioError);
+    CHECK(e.second.find(words) != std::string::npos);
+  };
+  expectIo(loadText(text.substr(0, text.size() / 2)), "truncated");
+  expectIo(loadText("{ not json"), "malformed");
+  expectIo(loadText("[1, 2]"), "not a JSON object");
+  expectIo(loadText("{\"format\": \"something-else\", \"version\": 1}"), "not a template database");
+  std::string v2 = text;
+  v2.replace(v2.find("\"version\": 1"), 12, "\"version\": 2");
+  expectIo(loadText(v2), "unsupported version 2");
+  std::string noTemplates = text;
+  noTemplates.replace(noTemplates.find("\"templates\""), 11, "\"templatez\"");
+  expectIo(loadText(noTemplates), "templates");
+  std::string badX = text;
+  badX.replace(badX.find("\"x\": ["), 6, "\"x\": [\"a\",");
+  expectIo(loadText(badX), "wrong type");
+  expectIo(errorOf([&] { vpMorphDatabase::load((dir / "absent.json").string()); }), "cannot open");
+
+  // A template whose image disappeared.
+  vpMorphDatabase db;
+  db.add(vpMorphTemplate("gone", square(), (dir / "gone.png").string()));
+  db.save((dir / "gone.json").string());
+  expectIo(errorOf([&] { vpMorphDatabase::load((dir / "gone.json").string()); }), "not found");
+  CHECK(vpMorphDatabase::load((dir / "gone.json").string(), false).size() == 1);
+
+  // Duplicate names in a file.
+  std::string dup = text;
+  const std::size_t a = dup.find("\"name\": \"hammer-deformed\"");
+  REQUIRE(a != std::string::npos);
+  dup.replace(a, 25, "\"name\": \"hammer\"");
+  const auto e = loadText(dup);
+  CHECK(e.first == vpMorphException::badParameterError);
+  CHECK(e.second.find("duplicate template name 'hammer'") != std::string::npos);
+}
+
+TEST_CASE("database: names, indices and folders", "[database]")
+{
+  vpMorphDatabase db;
+  db.add(vpMorphTemplate("a", square()));
+  auto e = errorOf([&] { db.add(vpMorphTemplate("a", square(5))); });
+  CHECK(e.first == vpMorphException::badParameterError);
+  CHECK(e.second.find("duplicate") != std::string::npos);
+  CHECK(errorOf([&] { (void)db["b"]; }).first == vpMorphException::notFoundError);
+  CHECK(errorOf([&] { (void)db[3]; }).first == vpMorphException::notFoundError);
+  CHECK(errorOf([&] { db.remove("b"); }).first == vpMorphException::notFoundError);
+  CHECK(errorOf([] { vpMorphTemplate("", square()); }).first == vpMorphException::badParameterError);
+  CHECK(errorOf([] { vpMorphTemplate("x", vpMorphContour()); }).first == vpMorphException::badParameterError);
+  // One template: calibrated from itself alone.
+  db.calibrate();
+  CHECK(db.isCalibrated());
+  CHECK(std::isinf(db.betweenDistances()[0]));
+  CHECK(db.recognize(square(3)).margin == 1.0);
+  // A manual threshold survives a round trip; +inf between distances too.
+  db.setThreshold(0.5);
+  const fs::path one = scratch("one") / "one.json";
+  db.save(one.string());
+  const vpMorphDatabase back = vpMorphDatabase::load(one.string());
+  CHECK(back.isThresholdManual());
+  CHECK(back.threshold(0) == 0.5);
+  CHECK(std::isinf(back.betweenDistances()[0]));
+  CHECK(db.recognize(square(3)).secondIndex == vpMorphRecognition::npos);
+
+  CHECK(errorOf([] { vpMorphDatabase::fromImages("/nonexistent-dir"); }).first == vpMorphException::ioError);
+  const fs::path emptyDir = scratch("empty");
+  CHECK(errorOf([&] { vpMorphDatabase::fromImages(emptyDir.string()); }).first == vpMorphException::ioError);
+  // Two images with the same name.
+  const fs::path twice = scratch("twice");
+  fs::copy_file(objectsDir() + "/key.png", twice / "key.png");
+  fs::copy_file(objectsDir() + "/key.png", twice / "key.pgm");
+  e = errorOf([&] { vpMorphDatabase::fromImages(twice.string()); });
+  CHECK(e.first == vpMorphException::badParameterError);
+  CHECK(e.second.find("two images named 'key'") != std::string::npos);
+  // An unreadable image.
+  const fs::path broken = scratch("broken");
+  writeText(broken / "junk.png", "not a png");
+  CHECK(errorOf([&] { vpMorphDatabase::fromImages(broken.string()); }).first == vpMorphException::ioError);
+  // A file where the directory should be: save fails cleanly.
+  CHECK(errorOf([&] { db.save("/nonexistent-dir/db.json"); }).first == vpMorphException::ioError);
+}
