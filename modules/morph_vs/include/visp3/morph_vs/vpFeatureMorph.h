@@ -1,0 +1,116 @@
+/*!
+  \file vpFeatureMorph.h
+  \brief The morph visual feature: a contour's position, in-plane rotation and scale, for any stock vpServo.
+*/
+#ifndef VP_FEATURE_MORPH_H
+#define VP_FEATURE_MORPH_H
+
+#include <ostream>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
+#include <visp3/morph_vs/vpMorphCorrespondenceTracker.h>
+#include <visp3/visual_features/vpBasicFeature.h>
+
+/*!
+  \class vpFeatureMorph
+  \ingroup group_morph_vs
+  \brief Visual feature \f${\bf s} = (x_g, y_g, \theta, \sigma)\f$ of a planar object's contour, a vpBasicFeature.
+
+  All components are computed on the contour in normalised coordinates (x = X/Z, y = Y/Z):
+  - \f$x_g, y_g\f$: area centroid of the polygon region (image-plane translation of the object);
+  - \f$\theta\f$: in-plane orientation of the contour relative to the desired one. It has no absolute value:
+    error() finds the minimal-work correspondence between the current and the desired contours
+    (vpMorphCorrespondenceTracker: tracked from the previous iteration, full search on the first frame or
+    when unreliable) and fits the similarity that maps the current contour onto the desired one over the
+    corresponded pairs (vpMorphRigidTransform::fitLeastSquares, plain weighted least squares so that the
+    interaction matrix below is its exact derivative); \f$\theta - \theta^* = -\f$ its angle. So the error
+    comes from the correspondence, not from vertex indices, and works from any rotation up to 180 deg.
+    get_s() shows the value of the last error() call (0 before), \f$\theta^* = 0\f$.
+  - \f$\sigma = \ln \sqrt{a}\f$ with \e a the region area: \f$\sigma - \sigma^* = \ln(Z^{*} / Z)\f$ for a plane
+    parallel to the image, so it drives depth.
+
+  <b>Interaction matrices</b> (6 columns, camera velocity \f$(v, \omega)\f$), for a planar object parallel to
+  the image plane at depth \e Z (the assumption of the paper's task; a tilted plane adds terms in its slope
+  that are neglected here). With \f$n_{ij} = \mu_{ij}/a\f$ the normalised centred region moments
+  (Chaumette, "Image moments: a general and useful set of features for visual servoing", T-RO 2004):
+  \f[ L_{x_g} = [-1/Z,\ 0,\ x_g/Z,\ x_g y_g + 4 n_{11},\ -(1 + x_g^2 + 4 n_{20}),\ y_g] \f]
+  \f[ L_{y_g} = [0,\ -1/Z,\ y_g/Z,\ 1 + y_g^2 + 4 n_{02},\ -x_g y_g - 4 n_{11},\ -x_g] \f]
+  \f[ L_{\sigma} = [0,\ 0,\ 1/Z,\ \tfrac{3}{2} y_g,\ -\tfrac{3}{2} x_g,\ 0] \f]
+  \f$L_\theta\f$ is the derivative of the least-squares angle: the weighted mean angular velocity of the
+  vertices about their weighted mean \f$c\f$, \f$L_\theta = \sum_i w_i (a_{x,i} L_{y,i} - a_{y,i} L_{x,i}) /
+  \sum_i w_i |a_i|^2\f$ with \f$a_i = p_i - c\f$, \f$L_{x,i}, L_{y,i}\f$ the point interaction matrices of vertex
+  \e i and \f$w_i\f$ half its two adjacent edge lengths (the fit's length weights); its last entry is -1 and its
+  three first are 0 for a parallel plane.
+
+  <b>With vpServo.</b> Always add it as task.addFeature(s, s_star) with a built desired feature: vpServo keeps
+  raw pointers, so both objects must outlive the task, and vpServo::addFeature(s) alone would use a duplicate()
+  reset by init(), which has no contour. The desired feature supports interaction(), so the interaction
+  matrix may be CURRENT, DESIRED or MEAN, with EYEINHAND_CAMERA or EYEINHAND_L_cVe_eJe.
+  Selection is a bitmask of selectXg() | selectYg() | selectTheta() | selectScale().
+*/
+class vpFeatureMorph : public vpBasicFeature
+{
+public:
+  vpFeatureMorph();
+
+  /*!
+    From a contour in pixels (or already normalised) and the depth of the object's plane.
+    \throw vpMorphException::badParameterError if Z is not finite and > 0;
+    badContourError if the contour is empty.
+  */
+  void buildFrom(const vpMorphContour &contour, const vpCameraParameters &cam, double Z);
+  //! From a contour in normalised coordinates (the camera parameters are then only used by display()).
+  void buildFrom(const vpMorphContour &normalizedContour, double Z);
+
+  void init() override;
+  vpMatrix interaction(unsigned int select = FEATURE_ALL) override;
+  /*!
+    Error \f$(x_g - x_g^*, y_g - y_g^*, -\theta_{fit}, \ln\sqrt{a/a^*})\f$ against a built vpFeatureMorph, with
+    one correspondence per call (see the class description).
+    \throw vpMorphException::badParameterError if s_star is not a vpFeatureMorph or either is not built.
+  */
+  vpColVector error(const vpBasicFeature &s_star, unsigned int select = FEATURE_ALL) override;
+  //! Draws the contour (no-op without a display attached to I).
+  void display(const vpCameraParameters &cam, const vpImage<unsigned char> &I, const vpColor &color = vpColor::green,
+               unsigned int thickness = 1) const override;
+  void display(const vpCameraParameters &cam, const vpImage<vpRGBa> &I, const vpColor &color = vpColor::green,
+               unsigned int thickness = 1) const override;
+  //! A fresh heap copy (vpServo owns it when it made it, and calls init() on it).
+  vpFeatureMorph *duplicate() const override;
+  //! Writes the selected components to std::cout (ViSP's contract for print(); only on the caller's request).
+  void print(unsigned int select = FEATURE_ALL) const override;
+  void print(std::ostream &os, unsigned int select = FEATURE_ALL) const;
+
+  static unsigned int selectXg() { return FEATURE_LINE[0]; }
+  static unsigned int selectYg() { return FEATURE_LINE[1]; }
+  static unsigned int selectTheta() { return FEATURE_LINE[2]; }
+  static unsigned int selectScale() { return FEATURE_LINE[3]; }
+
+  bool isBuilt() const { return !m_contour.empty(); }
+  double get_xg() const { return s[0]; }
+  double get_yg() const { return s[1]; }
+  double get_theta() const { return s[2]; }
+  double get_sigma() const { return s[3]; }
+  double get_Z() const { return m_Z; }
+  //! The contour in normalised coordinates.
+  const vpMorphContour &contour() const { return m_contour; }
+  //! The correspondence tracker (statistics: full and tracked searches, margin).
+  const vpMorphCorrespondenceTracker &tracker() const { return m_tracker; }
+  vpMorphCorrespondenceTracker &tracker() { return m_tracker; }
+  //! Similarity current -> desired fitted by the last error() call (normalised coordinates).
+  const vpMorphRigidTransform &lastFit() const { return m_fit; }
+
+private:
+  void checkBuilt(const char *caller) const;
+
+  vpMorphContour m_contour; // normalised
+  vpCameraParameters m_cam;
+  double m_Z = 1.0;
+  double m_n20 = 0.0, m_n02 = 0.0, m_n11 = 0.0;
+  vpMorphCorrespondenceTracker m_tracker;
+  vpMorphRigidTransform m_fit;
+};
+
+#endif

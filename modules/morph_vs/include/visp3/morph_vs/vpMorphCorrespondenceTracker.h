@@ -1,0 +1,98 @@
+/*!
+  \file vpMorphCorrespondenceTracker.h
+  \brief Minimal-work correspondence kept from one control iteration to the next.
+*/
+#ifndef VP_MORPH_CORRESPONDENCE_TRACKER_H
+#define VP_MORPH_CORRESPONDENCE_TRACKER_H
+
+#include <cstddef>
+#include <vector>
+
+#include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphCorrespondence.h>
+#include <visp3/morph/vpMorphMatcher.h>
+
+/*!
+  \class vpMorphCorrespondenceTracker
+  \ingroup group_morph_vs
+  \brief Runs the correspondence between the current contour and a target once per control iteration,
+  tracked from the previous iteration when that is reliable (vpMorphMatcher::matchWindow), with a full
+  cyclic search (vpMorphMatcher::match) otherwise.
+
+  Why tracking: between two iterations of a servo loop the object moves a little, so the best starting pair
+  moves by at most a vertex or two; searching only a window of starts around the previous one is exact in
+  that window and much cheaper than the full search over all starts.
+
+  <b>Start of the window.</b> The previous starting input vertex is carried to the new contour as the vertex
+  nearest to its previous position moved by the centroid displacement (the contour's numbering may change
+  from frame to frame); the window is centred on the previous starting target vertex.
+
+  <b>Reliability test</b> (a tracked result is kept only if all hold; otherwise match() runs):
+  - the target has the same vertices as at the previous call (a new sub-goal always gets a full search);
+  - the best start is strictly inside the window (on its edge the optimum may lie outside it);
+  - no distance jump: work <= jumpFactor() * previous work + workFloor().
+
+  After each full search the <b>margin</b> is measured: the relative gap (D_alt - D) / D_alt in [0, 1] between
+  the best work D and the best work D_alt of the starts more than n/8 target vertices away from the best
+  one (n the target size). A margin near 0 means two different alignments of the contour are almost equally
+  good (a symmetric object): the correspondence, hence the rotation, is ambiguous.
+*/
+class vpMorphCorrespondenceTracker
+{
+public:
+  //! Where the last correspondence came from.
+  enum Source {
+    NONE,    //!< No correspondence yet.
+    FULL,    //!< Full cyclic search (first frame, new target, or the tracked one was unreliable).
+    TRACKED  //!< Windowed search around the previous start.
+  };
+
+  explicit vpMorphCorrespondenceTracker(const vpMorphMatcher &matcher = vpMorphMatcher());
+
+  /*!
+    Correspondence from \e current (input) to \e target, tracked when reliable (see the class description).
+    \throw vpMorphException on empty contours or different units.
+  */
+  const vpMorphCorrespondence &update(const vpMorphContour &current, const vpMorphContour &target);
+  //! Forgets the previous correspondence: the next update() runs a full search.
+  void reset();
+
+  const vpMorphCorrespondence &correspondence() const { return m_corr; }
+  Source lastSource() const { return m_source; }
+  //! Work of the last correspondence.
+  double work() const { return m_corr.work(); }
+  //! Work of the correspondence before the last one (0 if none).
+  double previousWork() const { return m_prevWork; }
+  //! Margin measured at the last full search (1 if never measured; see the class description).
+  double margin() const { return m_margin; }
+  unsigned int fullMatchCount() const { return m_fullCount; }
+  unsigned int trackedMatchCount() const { return m_trackedCount; }
+  //! Number of tracked results rejected by the reliability test.
+  unsigned int rejectedTrackCount() const { return m_rejectedCount; }
+
+  double jumpFactor() const { return m_jumpFactor; }
+  //! Tracked work above jumpFactor * previous work + workFloor is a jump (default 1.5, >= 1).
+  void setJumpFactor(double f);
+  double workFloor() const { return m_workFloor; }
+  //! Absolute slack of the jump test (default 1e-3, >= 0), so that near-zero works do not trigger it.
+  void setWorkFloor(double w);
+  //! Half width of the tracking window in target vertices (0: automatic, max(2, n / 8)).
+  void setWindowHalfWidth(std::size_t h) { m_halfWidth = h; }
+  vpMorphMatcher &matcher() { return m_matcher; }
+
+private:
+  std::size_t carriedStart(const vpMorphContour &current) const;
+  void measureMargin(const vpMorphContour &current, const vpMorphContour &target);
+
+  vpMorphMatcher m_matcher;
+  vpMorphCorrespondence m_corr;
+  vpMorphContour m_prevInput;
+  std::vector<double> m_prevTargetX, m_prevTargetY;
+  Source m_source = NONE;
+  double m_prevWork = 0.0, m_margin = 1.0;
+  double m_jumpFactor = 1.5, m_workFloor = 1e-3;
+  std::size_t m_halfWidth = 0;
+  unsigned int m_fullCount = 0, m_trackedCount = 0, m_rejectedCount = 0;
+};
+
+#endif

@@ -1,0 +1,218 @@
+#include <visp3/morph_vs/vpFeatureMorph.h>
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include <visp3/core/vpDisplay.h>
+#include <visp3/morph/vpMorphException.h>
+
+namespace
+{
+// Region moments of a polygon (Green's theorem): area a, centroid, normalised centred moments mu_ij / a.
+void regionMoments(const vpMorphContour &c, double &a, double &xg, double &yg, double &n20, double &n02, double &n11)
+{
+  double A = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+  const std::size_t n = c.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    const double x0 = c.x(i), y0 = c.y(i), x1 = c.x(j), y1 = c.y(j);
+    const double cr = x0 * y1 - x1 * y0;
+    A += cr;
+    sx += (x0 + x1) * cr;
+    sy += (y0 + y1) * cr;
+    sxx += (x0 * x0 + x0 * x1 + x1 * x1) * cr;
+    syy += (y0 * y0 + y0 * y1 + y1 * y1) * cr;
+    sxy += (x0 * y1 + 2 * x0 * y0 + 2 * x1 * y1 + x1 * y0) * cr;
+  }
+  A *= 0.5; // signed; the ratios below do not depend on the orientation
+  xg = sx / (6 * A);
+  yg = sy / (6 * A);
+  n20 = sxx / (12 * A) - xg * xg;
+  n02 = syy / (12 * A) - yg * yg;
+  n11 = sxy / (24 * A) - xg * yg;
+  a = std::fabs(A);
+}
+
+void drawContour(const vpMorphContour &normalized, const vpCameraParameters &cam, std::vector<vpImagePoint> &ips)
+{
+  const vpMorphContour px = normalized.toPixels(cam);
+  ips = px.points();
+}
+} // namespace
+
+vpFeatureMorph::vpFeatureMorph() : vpBasicFeature() { init(); }
+
+void vpFeatureMorph::init()
+{
+  dim_s = 4;
+  nbParameters = 1;
+  s.resize(dim_s);
+  s = 0.0;
+  if (flags == NULL)
+    flags = new bool[nbParameters];
+  flags[0] = false;
+  m_contour = vpMorphContour();
+  m_Z = 1.0;
+  m_n20 = m_n02 = m_n11 = 0.0;
+  m_tracker.reset();
+  m_fit = vpMorphRigidTransform();
+}
+
+void vpFeatureMorph::buildFrom(const vpMorphContour &contour, const vpCameraParameters &cam, double Z)
+{
+  if (contour.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpFeatureMorph::buildFrom: empty contour");
+  m_cam = cam;
+  buildFrom(contour.units() == vpMorphContour::PIXEL ? contour.toNormalized(cam) : contour, Z);
+}
+
+void vpFeatureMorph::buildFrom(const vpMorphContour &normalizedContour, double Z)
+{
+  if (normalizedContour.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpFeatureMorph::buildFrom: empty contour");
+  if (normalizedContour.units() != vpMorphContour::NORMALIZED)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpFeatureMorph::buildFrom: a pixel contour needs the camera parameters");
+  if (!std::isfinite(Z) || Z <= 0.0) {
+    std::ostringstream os;
+    os << "vpFeatureMorph::buildFrom: the depth Z must be finite and > 0, got " << Z;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  m_contour = normalizedContour;
+  m_Z = Z;
+  double a, xg, yg;
+  regionMoments(m_contour, a, xg, yg, m_n20, m_n02, m_n11);
+  s[0] = xg;
+  s[1] = yg;
+  s[3] = 0.5 * std::log(a);
+  flags[0] = true;
+}
+
+void vpFeatureMorph::checkBuilt(const char *caller) const
+{
+  if (m_contour.empty()) {
+    std::ostringstream os;
+    os << "vpFeatureMorph::" << caller
+       << ": the feature has no contour; call buildFrom() first (and use vpServo::addFeature(s, s_star) with a "
+          "built s_star)";
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+}
+
+vpMatrix vpFeatureMorph::interaction(unsigned int select)
+{
+  checkBuilt("interaction");
+  const double xg = s[0], yg = s[1], iZ = 1.0 / m_Z;
+  vpMatrix L(0, 6);
+  if (select & selectXg()) {
+    vpMatrix r(1, 6);
+    r[0][0] = -iZ;
+    r[0][1] = 0;
+    r[0][2] = xg * iZ;
+    r[0][3] = xg * yg + 4 * m_n11;
+    r[0][4] = -(1 + xg * xg + 4 * m_n20);
+    r[0][5] = yg;
+    L = vpMatrix::stack(L, r);
+  }
+  if (select & selectYg()) {
+    vpMatrix r(1, 6);
+    r[0][0] = 0;
+    r[0][1] = -iZ;
+    r[0][2] = yg * iZ;
+    r[0][3] = 1 + yg * yg + 4 * m_n02;
+    r[0][4] = -xg * yg - 4 * m_n11;
+    r[0][5] = -xg;
+    L = vpMatrix::stack(L, r);
+  }
+  if (select & selectTheta()) {
+    // Weighted mean angular velocity of the vertices about their weighted mean (weights: half adjacent edges).
+    const std::size_t n = m_contour.size();
+    std::vector<double> w(n);
+    double W = 0, cx = 0, cy = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      w[i] = 0.5 * (m_contour.edgeLength(i) + m_contour.edgeLength((i + 1) % n));
+      W += w[i];
+      cx += w[i] * m_contour.x(i);
+      cy += w[i] * m_contour.y(i);
+    }
+    cx /= W;
+    cy /= W;
+    vpMatrix r(1, 6);
+    double N = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = m_contour.x(i), y = m_contour.y(i), ax = x - cx, ay = y - cy;
+      const double Lx[6] = {-iZ, 0, x * iZ, x * y, -(1 + x * x), y};
+      const double Ly[6] = {0, -iZ, y * iZ, 1 + y * y, -x * y, -x};
+      for (unsigned int k = 0; k < 6; ++k)
+        r[0][k] += w[i] * (ax * Ly[k] - ay * Lx[k]);
+      N += w[i] * (ax * ax + ay * ay);
+    }
+    r /= N;
+    L = vpMatrix::stack(L, r);
+  }
+  if (select & selectScale()) {
+    vpMatrix r(1, 6);
+    r[0][2] = iZ;
+    r[0][3] = 1.5 * yg;
+    r[0][4] = -1.5 * xg;
+    L = vpMatrix::stack(L, r);
+  }
+  return L;
+}
+
+vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int select)
+{
+  const vpFeatureMorph *sd = dynamic_cast<const vpFeatureMorph *>(&s_star);
+  if (sd == nullptr)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpFeatureMorph::error: the desired feature must be a vpFeatureMorph");
+  checkBuilt("error");
+  if (sd->m_contour.empty())
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpFeatureMorph::error: the desired feature has no contour; call its buildFrom() "
+                           "(vpServo::addFeature(s) alone gives an empty desired feature)");
+  const vpMorphCorrespondence &corr = m_tracker.update(m_contour, sd->m_contour);
+  m_fit = vpMorphRigidTransform::fitLeastSquares(m_contour, sd->m_contour, corr, true, vpMorphRigidTransform::NO_ROBUST);
+  s[2] = -m_fit.theta();
+  vpColVector e(0);
+  const double full[4] = {s[0] - sd->s[0], s[1] - sd->s[1], s[2], s[3] - sd->s[3]};
+  for (unsigned int k = 0; k < 4; ++k)
+    if (select & FEATURE_LINE[k])
+      e.stack(full[k]);
+  return e;
+}
+
+void vpFeatureMorph::display(const vpCameraParameters &cam, const vpImage<unsigned char> &I, const vpColor &color,
+                             unsigned int thickness) const
+{
+  if (m_contour.empty())
+    return;
+  std::vector<vpImagePoint> ips;
+  drawContour(m_contour, cam, ips);
+  vpDisplay::displayPolygon(I, ips, color, thickness);
+}
+
+void vpFeatureMorph::display(const vpCameraParameters &cam, const vpImage<vpRGBa> &I, const vpColor &color,
+                             unsigned int thickness) const
+{
+  if (m_contour.empty())
+    return;
+  std::vector<vpImagePoint> ips;
+  drawContour(m_contour, cam, ips);
+  vpDisplay::displayPolygon(I, ips, color, thickness);
+}
+
+vpFeatureMorph *vpFeatureMorph::duplicate() const { return new vpFeatureMorph(*this); }
+
+void vpFeatureMorph::print(unsigned int select) const { print(std::cout, select); }
+
+void vpFeatureMorph::print(std::ostream &os, unsigned int select) const
+{
+  os << "vpFeatureMorph:";
+  const char *names[4] = {"xg", "yg", "theta", "sigma"};
+  for (unsigned int k = 0; k < 4; ++k)
+    if (select & FEATURE_LINE[k])
+      os << " " << names[k] << "=" << s[k];
+  os << " Z=" << m_Z << " vertices=" << m_contour.size() << std::endl;
+}
