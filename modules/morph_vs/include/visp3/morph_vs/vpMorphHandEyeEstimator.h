@@ -1,0 +1,74 @@
+/*!
+  \file vpMorphHandEyeEstimator.h
+  \brief Online estimate of the hand-eye transform eMc from commanded and observed moves (the paper's calibration).
+*/
+#ifndef VP_MORPH_HAND_EYE_ESTIMATOR_H
+#define VP_MORPH_HAND_EYE_ESTIMATOR_H
+
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpMatrix.h>
+
+/*!
+  \class vpMorphHandEyeEstimator
+  \ingroup group_morph_vs
+  \brief Updates an estimate of eMc, and of the scale of the image projection, from each pair
+  (commanded end-effector move eMe', camera move cMc' observed in the image), with averaging.
+
+  <b>Model.</b> The true hand-eye transform is written eMc = eMc0 * Y, with eMc0 the initial estimate and Y the
+  correction. If the robot executes eMe', the camera moves by cMc' = eMc^-1 eMe' eMc, so with
+  A = eMc0^-1 eMe' eMc0 (the commanded move as the initial estimate sees it) and B = cMc' (observed):
+  A Y = Y B, the classical hand-eye equation.
+
+  <b>What is observable.</b> The paper's task moves the camera parallel to a planar object (translations and
+  rotations about the optical axis) and observes a 2-D similarity of the image. Its moves only see the planar
+  part of Y: the rotation psi about the optical axis and the in-plane offset (t1, t2). Tilt and offset along
+  the axis are unobservable from such moves and are kept from eMc0. The image translation is also off by the
+  error of the intrinsics (px/Z, py/Z): the observed translation is the true one divided by a scale k.
+
+  <b>Estimator.</b> With the planar parts of A (angle phi, translation ta) and B (translation tb), A Y = Y B gives
+  \f[ (R(\phi) - I)\, t - k R(\psi)\, t_b = -t_a, \f]
+  two equations that are linear in \f$u = (t_1, t_2, k\cos\psi, k\sin\psi)\f$. Each move adds them to normal
+  equations with exponential forgetting (factor forgetting(), older moves count less: the averaging) and a
+  ridge prior towards Y = I, k = 1 (weight priorWeight(), so the estimate is defined before the moves
+  observe it). Then \f$\psi = \mathrm{atan2}(u_4, u_3)\f$, \f$k = |(u_3, u_4)|\f$ and eMc = eMc0 * Y(psi, t1, t2).
+  Rotations give t, translations give psi and k: a morph sequence (rigid frames then deformation) has both.
+*/
+class vpMorphHandEyeEstimator
+{
+public:
+  explicit vpMorphHandEyeEstimator(const vpHomogeneousMatrix &eMc0 = vpHomogeneousMatrix());
+
+  //! Restarts from \e eMc0 (forgets all moves).
+  void reset(const vpHomogeneousMatrix &eMc0);
+  /*!
+    Adds one move: eMe' commanded (executed) in the end-effector frame, cMc' observed from the image with the
+    current projection estimate (translation before the scale correction).
+  */
+  void addMove(const vpHomogeneousMatrix &eMe, const vpHomogeneousMatrix &cMc);
+
+  //! Current estimate of eMc.
+  vpHomogeneousMatrix get_eMc() const { return m_eMc; }
+  vpHomogeneousMatrix get_eMc0() const { return m_eMc0; }
+  //! Estimated scale k: true camera translation in the image plane = k * observed one (1 if intrinsics are right).
+  double translationScale() const { return m_k; }
+  unsigned int moveCount() const { return m_moves; }
+
+  double forgetting() const { return m_forget; }
+  //! Forgetting factor in (0, 1] applied to the past moves at each new one (default 0.95).
+  void setForgetting(double f);
+  double priorWeight() const { return m_prior; }
+  //! Ridge weight towards the initial estimate, in m^2 (default 1e-6: one 1 mm move outweighs it).
+  void setPriorWeight(double w);
+
+private:
+  void solve();
+
+  vpHomogeneousMatrix m_eMc0, m_eMc;
+  vpMatrix m_M;     // 4x4 data normal matrix
+  vpColVector m_r;  // data right-hand side
+  double m_forget = 0.95, m_prior = 1e-6, m_k = 1.0;
+  unsigned int m_moves = 0;
+};
+
+#endif

@@ -1,0 +1,206 @@
+/*!
+  \file vpServoMorph.h
+  \brief The morph-goal servo task: servo through the virtual contours of a morph, with online hand-eye estimation.
+*/
+#ifndef VP_SERVO_MORPH_H
+#define VP_SERVO_MORPH_H
+
+#include <cstddef>
+#include <vector>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
+#include <visp3/morph/vpMorphTemplate.h>
+#include <visp3/morph_vs/vpFeatureMorph.h>
+#include <visp3/morph_vs/vpMorphCorrespondenceTracker.h>
+#include <visp3/morph_vs/vpMorphHandEyeEstimator.h>
+#include <visp3/vs/vpServo.h>
+
+/*!
+  \class vpServoMorph
+  \ingroup group_morph_vs
+  \brief The paper's controller (section 3): the contours of the morph from the current view to the target are
+  the successive goals (sub-goals) of an eye-in-hand robot, and the hand-eye transform is estimated on line.
+
+  <b>Sequence.</b> At the first call of computeControlLaw() (and after restart()), vpMorph builds the morph from
+  the current contour to the target (rigid rectification, then deformation) and takes its sequence(n) as the
+  sub-goals, n = subGoalCount() (0: the target only). A sub-goal is reached when the residual similarity from
+  the current contour to it is below subGoalThresholds() (the paper's 0.10 rad and 5 px); the last one (the
+  target) needs the finer finalThresholds(), then the status is CONVERGED and the velocity zero.
+
+  <b>Control law (Eq. 5-11, HOMOGENEOUS_TRANSFORMS).</b> The correspondence current -> sub-goal (tracked from
+  the previous iteration, vpMorphCorrespondenceTracker) gives the image-plane similarity (angle theta about the
+  current centroid c, translation t, scale s: robust least squares, normalised coordinates with the estimated
+  intrinsics). Through the image projection of a plane parallel to the image at the current depth Z (estimated
+  from the area: \f$Z = Z^* \sqrt{a^{*} / a}\f$), the camera displacement that produces it is
+  \f[ {}^cM_{c'} = \left[R_z(-\theta),\ \left(k Z (c - R(-\theta)(c + t)/s),\ Z (1 - 1/s)\right)\right] \f]
+  (the image of a static object moves opposite to the camera; k is the estimated projection scale, see
+  vpMorphHandEyeEstimator); Eq. 11 conjugates it through the hand-eye transform:
+  \f${}^eM_{e'} = {}^eM_c\, {}^cM_{c'}\, {}^eM_c^{-1}\f$. The output is the velocity of a fraction gain() of that
+  step over the sampling time: \f$v_e = \mathrm{gain} \cdot \log({}^eM_{e'}) / \Delta t\f$ (vpExponentialMap),
+  in the end-effector frame; cameraVelocity() gives it in the (estimated) camera frame.
+
+  <b>Stock law (STOCK_VPSERVO).</b> Alternatively the same sub-goals are servoed by a stock vpServo
+  (EYEINHAND_CAMERA, current L, tilt velocities masked: the task is planar) over vpFeatureMorph, with
+  lambda = gain / dt, and the camera velocity is mapped to the end effector with the estimated eMc.
+
+  <b>Online calibration.</b> Call computeControlLaw() once per sampling period, after the robot executed the
+  previous velocity for dt. The image motion observed between two calls is \f$T_{now}^{-1} T_{prev}\f$ (both fits
+  are to the same sub-goal, so no extra correspondence is needed); it gives the observed camera move, and with
+  the commanded end-effector move it updates vpMorphHandEyeEstimator (see there: planar hand-eye part and
+  projection scale, least squares with forgetting).
+
+  <b>Safety.</b> The velocity is zero, never NaN, and status() says why when the target is lost (empty
+  contour), the contour degenerates (area below minArea(), non-finite values, a failed morph), or the
+  correspondence is unreliable: a distance jump (work above jumpFactor() * previous work + workFloor() to the
+  same sub-goal) or a low margin after a full search (below minMargin(): a symmetric shape, ambiguous rotation).
+
+  Not copyable (it owns a vpServo that points to its own features).
+*/
+class vpServoMorph
+{
+public:
+  //! Outcome of the last computeControlLaw().
+  enum Status {
+    NOT_STARTED,               //!< No iteration yet.
+    MOVING,                    //!< Moving towards the current sub-goal.
+    SUBGOAL_REACHED,           //!< A sub-goal was reached at this iteration; moving towards the next one.
+    CONVERGED,                 //!< The final goal is reached within finalThresholds(); zero velocity.
+    TARGET_LOST,               //!< Empty contour given; zero velocity.
+    DEGENERATE_CONTOUR,        //!< Contour too small, non-finite, or unusable by the morph; zero velocity.
+    UNRELIABLE_CORRESPONDENCE  //!< Distance jump or low margin; zero velocity.
+  };
+  //! How the sub-goal error becomes a velocity.
+  enum ControlLaw {
+    HOMOGENEOUS_TRANSFORMS, //!< The paper's Eq. 5-11 (default).
+    STOCK_VPSERVO           //!< A stock vpServo over vpFeatureMorph.
+  };
+  //! One iteration, for plots (Fig. 2 of the paper: residual per move).
+  struct Iteration
+  {
+    unsigned int iteration = 0;
+    std::size_t subGoal = 0;
+    Status status = NOT_STARTED;
+    double rotationResidual = 0;    //!< |theta| to the sub-goal (rad)
+    double translationResidual = 0; //!< |t| to the sub-goal (px)
+    double scaleResidual = 0;       //!< |s - 1| times the contour's RMS radius (px)
+    double work = 0;                //!< work of the correspondence to the sub-goal
+    bool fullMatch = false;         //!< the correspondence came from a full search
+    vpHomogeneousMatrix eMc;        //!< hand-eye estimate after this iteration
+    double translationScale = 1;    //!< projection scale estimate after this iteration
+    vpColVector ve;                 //!< commanded end-effector velocity
+  };
+
+  vpServoMorph();
+  vpServoMorph(const vpServoMorph &) = delete;
+  vpServoMorph &operator=(const vpServoMorph &) = delete;
+
+  //! Intrinsics (an estimate: they may be off, see the class description).
+  void setCameraParameters(const vpCameraParameters &cam) { m_cam = cam; }
+  const vpCameraParameters &getCameraParameters() const { return m_cam; }
+  //! Initial hand-eye estimate; restarts the estimator.
+  void set_eMc(const vpHomogeneousMatrix &eMc) { m_estimator.reset(eMc); }
+  //! Current hand-eye estimate.
+  vpHomogeneousMatrix get_eMc() const { return m_estimator.get_eMc(); }
+  const vpMorphHandEyeEstimator &handEyeEstimator() const { return m_estimator; }
+  vpMorphHandEyeEstimator &handEyeEstimator() { return m_estimator; }
+  void setOnlineCalibration(bool on) { m_online = on; }
+  bool onlineCalibration() const { return m_online; }
+
+  /*!
+    The goal: the target contour in pixels, seen from the desired pose at depth Zd (object plane parallel to the
+    image). Restarts the sequence.
+    \throw vpMorphException::badParameterError on an empty or normalised contour, or Zd not finite and > 0.
+  */
+  void setTarget(const vpMorphContour &target, double Zd);
+  //! The goal from a template (its contour, and the depth of its cdMo).
+  void setTarget(const vpMorphTemplate &t);
+  //! Number of sub-goals (0: the target only). Restarts the sequence.
+  void setSubGoalCount(std::size_t n);
+  std::size_t subGoalCountParameter() const { return m_nSub; }
+  void setSubGoalThresholds(double rotationRad, double translationPx);
+  void setFinalThresholds(double rotationRad, double translationPx);
+  //! Fraction of the step commanded per sampling period, in (0, 1] (default 0.5).
+  void setGain(double gain);
+  double gain() const { return m_gain; }
+  //! Sampling period in seconds (> 0, default 0.1).
+  void setSamplingTime(double dt);
+  double samplingTime() const { return m_dt; }
+  void setControlLaw(ControlLaw law);
+  ControlLaw controlLaw() const { return m_law; }
+  void setJumpFactor(double f);
+  double jumpFactor() const { return m_jumpFactor; }
+  void setWorkFloor(double w);
+  double workFloor() const { return m_workFloor; }
+  void setMinMargin(double m);
+  double minMargin() const { return m_minMargin; }
+  void setMinArea(double px2);
+  double minArea() const { return m_minArea; }
+  //! Forgets the sequence and the history: the next call morphs the then current contour anew.
+  void restart();
+
+  /*!
+    One iteration: returns the end-effector velocity (6, ViSP order v, w) to apply during samplingTime(), zero
+    on failure (see status()). An empty contour means the target is lost.
+    \throw vpMorphException::badParameterError if no target was set or the contour is not in pixels.
+  */
+  vpColVector computeControlLaw(const vpMorphContour &current);
+
+  Status status() const { return m_status; }
+  static const char *statusName(Status s);
+  bool converged() const { return m_status == CONVERGED; }
+  std::size_t subGoalIndex() const { return m_k; }
+  const std::vector<vpMorphContour> &subGoals() const { return m_subGoals; }
+  double rotationResidual() const { return m_rotRes; }
+  double translationResidual() const { return m_transRes; }
+  double scaleResidual() const { return m_scaleRes; }
+  //! Last commanded velocity in the end-effector frame.
+  const vpColVector &endEffectorVelocity() const { return m_ve; }
+  //! Last commanded velocity in the estimated camera frame.
+  const vpColVector &cameraVelocity() const { return m_vc; }
+  const std::vector<Iteration> &history() const { return m_history; }
+  const vpMorphCorrespondenceTracker &tracker() const { return m_tracker; }
+
+private:
+  void start(const vpMorphContour &current);
+  vpColVector stop(Status s);
+  vpMorphRigidTransform fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx, double Z);
+  vpHomogeneousMatrix cameraDisplacement(const vpMorphRigidTransform &T, double Z, double k) const;
+  void residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx);
+  void record();
+
+  vpCameraParameters m_cam;
+  vpMorphContour m_target;
+  double m_Zd = 0.5, m_targetArea = 0;
+  std::size_t m_nSub = 10;
+  double m_rotThr = 0.10, m_pxThr = 5.0, m_rotFine = 0.002, m_pxFine = 0.2;
+  double m_gain = 0.5, m_dt = 0.1;
+  ControlLaw m_law = HOMOGENEOUS_TRANSFORMS;
+  double m_jumpFactor = 2.0, m_workFloor = 0.05, m_minMargin = 0.02, m_minArea = 25.0;
+  bool m_online = true;
+
+  vpMorphHandEyeEstimator m_estimator;
+  vpMorphCorrespondenceTracker m_tracker;
+  vpFeatureMorph m_s, m_sd;
+  vpServo m_task;
+
+  bool m_started = false;
+  std::vector<vpMorphContour> m_subGoals;
+  std::size_t m_k = 0;
+  Status m_status = NOT_STARTED;
+  unsigned int m_iter = 0;
+  double m_rotRes = 0, m_transRes = 0, m_scaleRes = 0, m_work = 0;
+  bool m_fullMatch = false;
+  // For the distance-jump test and the calibration: the previous iteration to the same sub-goal.
+  bool m_haveWork = false, m_haveMove = false;
+  double m_prevWork = 0, m_prevZ = 0, m_margin = 1;
+  vpMorphRigidTransform m_prevT;
+  vpHomogeneousMatrix m_prevCmd; // eMe' commanded at the previous iteration
+  vpColVector m_ve, m_vc;
+  std::vector<Iteration> m_history;
+};
+
+#endif

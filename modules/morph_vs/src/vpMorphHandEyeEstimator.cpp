@@ -1,0 +1,81 @@
+#include <visp3/morph_vs/vpMorphHandEyeEstimator.h>
+
+#include <cmath>
+#include <sstream>
+
+#include <visp3/morph/vpMorphException.h>
+
+vpMorphHandEyeEstimator::vpMorphHandEyeEstimator(const vpHomogeneousMatrix &eMc0) { reset(eMc0); }
+
+void vpMorphHandEyeEstimator::reset(const vpHomogeneousMatrix &eMc0)
+{
+  m_eMc0 = eMc0;
+  m_eMc = eMc0;
+  m_M.resize(4, 4, true);
+  m_r.resize(4, true);
+  m_k = 1.0;
+  m_moves = 0;
+}
+
+void vpMorphHandEyeEstimator::setForgetting(double f)
+{
+  if (!std::isfinite(f) || f <= 0.0 || f > 1.0) {
+    std::ostringstream os;
+    os << "vpMorphHandEyeEstimator::setForgetting: the factor must be in (0, 1], got " << f;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  m_forget = f;
+}
+
+void vpMorphHandEyeEstimator::setPriorWeight(double w)
+{
+  if (!std::isfinite(w) || w <= 0.0) {
+    std::ostringstream os;
+    os << "vpMorphHandEyeEstimator::setPriorWeight: the weight must be finite and > 0, got " << w;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  m_prior = w;
+}
+
+void vpMorphHandEyeEstimator::addMove(const vpHomogeneousMatrix &eMe, const vpHomogeneousMatrix &cMc)
+{
+  const vpHomogeneousMatrix A = m_eMc0.inverse() * eMe * m_eMc0;
+  const double phi = std::atan2(A[1][0], A[0][0]);
+  const double tax = A[0][3], tay = A[1][3], tbx = cMc[0][3], tby = cMc[1][3];
+  if (!std::isfinite(phi) || !std::isfinite(tax) || !std::isfinite(tay) || !std::isfinite(tbx) ||
+      !std::isfinite(tby))
+    return; // a failed observation adds nothing
+  const double c = std::cos(phi), s = std::sin(phi);
+  vpMatrix J(2, 4);
+  J[0][0] = c - 1;
+  J[0][1] = -s;
+  J[0][2] = -tbx;
+  J[0][3] = tby;
+  J[1][0] = s;
+  J[1][1] = c - 1;
+  J[1][2] = -tby;
+  J[1][3] = -tbx;
+  vpColVector b(2);
+  b[0] = -tax;
+  b[1] = -tay;
+  m_M = m_M * m_forget + J.t() * J;
+  m_r = m_r * m_forget + J.t() * b;
+  ++m_moves;
+  solve();
+}
+
+void vpMorphHandEyeEstimator::solve()
+{
+  vpMatrix M = m_M;
+  vpColVector r = m_r;
+  for (unsigned int i = 0; i < 4; ++i)
+    M[i][i] += m_prior;
+  r[2] += m_prior; // prior: Y = I, k = 1
+  const vpColVector u = M.inverseByLU() * r;
+  const double k = std::hypot(u[2], u[3]);
+  if (!std::isfinite(k) || k < 1e-3 || !std::isfinite(u[0]) || !std::isfinite(u[1]))
+    return;
+  const double psi = std::atan2(u[3], u[2]);
+  m_k = k;
+  m_eMc = m_eMc0 * vpHomogeneousMatrix(u[0], u[1], 0, 0, 0, psi);
+}

@@ -1,0 +1,331 @@
+#include <visp3/morph_vs/vpServoMorph.h>
+
+#include <cmath>
+#include <sstream>
+
+#include <visp3/core/vpExponentialMap.h>
+#include <visp3/core/vpVelocityTwistMatrix.h>
+#include <visp3/morph/vpMorph.h>
+#include <visp3/morph/vpMorphException.h>
+
+namespace
+{
+void checkPositive(double v, const char *what)
+{
+  if (!std::isfinite(v) || v <= 0.0) {
+    std::ostringstream os;
+    os << "vpServoMorph: " << what << " must be finite and > 0, got " << v;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+}
+
+bool allFinite(const vpColVector &v)
+{
+  for (unsigned int i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]))
+      return false;
+  return true;
+}
+
+double rmsRadius(const vpMorphContour &c)
+{
+  double cx, cy, s = 0;
+  c.centroid(cx, cy);
+  for (std::size_t k = 0; k < c.size(); ++k)
+    s += (c.x(k) - cx) * (c.x(k) - cx) + (c.y(k) - cy) * (c.y(k) - cy);
+  return std::sqrt(s / c.size());
+}
+} // namespace
+
+vpServoMorph::vpServoMorph() : m_cam(800, 800, 320, 240), m_ve(6, 0.0), m_vc(6, 0.0)
+{
+  m_task.setServo(vpServo::EYEINHAND_CAMERA);
+  m_task.setInteractionMatrixType(vpServo::CURRENT);
+  m_task.addFeature(m_s, m_sd);
+  vpColVector dof(6, 1.0);
+  dof[3] = dof[4] = 0.0; // planar task: no tilt
+  m_task.setCameraDoF(dof);
+}
+
+const char *vpServoMorph::statusName(Status s)
+{
+  switch (s) {
+  case NOT_STARTED:
+    return "not started";
+  case MOVING:
+    return "moving";
+  case SUBGOAL_REACHED:
+    return "sub-goal reached";
+  case CONVERGED:
+    return "converged";
+  case TARGET_LOST:
+    return "target lost";
+  case DEGENERATE_CONTOUR:
+    return "degenerate contour";
+  case UNRELIABLE_CORRESPONDENCE:
+    return "unreliable correspondence";
+  }
+  return "?";
+}
+
+void vpServoMorph::setTarget(const vpMorphContour &target, double Zd)
+{
+  if (target.empty() || target.units() != vpMorphContour::PIXEL)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpServoMorph::setTarget: the target must be a non-empty contour in pixels");
+  checkPositive(Zd, "the desired depth Zd");
+  m_target = target;
+  m_Zd = Zd;
+  m_targetArea = target.area();
+  restart();
+}
+
+void vpServoMorph::setTarget(const vpMorphTemplate &t)
+{
+  const double Zd = t.cdMo()[2][3];
+  if (!(Zd > 0.0))
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpServoMorph::setTarget: the template has no desired pose (cdMo depth <= 0); set it "
+                           "with vpMorphTemplate::setPlanarPose() or use setTarget(contour, Zd)");
+  setTarget(t.contour(), Zd);
+}
+
+void vpServoMorph::setSubGoalCount(std::size_t n)
+{
+  m_nSub = n;
+  restart();
+}
+
+void vpServoMorph::setSubGoalThresholds(double rotationRad, double translationPx)
+{
+  checkPositive(rotationRad, "the sub-goal rotation threshold");
+  checkPositive(translationPx, "the sub-goal translation threshold");
+  m_rotThr = rotationRad;
+  m_pxThr = translationPx;
+}
+
+void vpServoMorph::setFinalThresholds(double rotationRad, double translationPx)
+{
+  checkPositive(rotationRad, "the final rotation threshold");
+  checkPositive(translationPx, "the final translation threshold");
+  m_rotFine = rotationRad;
+  m_pxFine = translationPx;
+}
+
+void vpServoMorph::setGain(double gain)
+{
+  checkPositive(gain, "the gain");
+  if (gain > 1.0)
+    throw vpMorphException(vpMorphException::badParameterError, "vpServoMorph::setGain: the gain must be <= 1");
+  m_gain = gain;
+}
+
+void vpServoMorph::setSamplingTime(double dt)
+{
+  checkPositive(dt, "the sampling time");
+  m_dt = dt;
+}
+
+void vpServoMorph::setControlLaw(ControlLaw law)
+{
+  m_law = law;
+  restart();
+}
+
+void vpServoMorph::setJumpFactor(double f)
+{
+  checkPositive(f, "the jump factor");
+  m_jumpFactor = f;
+}
+
+void vpServoMorph::setWorkFloor(double w)
+{
+  if (!std::isfinite(w) || w < 0)
+    throw vpMorphException(vpMorphException::badParameterError, "vpServoMorph::setWorkFloor: must be finite, >= 0");
+  m_workFloor = w;
+}
+
+void vpServoMorph::setMinMargin(double m)
+{
+  if (!std::isfinite(m) || m < 0 || m > 1)
+    throw vpMorphException(vpMorphException::badParameterError, "vpServoMorph::setMinMargin: must be in [0, 1]");
+  m_minMargin = m;
+}
+
+void vpServoMorph::setMinArea(double px2)
+{
+  checkPositive(px2, "the minimum area");
+  m_minArea = px2;
+}
+
+void vpServoMorph::restart()
+{
+  m_started = false;
+  m_subGoals.clear();
+  m_k = 0;
+  m_status = NOT_STARTED;
+  m_iter = 0;
+  m_haveMove = m_haveWork = false;
+  m_tracker.reset();
+  m_history.clear();
+  m_ve = vpColVector(6, 0.0);
+  m_vc = vpColVector(6, 0.0);
+}
+
+void vpServoMorph::start(const vpMorphContour &current)
+{
+  if (m_nSub == 0) {
+    m_subGoals = {m_target};
+  } else {
+    const vpMorph morph(current, m_target);
+    m_subGoals = morph.sequence(m_nSub);
+  }
+  m_k = 0;
+  m_tracker.reset();
+  m_haveWork = false;
+  m_started = true;
+}
+
+vpColVector vpServoMorph::stop(Status s)
+{
+  m_status = s;
+  m_ve = vpColVector(6, 0.0);
+  m_vc = vpColVector(6, 0.0);
+  m_haveMove = false; // the robot does not move: nothing to observe next time
+  record();
+  return m_ve;
+}
+
+vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx,
+                                                 double Z)
+{
+  const vpMorphContour goalN = m_subGoals[m_k].toNormalized(m_cam);
+  vpMorphRigidTransform T;
+  const vpMorphCorrespondenceTracker *tr = &m_tracker;
+  if (m_law == HOMOGENEOUS_TRANSFORMS) {
+    const vpMorphCorrespondence &corr = m_tracker.update(currentN, goalN);
+    T = vpMorphRigidTransform::fitLeastSquares(currentN, goalN, corr, true);
+  } else {
+    m_sd.buildFrom(goalN, m_Zd * std::sqrt(m_targetArea / m_subGoals[m_k].area()));
+    m_s.buildFrom(currentN, Z);
+    m_s.error(m_sd);
+    T = m_s.lastFit();
+    tr = &m_s.tracker();
+  }
+  m_work = tr->work();
+  m_fullMatch = tr->lastSource() == vpMorphCorrespondenceTracker::FULL;
+  m_margin = tr->margin();
+  residuals(T, currentPx);
+  return T;
+}
+
+void vpServoMorph::residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx)
+{
+  m_rotRes = std::fabs(T.theta());
+  m_transRes = std::hypot(T.tx() * m_cam.get_px(), T.ty() * m_cam.get_py());
+  m_scaleRes = std::fabs(T.scale() - 1.0) * rmsRadius(currentPx);
+}
+
+vpHomogeneousMatrix vpServoMorph::cameraDisplacement(const vpMorphRigidTransform &T, double Z, double k) const
+{
+  // Image similarity x' = s R(theta) (x - c) + c + t of a plane parallel to the image at depth Z
+  // <=> camera move cMc' = [Rz(-theta), (k Z (c - R(-theta)(c + t) / s), Z (1 - 1/s))].
+  const double th = T.theta(), s = T.scale(), ct = std::cos(th), st = std::sin(th);
+  const double qx = T.cx() + T.tx(), qy = T.cy() + T.ty();
+  const double rx = ct * qx + st * qy, ry = -st * qx + ct * qy;
+  const double tx = k * Z * (T.cx() - rx / s), ty = k * Z * (T.cy() - ry / s), tz = Z * (1.0 - 1.0 / s);
+  return vpHomogeneousMatrix(tx, ty, tz, 0, 0, -th);
+}
+
+void vpServoMorph::record()
+{
+  Iteration it;
+  it.iteration = m_iter;
+  it.subGoal = m_k;
+  it.status = m_status;
+  it.rotationResidual = m_rotRes;
+  it.translationResidual = m_transRes;
+  it.scaleResidual = m_scaleRes;
+  it.work = m_work;
+  it.fullMatch = m_fullMatch;
+  it.eMc = m_estimator.get_eMc();
+  it.translationScale = m_estimator.translationScale();
+  it.ve = m_ve;
+  m_history.push_back(it);
+}
+
+vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
+{
+  if (m_target.empty())
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpServoMorph::computeControlLaw: no target; call setTarget() first");
+  ++m_iter;
+  if (current.empty())
+    return stop(TARGET_LOST);
+  if (current.units() != vpMorphContour::PIXEL)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpServoMorph::computeControlLaw: the current contour must be in pixels");
+  const double a = current.area();
+  if (!std::isfinite(a) || a < m_minArea)
+    return stop(DEGENERATE_CONTOUR);
+  try {
+    if (!m_started)
+      start(current);
+    const vpMorphContour currentN = current.toNormalized(m_cam);
+    const double Z = m_Zd * std::sqrt(m_targetArea / a);
+    vpMorphRigidTransform T = fitToSubGoal(currentN, current, Z);
+    if (m_fullMatch && m_margin < m_minMargin)
+      return stop(UNRELIABLE_CORRESPONDENCE);
+    if (m_haveWork && m_work > m_jumpFactor * m_prevWork + m_workFloor)
+      return stop(UNRELIABLE_CORRESPONDENCE);
+
+    // Online calibration: the image motion since the previous move, both fits being to the same sub-goal.
+    if (m_online && m_haveMove) {
+      const vpMorphRigidTransform Tobs = T.inverse() * m_prevT; // previous contour -> current contour
+      m_estimator.addMove(m_prevCmd, cameraDisplacement(Tobs, m_prevZ, 1.0));
+    }
+
+    m_status = MOVING;
+    const std::size_t last = m_subGoals.size() - 1;
+    while (m_k < last && m_rotRes < m_rotThr && m_transRes < m_pxThr && m_scaleRes < m_pxThr) {
+      ++m_k;
+      m_haveWork = false;
+      m_status = SUBGOAL_REACHED;
+      T = fitToSubGoal(currentN, current, Z);
+    }
+    if (m_k == last && m_rotRes < m_rotFine && m_transRes < m_pxFine && m_scaleRes < m_pxFine) {
+      m_prevWork = m_work;
+      m_haveWork = true;
+      return stop(CONVERGED);
+    }
+
+    const vpHomogeneousMatrix eMc = m_estimator.get_eMc();
+    const double k = m_estimator.translationScale();
+    vpColVector ve;
+    if (m_law == HOMOGENEOUS_TRANSFORMS) {
+      const vpHomogeneousMatrix eMe = eMc * cameraDisplacement(T, Z, k) * eMc.inverse(); // Eq. 11
+      ve = m_gain * vpExponentialMap::inverse(eMe, m_dt);
+    } else {
+      m_task.setLambda(m_gain / m_dt);
+      vpColVector vc = m_task.computeControlLaw();
+      vc[0] *= k;
+      vc[1] *= k;
+      ve = vpVelocityTwistMatrix(eMc) * vc;
+    }
+    if (!allFinite(ve))
+      return stop(DEGENERATE_CONTOUR);
+    m_ve = ve;
+    m_vc = vpVelocityTwistMatrix(eMc.inverse()) * ve;
+    m_prevCmd = vpExponentialMap::direct(ve, m_dt);
+    m_prevT = T;
+    m_prevZ = Z;
+    m_prevWork = m_work;
+    m_haveWork = true;
+    m_haveMove = true;
+    record();
+    return m_ve;
+  } catch (const vpException &) {
+    // A contour the morph cannot use (e.g. it collapsed): stop rather than throw from inside a control loop.
+    return stop(DEGENERATE_CONTOUR);
+  }
+}

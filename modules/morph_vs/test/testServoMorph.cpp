@@ -1,0 +1,287 @@
+// Tests of vpServoMorph on a free-flying camera (vpSimulatorCamera, deterministic) looking at a planar object:
+// convergence through the morph sub-goals from large in-plane rotations, straight paths, online calibration,
+// the stock-vpServo law, safety, and the 4-point IBVS failure that motivates the feature.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+#include <visp3/core/vpVelocityTwistMatrix.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph_vs/vpServoMorph.h>
+#include <visp3/robot/vpSimulatorCamera.h>
+#include <visp3/visual_features/vpFeaturePoint.h>
+#include <visp3/vs/vpServo.h>
+
+#include "testMorphVsScene.h"
+
+using namespace vpMorphVsTest;
+
+namespace
+{
+struct Setup
+{
+  vpHomogeneousMatrix eMcTrue, eMcEstimate;
+  vpCameraParameters camEstimate = camera();
+  std::size_t subGoals = 10;
+  vpServoMorph::ControlLaw law = vpServoMorph::HOMOGENEOUS_TRANSFORMS;
+  bool online = true;
+  int maxIterations = 400;
+};
+
+struct Result
+{
+  bool converged = false;
+  int iterations = 0;
+  double tErr = 0, rDeg = 0;           // final pose error against the simulator's truth
+  double path = 0, straight = 0;       // camera path length and straight-line distance (m)
+  double maxDepth = 0;                 // largest object depth seen (m)
+  double eMcT0 = 0, eMcR0 = 0;         // hand-eye estimate error at the start (m, deg)
+  double eMcT = 0, eMcR = 0;           // and at the end
+  double scale = 1;                    // final projection scale estimate
+  std::size_t lastSubGoal = 0;
+  vpServoMorph::Status status = vpServoMorph::NOT_STARTED;
+};
+
+// Error of a hand-eye estimate: the transform truth^-1 * estimate (translation norm, rotation angle).
+void handEyeError(const vpHomogeneousMatrix &est, const vpHomogeneousMatrix &truth, double &t, double &rDeg)
+{
+  const vpHomogeneousMatrix d = truth.inverse() * est;
+  t = d.getTranslationVector().frobeniusNorm();
+  rDeg = vpMath::deg(vpThetaUVector(d.getRotationMatrix()).getTheta());
+}
+
+Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, const Setup &st)
+{
+  vpServoMorph servo;
+  servo.setCameraParameters(st.camEstimate);
+  servo.set_eMc(st.eMcEstimate);
+  servo.setOnlineCalibration(st.online);
+  servo.setSubGoalCount(st.subGoals);
+  servo.setControlLaw(st.law);
+  servo.setSamplingTime(0.1);
+  servo.setGain(0.5);
+  servo.setTarget(projectPixels(cdMo), depth(cdMo));
+
+  vpSimulatorCamera robot;
+  robot.setSamplingTime(0.1);
+  robot.setMaxTranslationVelocity(10.0);
+  robot.setMaxRotationVelocity(100.0);
+  const vpHomogeneousMatrix wMo;
+  robot.setPosition(wMo * cMo0.inverse());
+  const vpVelocityTwistMatrix cVe(st.eMcTrue.inverse());
+
+  Result r;
+  handEyeError(st.eMcEstimate, st.eMcTrue, r.eMcT0, r.eMcR0);
+  const vpHomogeneousMatrix wMc0 = robot.getPosition(), wMcd = wMo * cdMo.inverse();
+  r.straight = (wMcd.getTranslationVector() - wMc0.getTranslationVector()).frobeniusNorm();
+  vpTranslationVector prev = wMc0.getTranslationVector();
+  for (r.iterations = 0; r.iterations < st.maxIterations; ++r.iterations) {
+    const vpHomogeneousMatrix cMo = robot.getPosition().inverse() * wMo;
+    r.maxDepth = std::max(r.maxDepth, depth(cMo));
+    const vpColVector ve = servo.computeControlLaw(projectPixels(cMo));
+    if (servo.converged()) {
+      r.converged = true;
+      break;
+    }
+    if (servo.status() != vpServoMorph::MOVING && servo.status() != vpServoMorph::SUBGOAL_REACHED)
+      break;
+    robot.setVelocity(vpRobot::CAMERA_FRAME, cVe * ve);
+    const vpTranslationVector t = robot.getPosition().getTranslationVector();
+    r.path += (t - prev).frobeniusNorm();
+    prev = t;
+  }
+  r.status = servo.status();
+  r.lastSubGoal = servo.subGoalIndex();
+  poseError(robot.getPosition().inverse() * wMo, cdMo, r.tErr, r.rDeg);
+  handEyeError(servo.get_eMc(), st.eMcTrue, r.eMcT, r.eMcR);
+  r.scale = servo.handEyeEstimator().translationScale();
+  return r;
+}
+
+const vpHomogeneousMatrix cdMo = planarPose(20, 0.01, 0.0);
+const vpHomogeneousMatrix eMcTrue(0.01, 0.05, 0.12, 0, 0, vpMath::rad(90));
+} // namespace
+
+TEST_CASE("vpServoMorph converges from in-plane rotations 0, 90, 170, 180 deg with translations up to 80 mm",
+          "[servo]")
+{
+  const double starts[][3] = {{0, 0.08, 0.0}, {90, 0.05, -0.06}, {170, -0.06, 0.05}, {180, 0.0, 0.08},
+                              {-170, 0.04, 0.04}};
+  Setup st;
+  st.eMcTrue = st.eMcEstimate = eMcTrue;
+  for (const auto &s : starts) {
+    const Result r = run(planarPose(20 + s[0], s[1], s[2]), cdMo, st);
+    std::printf("[servo] start %6.1f deg (%4.0f, %4.0f) mm: %s after %d iterations, error %.4f mm %.4f deg, path "
+                "%.1f mm (straight %.1f mm), max depth %.3f m\n",
+                s[0], s[1] * 1000, s[2] * 1000, vpServoMorph::statusName(r.status), r.iterations, r.tErr * 1000,
+                r.rDeg, r.path * 1000, r.straight * 1000, r.maxDepth);
+    INFO("start " << s[0] << " deg: " << vpServoMorph::statusName(r.status) << " after " << r.iterations);
+    CHECK(r.converged);
+    CHECK(r.tErr < 1e-3);
+    CHECK(r.rDeg < 0.5);
+    CHECK(r.lastSubGoal == 9);
+    CHECK(r.maxDepth < 0.5 + 1e-3); // never retreats
+  }
+}
+
+TEST_CASE("vpServoMorph camera path is straight on a pure translation", "[servo]")
+{
+  Setup st;
+  st.eMcTrue = st.eMcEstimate = eMcTrue;
+  const Result r = run(planarPose(20, 0.07, -0.04), cdMo, st);
+  const double ratio = r.path / r.straight;
+  std::printf("[servo] pure translation: path %.2f mm, straight line %.2f mm, ratio %.4f, %d iterations\n",
+              r.path * 1000, r.straight * 1000, ratio, r.iterations);
+  CHECK(r.converged);
+  CHECK(ratio <= 1.1);
+}
+
+TEST_CASE("vpServoMorph online calibration: wrong eMc (15 deg, 30 mm) and intrinsics (20 %) still converge",
+          "[servo][calibration]")
+{
+  Setup st;
+  st.eMcTrue = eMcTrue;
+  // The estimate is off by 15 deg about the optical axis and 30 mm in the image plane.
+  const vpHomogeneousMatrix Yerr(0.024, -0.018, 0, 0, 0, vpMath::rad(15));
+  st.eMcEstimate = eMcTrue * Yerr.inverse();
+  st.camEstimate = vpCameraParameters(960, 960, 320, 240); // focal length 20 % too long
+  const Result r = run(planarPose(20 + 170, 0.06, -0.03), cdMo, st);
+  std::printf("[calibration] online: %s after %d iterations, pose error %.4f mm %.4f deg; eMc error %.1f mm %.2f deg "
+              "-> %.2f mm %.3f deg; projection scale %.4f (true 1.2)\n",
+              vpServoMorph::statusName(r.status), r.iterations, r.tErr * 1000, r.rDeg, r.eMcT0 * 1000, r.eMcR0,
+              r.eMcT * 1000, r.eMcR, r.scale);
+  CHECK(r.converged);
+  CHECK(r.tErr < 1e-3);
+  CHECK(r.rDeg < 0.5);
+  CHECK(r.eMcR < 0.25 * r.eMcR0);
+  CHECK(r.eMcT < 0.25 * r.eMcT0);
+  // True image-plane translation = k * translation seen with the too long focal length: k = 960 / 800.
+  CHECK(r.scale == Approx(960.0 / 800.0).epsilon(0.02));
+
+  st.online = false; // the same start without the estimator, for the record
+  const Result off = run(planarPose(20 + 170, 0.06, -0.03), cdMo, st);
+  std::printf("[calibration] offline (fixed wrong estimate): %s after %d iterations, pose error %.4f mm %.4f deg, "
+              "path %.1f mm vs %.1f mm online\n",
+              vpServoMorph::statusName(off.status), off.iterations, off.tErr * 1000, off.rDeg, off.path * 1000,
+              r.path * 1000);
+}
+
+TEST_CASE("vpServoMorph: Eq. 5-11 law and stock vpServo over vpFeatureMorph compared", "[servo]")
+{
+  Setup st;
+  st.eMcTrue = st.eMcEstimate = eMcTrue;
+  const vpHomogeneousMatrix cMo0 = planarPose(20 + 170, -0.05, 0.05);
+  const Result h = run(cMo0, cdMo, st);
+  st.law = vpServoMorph::STOCK_VPSERVO;
+  const Result s = run(cMo0, cdMo, st);
+  std::printf("[compare] Eq. 5-11: %d iterations, path %.1f mm; stock vpServo: %d iterations, path %.1f mm "
+              "(straight %.1f mm)\n",
+              h.iterations, h.path * 1000, s.iterations, s.path * 1000, h.straight * 1000);
+  CHECK(h.converged);
+  CHECK(s.converged);
+  CHECK(s.tErr < 1e-3);
+  CHECK(s.rDeg < 0.5);
+}
+
+TEST_CASE("vpServoMorph goal only (0 sub-goals)", "[servo]")
+{
+  Setup st;
+  st.eMcTrue = st.eMcEstimate = eMcTrue;
+  st.subGoals = 0;
+  const Result r = run(planarPose(20 + 120, 0.03, 0.02), cdMo, st);
+  CHECK(r.converged);
+  CHECK(r.lastSubGoal == 0);
+}
+
+TEST_CASE("vpServoMorph safety: lost target, degenerate contour, unreliable correspondence", "[servo][safety]")
+{
+  vpServoMorph servo;
+  CHECK_THROWS_AS(servo.computeControlLaw(projectPixels(planarPose(0, 0, 0))), vpMorphException); // no target
+  servo.setTarget(projectPixels(cdMo), depth(cdMo));
+  const vpMorphContour c = projectPixels(planarPose(100, 0.02, 0.01));
+  vpColVector v = servo.computeControlLaw(c);
+  CHECK(servo.status() == vpServoMorph::MOVING);
+  CHECK(v.frobeniusNorm() > 0);
+
+  v = servo.computeControlLaw(vpMorphContour()); // lost
+  CHECK(servo.status() == vpServoMorph::TARGET_LOST);
+  CHECK(v.frobeniusNorm() == 0);
+
+  const vpMorphContour tiny({320, 322, 322, 320}, {240, 240, 242, 242}); // 4 px^2
+  v = servo.computeControlLaw(tiny);
+  CHECK(servo.status() == vpServoMorph::DEGENERATE_CONTOUR);
+  CHECK(v.frobeniusNorm() == 0);
+
+  // Another object suddenly (a long thin bar): the work to the same sub-goal jumps.
+  v = servo.computeControlLaw(c);
+  CHECK(servo.status() == vpServoMorph::MOVING);
+  const vpMorphContour bar({200, 440, 440, 200}, {230, 230, 250, 250});
+  v = servo.computeControlLaw(bar);
+  CHECK(servo.status() == vpServoMorph::UNRELIABLE_CORRESPONDENCE);
+  CHECK(v.frobeniusNorm() == 0);
+  v = servo.computeControlLaw(c); // back to the object: moving again
+  CHECK(servo.status() == vpServoMorph::MOVING);
+
+  // A symmetric object: its rotation is ambiguous (low margin).
+  vpServoMorph sym;
+  const vpMorphContour square({270, 370, 370, 270}, {190, 190, 290, 290});
+  sym.setTarget(square, 0.5);
+  v = sym.computeControlLaw(square.transformed(0.3, 5, 5));
+  CHECK(sym.status() == vpServoMorph::UNRELIABLE_CORRESPONDENCE);
+  CHECK(v.frobeniusNorm() == 0);
+  for (const auto &it : servo.history())
+    for (unsigned int i = 0; i < it.ve.size(); ++i)
+      CHECK(std::isfinite(it.ve[i]));
+}
+
+TEST_CASE("4-point IBVS (current L) from the 180 deg start fails: why the morph feature exists", "[servo][ibvs]")
+{
+  // The four outer corners of the same object, classical IBVS with the current interaction matrix.
+  const std::size_t idx[4] = {0, 1, 5, 8};
+  const vpHomogeneousMatrix cMo0 = planarPose(20 + 180, 0.0, 0.08);
+  const std::vector<vpColVector> P = objectPoints();
+  vpFeaturePoint s[4], sd[4];
+  vpServo task;
+  task.setServo(vpServo::EYEINHAND_CAMERA);
+  task.setInteractionMatrixType(vpServo::CURRENT);
+  task.setLambda(5.0); // lambda * dt = 0.5: the same per-step fraction as vpServoMorph (gain 0.5, dt 0.1)
+  for (int i = 0; i < 4; ++i) {
+    const vpColVector X = cdMo * P[idx[i]];
+    sd[i].buildFrom(X[0] / X[2], X[1] / X[2], X[2]);
+    task.addFeature(s[i], sd[i]);
+  }
+  vpSimulatorCamera robot;
+  robot.setSamplingTime(0.1);
+  robot.setMaxTranslationVelocity(10.0);
+  robot.setMaxRotationVelocity(100.0);
+  const vpHomogeneousMatrix wMo;
+  robot.setPosition(wMo * cMo0.inverse());
+  double maxDepth = 0, err = 1;
+  int it = 0;
+  bool converged = false;
+  for (; it < 400; ++it) {
+    const vpHomogeneousMatrix cMo = robot.getPosition().inverse() * wMo;
+    maxDepth = std::max(maxDepth, depth(cMo));
+    for (int i = 0; i < 4; ++i) {
+      const vpColVector X = cMo * P[idx[i]];
+      s[i].buildFrom(X[0] / X[2], X[1] / X[2], X[2]);
+    }
+    const vpColVector v = task.computeControlLaw();
+    err = task.getError().frobeniusNorm();
+    if (err < 1e-4) {
+      converged = true;
+      break;
+    }
+    robot.setVelocity(vpRobot::CAMERA_FRAME, v);
+  }
+  double tErr, rDeg;
+  poseError(robot.getPosition().inverse() * wMo, cdMo, tErr, rDeg);
+  std::printf("[ibvs] 4 points, current L, 180 deg start: %s after %d iterations, max depth %.3f m (desired 0.5), "
+              "final pose error %.1f mm %.2f deg\n",
+              converged ? "converged" : "not converged", it, maxDepth, tErr * 1000, rDeg);
+  task.kill();
+  // The failure: the camera retreats along the optical axis (the classical 180 deg case), and does not converge.
+  CHECK(maxDepth > 1.0);
+  CHECK(!converged);
+}
