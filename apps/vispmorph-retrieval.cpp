@@ -50,6 +50,7 @@ void usage(std::ostream &os)
         "  --model NAME     paper (64 points, mirrors), multiscale (default) or polygon\n"
         "  --points N       vertices per resampled outline (paper, multiscale)\n"
         "  --kb K           bending stiffness of the work model\n"
+        "  --cs C           collapse penalty of the work model, in (0, 1]\n"
         "  --scales a,b,..  Gaussian widths (fractions of the perimeter) of the multiscale model\n"
         "  --no-mirrors     do not match mirror images\n"
         "  --threads T      threads (default: all cores)\n"
@@ -59,7 +60,7 @@ void usage(std::ostream &os)
 struct Options {
   std::string images, classes, out, model = "multiscale", scales;
   long points = 0, threads = 0, limit = 0;
-  double kb = -1.0;
+  double kb = -1.0, cs = -1.0;
   bool noMirrors = false;
 };
 
@@ -73,7 +74,7 @@ bool parse(int argc, char **argv, Options &o)
     } else if (s == "--no-mirrors") {
       o.noMirrors = true;
     } else if (s == "--images" || s == "--classes" || s == "--out" || s == "--model" || s == "--points" ||
-               s == "--kb" || s == "--threads" || s == "--limit" || s == "--scales") {
+               s == "--kb" || s == "--cs" || s == "--threads" || s == "--limit" || s == "--scales") {
       if (k + 1 >= argc) {
         std::cerr << "vispmorph-retrieval: " << s << " needs a value\n";
         return false;
@@ -90,10 +91,11 @@ bool parse(int argc, char **argv, Options &o)
         o.model = v;
       else if (s == "--scales")
         o.scales = v;
-      else if (s == "--kb") {
-        o.kb = std::strtod(v.c_str(), &end);
-        if (v.empty() || *end != '\0' || !(o.kb >= 0.0)) {
-          std::cerr << "vispmorph-retrieval: --kb needs a number >= 0 (got '" << v << "')\n";
+      else if (s == "--kb" || s == "--cs") {
+        double &x = s == "--kb" ? o.kb : o.cs;
+        x = std::strtod(v.c_str(), &end);
+        if (v.empty() || *end != '\0' || !(x > 0.0)) {
+          std::cerr << "vispmorph-retrieval: " << s << " needs a positive number (got '" << v << "')\n";
           return false;
         }
       } else {
@@ -181,8 +183,9 @@ int main(int argc, char **argv)
     vpMorphShapeDistance dist = vpMorphShapeDistance::fromName(o.model);
     if (o.points > 0)
       dist.setPoints(static_cast<std::size_t>(o.points));
-    if (o.kb >= 0.0)
-      dist.setWorkModel(vpMorphWorkModel(dist.workModel().ks(), o.kb, dist.workModel().cs()));
+    if (o.kb > 0.0 || o.cs > 0.0)
+      dist.setWorkModel(vpMorphWorkModel(dist.workModel().ks(), o.kb > 0.0 ? o.kb : dist.workModel().kb(),
+                                         o.cs > 0.0 ? o.cs : dist.workModel().cs()));
     if (o.noMirrors)
       dist.setMirrors(false);
     if (!o.scales.empty()) {
@@ -330,7 +333,7 @@ int main(int argc, char **argv)
     md << std::fixed << std::setprecision(2) << "| images | model | shapes | bull's-eye (top-40) | ranks 1..10 (sum) | top-1 | matrix time |\n"
        << "|---|---|---|---|---|---|---|\n"
        << "| " << fs::path(o.images).filename().string() << " | " << dist.name() << " (" << dist.points()
-       << " pts, kb " << dist.workModel().kb() << (dist.mirrors() ? ", mirrors" : "") << ") | " << N << " | "
+       << " pts, kb " << dist.workModel().kb() << ", cs " << dist.workModel().cs() << (dist.mirrors() ? ", mirrors" : "") << ") | " << N << " | "
        << bullseye << " % | ";
     for (std::size_t r = 0; r < 10; ++r)
       md << (r ? ", " : "") << rankCounts[r];

@@ -345,3 +345,50 @@ TEST_CASE("recognition: distance models by name, and bad input", "[recognition]"
   CHECK_THROWS_AS(objectDatabase().recognize(vpMorphContour()), vpMorphException);
 }
 
+
+TEST_CASE("recognition: a part turned over is recognised as the mirror image of its template", "[recognition]")
+{
+  const vpMorphDatabase &db = objectDatabase();
+  const std::size_t k = db.find("wrench");
+  REQUIRE(k != vpMorphRecognition::npos);
+  const vpMorphRecognition r = db.recognize(db[k].contour().mirrored().transformed(2.0, 10, 20, 0.7));
+  CHECK(r.index == k);
+  CHECK(r.mirrored);
+  CHECK(r.accepted);
+  // Without mirror images, the turned-over part is no longer the same shape.
+  vpMorphShapeDistance noMirror = db.distance();
+  noMirror.setMirrors(false);
+  CHECK(noMirror.distance(db[k].contour(), db[k].contour().mirrored()) > 10 * r.distance);
+}
+
+TEST_CASE("recognition: nearest neighbours on a few Kimia-99 silhouettes, read in place", "[recognition][datasets]")
+{
+  const std::string dir = std::string(VISPMORPH_DATASETS_DIR) + "/kimia99/";
+  // Three images of each of four classes (classes.csv of the dataset).
+  const char *files[] = {"fish14.png", "fish23.png", "herrings.png", "f15.png",    "f16.png",    "harrier.png",
+                         "tool04.png", "tool07.png", "tool08.png",   "dude0.png",  "dude1.png",  "dude2.png"};
+  std::vector<vpMorphContour> cs;
+  for (const char *f : files) {
+    const cv::Mat m = cv::imread(dir + f, cv::IMREAD_GRAYSCALE);
+    if (m.empty()) {
+      WARN("Kimia-99 image " << dir + f << " not found: dataset test skipped");
+      return;
+    }
+    cs.push_back(extract(m));
+  }
+  for (const char *model : {"paper", "multiscale"}) {
+    const vpMorphShapeDistance d = vpMorphShapeDistance::fromName(model);
+    const std::vector<double> D = d.matrix(d.prepareAll(cs));
+    const std::size_t N = cs.size();
+    std::size_t correct = 0;
+    for (std::size_t i = 0; i < N; ++i) {
+      std::size_t best = i == 0 ? 1 : 0;
+      for (std::size_t j = 0; j < N; ++j)
+        if (j != i && D[i * N + j] < D[i * N + best])
+          best = j;
+      correct += best / 3 == i / 3;
+    }
+    CAPTURE(model, correct);
+    CHECK(correct >= 10);
+  }
+}
