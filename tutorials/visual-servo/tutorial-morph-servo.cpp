@@ -1,0 +1,105 @@
+//! \example tutorial-morph-servo.cpp
+//! vpServoMorph: the camera of a robot is servoed through the virtual contours (sub-goals) of the morph from the
+//! current view to the taught one, while the hand-eye transform, started 15 deg and 30 mm off with intrinsics
+//! 20 % off, is estimated on line. Prints the pose error after every move, like Figure 2 of the paper.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <vector>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpVelocityTwistMatrix.h>
+#include <visp3/morph_vs/vpServoMorph.h>
+#include <visp3/robot/vpSimulatorCamera.h>
+
+namespace
+{
+// The contour of a planar L-shaped part (z = 0 in its frame) as the camera at cMo sees it, in pixels.
+vpMorphContour project(const vpHomogeneousMatrix &cMo, const vpCameraParameters &cam)
+{
+  const double P[][2] = {{-0.07, -0.05}, {0.08, -0.05}, {0.08, -0.01}, {0.02, -0.01}, {0.02, 0.04},
+                         {-0.01, 0.07},  {-0.03, 0.07}, {-0.03, 0.02}, {-0.07, 0.02}};
+  std::vector<double> x, y;
+  for (const auto &p : P) {
+    const vpColVector X = cMo * vpColVector({p[0], p[1], 0, 1});
+    x.push_back(X[0] / X[2]);
+    y.push_back(X[1] / X[2]);
+  }
+  return vpMorphContour(x, y, vpMorphContour::NORMALIZED).toPixels(cam);
+}
+
+// Angle (deg) and distance (mm) of a transform.
+void errorOf(const vpHomogeneousMatrix &M, double &deg, double &mm)
+{
+  deg = vpMath::deg(vpThetaUVector(M.getRotationMatrix()).getTheta());
+  mm = M.getTranslationVector().frobeniusNorm() * 1000;
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "-c") && std::strcmp(argv[i], "-d")) {
+      std::cout << "Usage: " << argv[0] << " [-c] [-d]  (headless: nothing is displayed)" << std::endl;
+      return EXIT_FAILURE;
+    }
+  try {
+    // The truth, known only to the simulation: camera, hand-eye transform, desired and start poses.
+    const vpCameraParameters camTrue(800, 800, 320, 240);
+    const vpHomogeneousMatrix eMcTrue(0.01, 0.05, 0.12, 0, 0, vpMath::rad(90));
+    const vpHomogeneousMatrix cdMo(0.01, 0, 0.5, 0, 0, vpMath::rad(20));
+    const vpHomogeneousMatrix cMo(0.06, -0.03, 0.5, 0, 0, vpMath::rad(190));
+
+    //! [Setup]
+    // What the controller is told: intrinsics 20 % off, eMc 15 deg and 30 mm off.
+    const vpHomogeneousMatrix eMcGuess = eMcTrue * vpHomogeneousMatrix(0.024, -0.018, 0, 0, 0, vpMath::rad(15)).inverse();
+    vpServoMorph servo;
+    servo.setCameraParameters(vpCameraParameters(960, 960, 320, 240));
+    servo.set_eMc(eMcGuess);
+    servo.setSubGoalCount(10);                // 10 virtual images; 0 = the goal only
+    servo.setSubGoalThresholds(0.10, 5.0);    // the paper's switching thresholds (rad, px)
+    servo.setSamplingTime(0.1);
+    servo.setGain(0.5);                       // half of the Eq. 11 step per period
+    servo.setTarget(project(cdMo, camTrue), 0.5); // taught view, taken 0.5 m above the part
+    //! [Setup]
+
+    vpSimulatorCamera robot; // a free-flying camera; the end effector is eMcTrue^-1 away
+    robot.setSamplingTime(0.1);
+    robot.setMaxTranslationVelocity(10.0);
+    robot.setMaxRotationVelocity(100.0);
+    robot.setPosition(cMo.inverse());
+    const vpVelocityTwistMatrix cVe(eMcTrue.inverse());
+
+    double deg, mm;
+    errorOf(eMcTrue.inverse() * eMcGuess, deg, mm);
+    std::printf("hand-eye estimate error at start: %.2f deg, %.1f mm\n", deg, mm);
+    std::printf("move  sub-goal  residual(rad)  residual(px)  pose error to goal (deg, mm)\n");
+    //! [Loop]
+    for (int move = 0; move < 200; ++move) {
+      const vpHomogeneousMatrix cMo_now = robot.getPosition().inverse();
+      const vpColVector ve = servo.computeControlLaw(project(cMo_now, camTrue)); // end-effector velocity
+      errorOf(cdMo * cMo_now.inverse(), deg, mm);
+      std::printf("%4d  %2zu/%zu     %8.4f      %8.2f      %7.2f  %7.2f   %s\n", move, servo.subGoalIndex() + 1,
+                  servo.subGoals().size(), servo.rotationResidual(), servo.translationResidual(), deg, mm,
+                  vpServoMorph::statusName(servo.status()));
+      if (servo.converged()) {
+        errorOf(eMcTrue.inverse() * servo.get_eMc(), deg, mm);
+        std::printf("converged after %d moves; hand-eye estimate error %.3f deg, %.2f mm; projection scale %.4f "
+                    "(true 1.2)\n",
+                    move, deg, mm, servo.handEyeEstimator().translationScale());
+        return EXIT_SUCCESS;
+      }
+      if (servo.status() != vpServoMorph::MOVING && servo.status() != vpServoMorph::SUBGOAL_REACHED)
+        break; // lost target, degenerate contour or unreliable correspondence: the velocity is zero
+      robot.setVelocity(vpRobot::CAMERA_FRAME, cVe * ve);
+    }
+    //! [Loop]
+    std::cout << "not converged: " << vpServoMorph::statusName(servo.status()) << std::endl;
+    return EXIT_FAILURE;
+  } catch (const vpException &e) {
+    std::cerr << "error: " << e.getMessage() << std::endl;
+    return EXIT_FAILURE;
+  }
+}
