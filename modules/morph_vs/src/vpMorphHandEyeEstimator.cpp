@@ -1,5 +1,6 @@
 #include <visp3/morph_vs/vpMorphHandEyeEstimator.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -11,10 +12,15 @@ void vpMorphHandEyeEstimator::reset(const vpHomogeneousMatrix &eMc0)
 {
   m_eMc0 = eMc0;
   m_eMc = eMc0;
-  m_M.resize(4, 4, true);
+  // The prior is the first 'observation' (Y = I, k = 1): it is forgotten along with the data, so it only
+  // decides what the moves leave unobserved.
+  m_M.eye(4);
+  m_M *= m_prior;
   m_r.resize(4, true);
+  m_r[2] = m_prior;
   m_k = 1.0;
   m_moves = 0;
+  m_eRef = 0.0;
 }
 
 void vpMorphHandEyeEstimator::setForgetting(double f)
@@ -35,6 +41,8 @@ void vpMorphHandEyeEstimator::setPriorWeight(double w)
     throw vpMorphException(vpMorphException::badParameterError, os.str());
   }
   m_prior = w;
+  if (m_moves == 0)
+    reset(m_eMc0);
 }
 
 void vpMorphHandEyeEstimator::addMove(const vpHomogeneousMatrix &eMe, const vpHomogeneousMatrix &cMc)
@@ -58,20 +66,21 @@ void vpMorphHandEyeEstimator::addMove(const vpHomogeneousMatrix &eMe, const vpHo
   vpColVector b(2);
   b[0] = -tax;
   b[1] = -tay;
-  m_M = m_M * m_forget + J.t() * J;
-  m_r = m_r * m_forget + J.t() * b;
+  // Information-weighted forgetting: a move forgets the past in proportion to its information (squared norm of
+  // its equations) relative to a tenth of the largest so far, so that the tiny moves of the final convergence do
+  // not wash out the large moves that determined the estimate.
+  const double e = J.frobeniusNorm() * J.frobeniusNorm();
+  m_eRef = std::max(m_eRef, 0.1 * e);
+  const double f = std::pow(m_forget, m_eRef > 0 ? std::min(1.0, e / m_eRef) : 0.0);
+  m_M = m_M * f + J.t() * J;
+  m_r = m_r * f + J.t() * b;
   ++m_moves;
   solve();
 }
 
 void vpMorphHandEyeEstimator::solve()
 {
-  vpMatrix M = m_M;
-  vpColVector r = m_r;
-  for (unsigned int i = 0; i < 4; ++i)
-    M[i][i] += m_prior;
-  r[2] += m_prior; // prior: Y = I, k = 1
-  const vpColVector u = M.inverseByLU() * r;
+  const vpColVector u = m_M.inverseByLU() * m_r;
   const double k = std::hypot(u[2], u[3]);
   if (!std::isfinite(k) || k < 1e-3 || !std::isfinite(u[0]) || !std::isfinite(u[1]))
     return;

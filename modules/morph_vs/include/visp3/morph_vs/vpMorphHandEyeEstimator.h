@@ -28,10 +28,13 @@
 
   <b>Estimator.</b> With the planar parts of A (angle phi, translation ta) and B (translation tb), A Y = Y B gives
   \f[ (R(\phi) - I)\, t - k R(\psi)\, t_b = -t_a, \f]
-  two equations that are linear in \f$u = (t_1, t_2, k\cos\psi, k\sin\psi)\f$. Each move adds them to normal
-  equations with exponential forgetting (factor forgetting(), older moves count less: the averaging) and a
-  ridge prior towards Y = I, k = 1 (weight priorWeight(), so the estimate is defined before the moves
-  observe it). Then \f$\psi = \mathrm{atan2}(u_4, u_3)\f$, \f$k = |(u_3, u_4)|\f$ and eMc = eMc0 * Y(psi, t1, t2).
+  two equations that are linear in \f$u = (t_1, t_2, k\cos\psi, k\sin\psi)\f$. The estimate is their least-squares
+  solution over all moves so far (the averaging), with exponential forgetting so that it can follow a drift:
+  each move multiplies the past normal equations by forgetting()^w, w = min(1, e / e_ref), e the squared norm of
+  its equations and e_ref a tenth of the largest e so far (information-weighted: the tiny moves of the final
+  convergence do not wash out the large moves that determined the estimate). The normal equations start
+  from a ridge prior towards Y = I, k = 1 (weight priorWeight()), forgotten with the data, which only decides
+  what the moves leave unobserved. Then \f$\psi = \mathrm{atan2}(u_4, u_3)\f$, \f$k = |(u_3, u_4)|\f$ and eMc = eMc0 * Y(psi, t1, t2).
   Rotations give t, translations give psi and k: a morph sequence (rigid frames then deformation) has both.
 */
 class vpMorphHandEyeEstimator
@@ -58,7 +61,8 @@ public:
   //! Forgetting factor in (0, 1] applied to the past moves at each new one (default 0.95).
   void setForgetting(double f);
   double priorWeight() const { return m_prior; }
-  //! Ridge weight towards the initial estimate, in m^2 (default 1e-6: one 1 mm move outweighs it).
+  //! Ridge weight towards the initial estimate, in m^2 (default 1e-6: one 1 mm move outweighs it). Only
+  //! before the first move (it restarts the estimator).
   void setPriorWeight(double w);
 
 private:
@@ -67,7 +71,7 @@ private:
   vpHomogeneousMatrix m_eMc0, m_eMc;
   vpMatrix m_M;     // 4x4 data normal matrix
   vpColVector m_r;  // data right-hand side
-  double m_forget = 0.95, m_prior = 1e-6, m_k = 1.0;
+  double m_forget = 0.95, m_prior = 1e-6, m_k = 1.0, m_eRef = 0.0;
   unsigned int m_moves = 0;
 };
 

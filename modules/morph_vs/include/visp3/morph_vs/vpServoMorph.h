@@ -121,7 +121,10 @@ public:
   //! Number of sub-goals (0: the target only). Restarts the sequence.
   void setSubGoalCount(std::size_t n);
   std::size_t subGoalCountParameter() const { return m_nSub; }
+  //! Residual below which a sub-goal is reached (default: the paper's 0.10 rad and 5 px; translation and scale).
   void setSubGoalThresholds(double rotationRad, double translationPx);
+  //! Residual below which the final goal is reached (default 0.001 rad and 0.1 px: noise-free images; with
+  //! image noise, set them above the noise level or CONVERGED is never reported).
   void setFinalThresholds(double rotationRad, double translationPx);
   //! Fraction of the step commanded per sampling period, in (0, 1] (default 0.5).
   void setGain(double gain);
@@ -176,7 +179,7 @@ private:
   vpMorphContour m_target;
   double m_Zd = 0.5, m_targetArea = 0;
   std::size_t m_nSub = 10;
-  double m_rotThr = 0.10, m_pxThr = 5.0, m_rotFine = 0.002, m_pxFine = 0.2;
+  double m_rotThr = 0.10, m_pxThr = 5.0, m_rotFine = 0.001, m_pxFine = 0.1;
   double m_gain = 0.5, m_dt = 0.1;
   ControlLaw m_law = HOMOGENEOUS_TRANSFORMS;
   double m_jumpFactor = 2.0, m_workFloor = 0.05, m_minMargin = 0.02, m_minArea = 25.0;

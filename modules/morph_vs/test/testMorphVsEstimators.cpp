@@ -1,0 +1,91 @@
+// Tests of the two helpers of the servo: the correspondence tracker (tracked vs full searches, reliability test,
+// margin) and the hand-eye estimator (exact recovery from consistent moves, averaging, bad parameters).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <visp3/core/vpExponentialMap.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph_vs/vpMorphCorrespondenceTracker.h>
+#include <visp3/morph_vs/vpMorphHandEyeEstimator.h>
+
+#include "testMorphVsScene.h"
+
+using namespace vpMorphVsTest;
+
+TEST_CASE("vpMorphCorrespondenceTracker: full search first, then tracked; full again on a new target or a jump",
+          "[tracker]")
+{
+  vpMorphCorrespondenceTracker tr;
+  const vpMorphContour goal = projectPixels(planarPose(20, 0.01, 0));
+  CHECK(tr.lastSource() == vpMorphCorrespondenceTracker::NONE);
+  // A slow rotation of 150 deg in 30 frames, the contour listed from a different vertex every frame.
+  for (int k = 0; k <= 30; ++k) {
+    const vpMorphContour c = projectPixels(planarPose(170 - 5 * k, 0.03 - 0.001 * k, 0.0)).rotatedStart(k % 9);
+    const vpMorphCorrespondence &corr = tr.update(c, goal);
+    CHECK(corr.size() >= 9);
+    CHECK(tr.lastSource() == (k == 0 ? vpMorphCorrespondenceTracker::FULL : vpMorphCorrespondenceTracker::TRACKED));
+    // The tracked correspondence is the optimal one (same work as a full search).
+    vpMorphMatcher m;
+    CHECK(tr.work() == Approx(m.match(c, goal).work()).margin(1e-9));
+  }
+  CHECK(tr.fullMatchCount() == 1);
+  CHECK(tr.trackedMatchCount() == 30);
+  CHECK(tr.margin() > 0.05); // the L-shaped part has no symmetry
+
+  // A new target: full search.
+  const vpMorphContour goal2 = goal.transformed(0.5, 10, 0);
+  tr.update(projectPixels(planarPose(20, 0.0, 0)), goal2);
+  CHECK(tr.lastSource() == vpMorphCorrespondenceTracker::FULL);
+  // Another shape suddenly (distance jump): the tracked result is rejected and a full search runs.
+  const vpMorphContour bar({200, 440, 440, 200}, {230, 230, 250, 250});
+  tr.update(bar, goal2);
+  CHECK(tr.lastSource() == vpMorphCorrespondenceTracker::FULL);
+  CHECK(tr.rejectedTrackCount() >= 1);
+
+  // A square has four equally good alignments: margin ~ 0.
+  vpMorphCorrespondenceTracker sq;
+  const vpMorphContour square({270, 370, 370, 270}, {190, 190, 290, 290});
+  sq.update(square.transformed(0.3, 5, 5), square);
+  CHECK(sq.margin() < 0.02);
+
+  CHECK_THROWS_AS(tr.update(vpMorphContour(), goal), vpMorphException);
+  CHECK_THROWS_AS(tr.setJumpFactor(0.5), vpMorphException);
+  CHECK_THROWS_AS(tr.setWorkFloor(-1), vpMorphException);
+}
+
+TEST_CASE("vpMorphHandEyeEstimator recovers the planar hand-eye error and the projection scale", "[calibration]")
+{
+  const vpHomogeneousMatrix eMcTrue(0.01, 0.05, 0.12, vpMath::rad(5), vpMath::rad(-3), vpMath::rad(90));
+  const vpHomogeneousMatrix Y(0.024, -0.018, 0, 0, 0, vpMath::rad(15)); // planar error of the guess
+  const vpHomogeneousMatrix eMc0 = eMcTrue * Y.inverse();
+  const double k = 1.2; // observed translations are k times too short
+  vpMorphHandEyeEstimator est(eMc0);
+  CHECK(est.moveCount() == 0);
+  // Planar moves of the camera (rotation about its axis, translation in the image plane): the paper's task.
+  const double moves[][3] = {{0.02, 0.0, 0.0}, {0.0, 0.015, 0.0}, {0.0, 0.0, 0.3}, {0.01, -0.01, -0.2}, {0, 0, 0.5}};
+  for (const auto &m : moves) {
+    const vpHomogeneousMatrix cMc(m[0], m[1], 0.001, 0, 0, m[2]);
+    const vpHomogeneousMatrix eMe = eMcTrue * cMc * eMcTrue.inverse();
+    vpHomogeneousMatrix cMcObs = cMc;
+    cMcObs[0][3] /= k;
+    cMcObs[1][3] /= k;
+    est.addMove(eMe, cMcObs);
+  }
+  CHECK(est.moveCount() == 5);
+  const vpHomogeneousMatrix d = eMcTrue.inverse() * est.get_eMc();
+  CHECK(d.getTranslationVector().frobeniusNorm() < 1e-4);
+  CHECK(vpThetaUVector(d.getRotationMatrix()).getTheta() < vpMath::rad(0.05));
+  CHECK(est.translationScale() == Approx(k).epsilon(1e-3));
+
+  // Without moves the estimate stays at the guess; non-finite observations add nothing.
+  vpMorphHandEyeEstimator none(eMc0);
+  vpHomogeneousMatrix bad;
+  bad[0][3] = std::nan("");
+  none.addMove(vpHomogeneousMatrix(), bad);
+  CHECK(none.moveCount() == 0);
+  CHECK((none.get_eMc().inverse() * eMc0).getTranslationVector().frobeniusNorm() < 1e-12);
+  CHECK_THROWS_AS(none.setForgetting(0.0), vpMorphException);
+  CHECK_THROWS_AS(none.setForgetting(1.5), vpMorphException);
+  CHECK_THROWS_AS(none.setPriorWeight(-1), vpMorphException);
+}
