@@ -89,7 +89,7 @@ public:
       if (r.run_type == Run::RT_Iteration && r.iterations > 0) {
         // Fastest repetition: the least disturbed by whatever else the machine runs.
         const std::string name = r.run_name.str();
-        const double t = r.GetAdjustedRealTime();
+        const double t = r.GetAdjustedCPUTime(); // CPU time: robust to other processes taking the core
         m_time[name] = m_time.count(name) ? std::min(m_time[name], t) : t;
       }
     ConsoleReporter::ReportRuns(runs);
@@ -98,7 +98,7 @@ public:
   {
     ConsoleReporter::Finalize();
     std::ostream &os = GetOutputStream();
-    os << "\nspeed-up over brute force (same kernel, same process; fastest repetition)\n"
+    os << "\nspeed-up over brute force (same kernel, same process; CPU time of the fastest repetition)\n"
        << std::setw(6) << "N" << std::setw(14) << "brute us" << std::setw(14) << "fast us" << std::setw(10) << "fast x"
        << std::setw(14) << "window us" << std::setw(10) << "window x"
        << "\n";

@@ -12,24 +12,25 @@ namespace
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Gap between two solved starts below which Maes' recursion solves the starts in between directly.
 constexpr int kDirectGap = 4;
+// Widest range of starts whose lower bound is computed before solving it (see solveBetween()).
+constexpr int kBoundGap = 8;
 // One row of the dynamic programme on columns [l, r]: D[i][j] = min(D[i-1][j-1] + cd[j], D[i-1][j] + ca,
 // D[i][j-1] + cB[j]). With P[j] the prefix sum of cB, D[i][j] - P[j] is the running minimum of
 // y[j] = min(diagonal, A step) - P[j] along the row: the serial part is a bare minimum, run as two
 // independent chains over the two halves of the row (then the first half's minimum is carried into the
 // second), and the rest vectorises. prev must be +inf where the previous row has no cell.
 __attribute__((always_inline)) inline void dpRow(const double *__restrict prev, const double *__restrict cd, double ca,
-                                                 const double *__restrict cB, const double *__restrict pB, int l, int r,
-                                                 double *__restrict cur)
+                                                 const double *__restrict pB, int l, int r, double *__restrict cur)
 {
   if (r - l < 16) {
-    // Short rows (the narrow bands deep in Maes' recursion): one plain pass, no set-up to amortise.
-    double left = kInf;
+    // Short rows (the narrow bands deep in Maes' recursion): one pass, no set-up to amortise; the chain from
+    // cell to cell is the running minimum alone.
+    double run = kInf;
     for (int j = l; j <= r; ++j) {
-      const double up = prev[j] + ca, dg = prev[j - 1] + cd[j], lf = left + cB[j];
-      double best = up < dg ? up : dg;
-      best = lf < best ? lf : best;
-      cur[j] = best;
-      left = best;
+      const double up = prev[j] + ca, dg = prev[j - 1] + cd[j];
+      const double y = (up < dg ? up : dg) - pB[j];
+      run = y < run ? y : run;
+      cur[j] = run + pB[j];
     }
     return;
   }
@@ -159,7 +160,8 @@ vpMorphMatcher::prepare(const vpMorphContour &A, const vpMorphContour &B, std::s
 // Built twice, for AVX2 and for any x86-64, and chosen at load time: the row passes vectorise 4 wide where the
 // processor allows it, and the library still runs everywhere.
 __attribute__((target_clones("avx2", "default"))) double
-vpMorphMatcher::solveStart(int b, const Path *lo, const Path *hi, Path *extent, std::vector<std::pair<int, int>> *cells)
+vpMorphMatcher::solveStart(int b, const Path *lo, const Path *hi, Path *extent, std::vector<std::pair<int, int>> *cells,
+                           int bLast)
 {
   const int m = static_cast<int>(m_m), n = static_cast<int>(m_n), W = 2 * n;
   // Column range of each row. Row 0 starts at b by definition; the end cell (m, b + n) is inside any band
@@ -187,7 +189,7 @@ vpMorphMatcher::solveStart(int b, const Path *lo, const Path *hi, Path *extent, 
     d[b - 1] = kInf;
     d[b] = 0.0; // the start cell; its own step is the one that closes the path into (m, b + n), charged there
     for (int j = b + 1; j <= m_R[0]; ++j)
-      d[j] = d[j - 1] + m_costB[j]; // A's vertex 0 matched to B's b, b+1, ...: only B steps
+      d[j] = j <= bLast ? 0.0 : d[j - 1] + m_costB[j]; // A's vertex 0 matched to B's b, b+1, ...: only B steps
     for (int j = m_R[0] + 1; j <= m_R[1]; ++j)
       d[j] = kInf;
   }
@@ -196,10 +198,16 @@ vpMorphMatcher::solveStart(int b, const Path *lo, const Path *hi, Path *extent, 
     const int ii = (i == m) ? 0 : i; // row m is A's vertex 0 again
     double *d = row(i);
     d[l - 1] = kInf;
-    dpRow(row(i - 1), &m_costDiag[static_cast<std::size_t>(ii) * W], m_costA[ii], m_costB.data(), m_prefB.data(), l, r,
-          d);
+    dpRow(row(i - 1), &m_costDiag[static_cast<std::size_t>(ii) * W], m_costA[ii], m_prefB.data(), l, r, d);
     for (int j = r + 1; j <= m_R[i + 1]; ++j)
       d[j] = kInf;
+  }
+  if (bLast > b) {
+    // Relaxed problem: any start in [b, bLast] to any end in [b + n, bLast + n].
+    double bound = kInf;
+    for (int j = std::max(b + n, m_L[m]); j <= std::min(bLast + n, m_R[m]); ++j)
+      bound = std::min(bound, row(m)[j]);
+    return bound;
   }
   const int end = b + n;
   const double work = (end >= m_L[m] && end <= m_R[m]) ? row(m)[end] : kInf;
@@ -261,6 +269,12 @@ void vpMorphMatcher::solveBetween(int bLo, int bHi, const Path &lo, const Path &
       best.bounded = true;
     }
   };
+  // Lower bound for every start of the range: the same programme with all of them as sources at once and any
+  // of their ends as the end. A range that cannot beat the best start found so far is skipped, subtree and all.
+  // Only narrow ranges are tested: the bound relaxes the start-end pairing by the range's width, so it is
+  // tight (and pays for itself) only there.
+  if (bHi - bLo <= kBoundGap && solveStart(bLo + 1, &lo, &hi, nullptr, nullptr, bHi - 1) >= best.work)
+    return;
   if (bHi - bLo <= kDirectGap) {
     // A narrow band: solving its few starts directly in it costs less than tracing mid paths to split it.
     for (int b = bLo + 1; b < bHi; ++b)

@@ -116,6 +116,27 @@ TEST_CASE("fast exact search returns the brute-force minimum on 1000 random pair
   CHECK(withRelatedShapes > 300);
 }
 
+TEST_CASE("fast exact search returns the brute-force minimum on large polygons", "[matcher][exact]")
+{
+  // Large enough for every stage of the fast search: deep recursion, direct solving of narrow ranges and the
+  // lower-bound pruning of ranges that cannot win.
+  std::mt19937 rng(424242);
+  std::uniform_int_distribution<int> size(60, 160);
+  std::uniform_real_distribution<double> ang(-M_PI, M_PI), unit(0.0, 1.0);
+  vpMorphMatcher matcher;
+  for (int trial = 0; trial < 40; ++trial) {
+    const vpMorphContour A = randomPolygon(rng, static_cast<std::size_t>(size(rng)));
+    vpMorphContour B = trial % 2 ? randomPolygon(rng, static_cast<std::size_t>(size(rng)))
+                                 : vpMorphTest::noisy(A, rng, 2.0)
+                                       .transformed(ang(rng), 10, 10, 0.7 + unit(rng))
+                                       .resampled(static_cast<std::size_t>(size(rng)));
+    if (trial % 3 == 0)
+      B = B.reversed();
+    INFO("trial " << trial << ": m = " << A.size() << ", n = " << B.size());
+    REQUIRE(matcher.match(A, B).work() == Approx(matcher.matchBruteForce(A, B).work()).epsilon(1e-9).margin(1e-12));
+  }
+}
+
 TEST_CASE("minimum over the n starts (0, b) equals the minimum over all m n starting pairs", "[matcher][exact]")
 {
   std::mt19937 rng(7);

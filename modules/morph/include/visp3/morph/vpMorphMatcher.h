@@ -46,7 +46,11 @@
   every b (O(m n^2)); match() is exact and fast: optimal paths of different starts never need to cross
   (uncrossing two crossing paths at their shared cell keeps both costs, since costs depend only on the cell
   and the step into it), so Maes' divide and conquer solves the middle start, then recurses on each half
-  inside the band left between the bounding paths (O(mn log n)).
+  inside the band left between the bounding paths (O(mn log n)). Two refinements keep it exact: a range of at
+  most 8 starts is first given a lower bound, the same programme run from all its starts at once to any of
+  their ends (it contains every path of the range, so it cannot exceed their minimum), and is skipped when
+  that bound is no better than the best start found so far; a range of at most 4 starts is solved start by
+  start inside its band rather than split further.
   matchWindow() does the same for the starts near a given one, for tracking from frame to frame.
 
   Not thread safe (it reuses its buffers); copy one per thread.
@@ -92,7 +96,8 @@ private:
   };
   static void checkStart(const vpMorphContour &A, const vpMorphContour &B, std::size_t a, std::size_t b);
   void prepare(const vpMorphContour &A, const vpMorphContour &B, std::size_t a, std::size_t b);
-  double solveStart(int b, const Path *lo, const Path *hi, Path *extent, std::vector<std::pair<int, int>> *cells);
+  double solveStart(int b, const Path *lo, const Path *hi, Path *extent, std::vector<std::pair<int, int>> *cells,
+                    int bLast = -1);
   void solveBetween(int bLo, int bHi, const Path &lo, const Path &hi, std::size_t depth, Best &best);
   vpMorphCorrespondence solveRange(int count);
   vpMorphCorrespondence toCorrespondence(const std::vector<std::pair<int, int>> &cells);
