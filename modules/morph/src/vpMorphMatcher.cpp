@@ -320,11 +320,13 @@ vpMorphCorrespondence vpMorphMatcher::solveRange(int count)
   }
   // Trace the winner again, in the same band, to get its cells.
   std::vector<std::pair<int, int>> cells;
-  solveStart(best.b, best.bounded ? &best.lo : nullptr, best.bounded ? &best.hi : nullptr, nullptr, &cells);
-  return toCorrespondence(cells);
+  const double w =
+      solveStart(best.b, best.bounded ? &best.lo : nullptr, best.bounded ? &best.hi : nullptr, nullptr, &cells);
+  return toCorrespondence(cells, w);
 }
 
-vpMorphCorrespondence vpMorphMatcher::toCorrespondence(const std::vector<std::pair<int, int>> &cells)
+vpMorphCorrespondence vpMorphMatcher::toCorrespondence(const std::vector<std::pair<int, int>> &cells,
+                                                       double tableWork)
 {
   const std::size_t m = m_m, n = m_n;
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
@@ -342,6 +344,14 @@ vpMorphCorrespondence vpMorphMatcher::toCorrespondence(const std::vector<std::pa
     stretching += m_model.stretching(lA, lB);
     bending += m_model.bending(pA, pB);
   }
+  // The programme optimises the cost tables; the work is reported from the model. They must agree, or the
+  // tables no longer implement the documented model: never return such a result silently.
+  if (!(std::fabs(stretching + bending - tableWork) <= 1e-9 * std::max(1.0, tableWork))) {
+    std::ostringstream os;
+    os << "vpMorphMatcher: internal error, the work of the path (" << stretching + bending
+       << ") differs from the programme's (" << tableWork << ")";
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
   return vpMorphCorrespondence(m, n, std::move(pairs), stretching, bending);
 }
 
@@ -353,8 +363,8 @@ vpMorphCorrespondence vpMorphMatcher::matchFromStart(const vpMorphContour &A, co
   // Column of target vertex b in the positive traversal.
   const int col = static_cast<int>(m_reversedB ? (m_n - b) % m_n : b);
   std::vector<std::pair<int, int>> cells;
-  solveStart(col, nullptr, nullptr, nullptr, &cells);
-  return toCorrespondence(cells);
+  const double w = solveStart(col, nullptr, nullptr, nullptr, &cells);
+  return toCorrespondence(cells, w);
 }
 
 vpMorphCorrespondence vpMorphMatcher::matchBruteForce(const vpMorphContour &A, const vpMorphContour &B)
@@ -370,8 +380,8 @@ vpMorphCorrespondence vpMorphMatcher::matchBruteForce(const vpMorphContour &A, c
     }
   }
   std::vector<std::pair<int, int>> cells;
-  solveStart(bestB, nullptr, nullptr, nullptr, &cells);
-  return toCorrespondence(cells);
+  const double w = solveStart(bestB, nullptr, nullptr, nullptr, &cells);
+  return toCorrespondence(cells, w);
 }
 
 vpMorphCorrespondence vpMorphMatcher::match(const vpMorphContour &A, const vpMorphContour &B)

@@ -174,6 +174,39 @@ TEST_CASE("work of a correspondence is the sum of its stretching and bending", "
   CHECK(c2.stretchingWork() == Approx(c1.stretchingWork()));
 }
 
+TEST_CASE("reported work is the documented model evaluated on the reported pairs", "[matcher]")
+{
+  // An independent evaluation of the model as vpMorphMatcher's documentation states it: polygons traversed
+  // with positive area and scaled to unit perimeter; each step charges Eq. 2 on the segment it creates (0 on the
+  // side that does not advance) and Eq. 3 on the turning at the new vertex (0 on the side that does not advance).
+  std::mt19937 rng(77);
+  const vpMorphWorkModel model(1.3, 0.07, 0.4);
+  vpMorphMatcher matcher(model);
+  for (int trial = 0; trial < 30; ++trial) {
+    vpMorphContour A = randomPolygon(rng, 5 + trial % 17), B = randomPolygon(rng, 4 + trial % 23);
+    if (trial % 2)
+      B = B.reversed();
+    const vpMorphCorrespondence c = matcher.match(A, B);
+    const vpMorphContour Ap = A.counterClockwise(), Bp = B.counterClockwise();
+    const double sA = 1.0 / A.perimeter(), sB = 1.0 / B.perimeter();
+    // Index of caller vertex k in the positive traversal (reversed() keeps vertex 0 first).
+    auto posA = [&](std::size_t k) { return A.isCounterClockwise() ? k : (A.size() - k) % A.size(); };
+    auto posB = [&](std::size_t k) { return B.isCounterClockwise() ? k : (B.size() - k) % B.size(); };
+    double work = 0.0;
+    const auto &p = c.pairs();
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const auto &q = p[(k + 1) % p.size()];
+      const bool advA = q.first != p[k].first, advB = q.second != p[k].second;
+      const std::size_t ia = posA(q.first), jb = posB(q.second);
+      const double lA = advA ? Ap.edgeLength(ia) * sA : 0.0, lB = advB ? Bp.edgeLength(jb) * sB : 0.0;
+      const double fA = advA ? Ap.turningAngle(ia) : 0.0, fB = advB ? Bp.turningAngle(jb) : 0.0;
+      work += model.stretching(lA, lB) + model.bending(fA, fB);
+    }
+    INFO("trial " << trial);
+    CHECK(c.work() == Approx(work).epsilon(1e-9));
+  }
+}
+
 TEST_CASE("windowed search is exact within its window", "[matcher][window]")
 {
   std::mt19937 rng(11);

@@ -100,7 +100,7 @@ private:
                     int bLast = -1);
   void solveBetween(int bLo, int bHi, const Path &lo, const Path &hi, std::size_t depth, Best &best);
   vpMorphCorrespondence solveRange(int count);
-  vpMorphCorrespondence toCorrespondence(const std::vector<std::pair<int, int>> &cells);
+  vpMorphCorrespondence toCorrespondence(const std::vector<std::pair<int, int>> &cells, double tableWork);
 
   vpMorphWorkModel m_model;
   bool m_normalizeScale;
