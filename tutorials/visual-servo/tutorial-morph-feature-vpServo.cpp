@@ -39,7 +39,7 @@ int main(int argc, char **argv)
     }
   try {
     const vpCameraParameters cam(800, 800, 320, 240);
-    const vpHomogeneousMatrix cdMo(0.01, 0, 0.5, 0, 0, vpMath::rad(20));  // desired pose: 0.5 m above the part
+    const vpHomogeneousMatrix cdMo(0.01, 0, 0.5, 0, 0, vpMath::rad(20));     // desired pose: 0.5 m above the part
     const vpHomogeneousMatrix cMo(-0.06, 0.05, 0.5, 0, 0, vpMath::rad(190)); // start: rotated by 170 deg
 
     //! [Features]

@@ -54,14 +54,15 @@ int main(int argc, char **argv)
 
     //! [Setup]
     // What the controller is told: intrinsics 20 % off, eMc 15 deg and 30 mm off.
-    const vpHomogeneousMatrix eMcGuess = eMcTrue * vpHomogeneousMatrix(0.024, -0.018, 0, 0, 0, vpMath::rad(15)).inverse();
+    const vpHomogeneousMatrix eMcGuess =
+        eMcTrue * vpHomogeneousMatrix(0.024, -0.018, 0, 0, 0, vpMath::rad(15)).inverse();
     vpServoMorph servo;
     servo.setCameraParameters(vpCameraParameters(960, 960, 320, 240));
     servo.set_eMc(eMcGuess);
-    servo.setSubGoalCount(10);                // 10 virtual images; 0 = the goal only
-    servo.setSubGoalThresholds(0.10, 5.0);    // the paper's switching thresholds (rad, px)
+    servo.setSubGoalCount(10);             // 10 virtual images; 0 = the goal only
+    servo.setSubGoalThresholds(0.10, 5.0); // the paper's switching thresholds (rad, px)
     servo.setSamplingTime(0.1);
-    servo.setGain(0.5);                       // half of the Eq. 11 step per period
+    servo.setGain(0.5);                           // half of the Eq. 11 step per period
     servo.setTarget(project(cdMo, camTrue), 0.5); // taught view, taken 0.5 m above the part
     //! [Setup]
 

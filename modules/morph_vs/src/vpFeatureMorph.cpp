@@ -173,7 +173,8 @@ vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int sel
                            "vpFeatureMorph::error: the desired feature has no contour; call its buildFrom() "
                            "(vpServo::addFeature(s) alone gives an empty desired feature)");
   const vpMorphCorrespondence &corr = m_tracker.update(m_contour, sd->m_contour);
-  m_fit = vpMorphRigidTransform::fitLeastSquares(m_contour, sd->m_contour, corr, true, vpMorphRigidTransform::NO_ROBUST);
+  m_fit =
+      vpMorphRigidTransform::fitLeastSquares(m_contour, sd->m_contour, corr, true, vpMorphRigidTransform::NO_ROBUST);
   s[2] = -m_fit.theta();
   vpColVector e(0);
   const double full[4] = {s[0] - sd->s[0], s[1] - sd->s[1], s[2], s[3] - sd->s[3]};

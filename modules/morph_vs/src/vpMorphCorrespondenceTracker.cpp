@@ -77,7 +77,7 @@ void vpMorphCorrespondenceTracker::measureMargin(const vpMorphContour &current, 
 }
 
 const vpMorphCorrespondence &vpMorphCorrespondenceTracker::update(const vpMorphContour &current,
-                                                                   const vpMorphContour &target)
+                                                                  const vpMorphContour &target)
 {
   if (current.empty() || target.empty())
     throw vpMorphException(vpMorphException::badContourError,

@@ -50,8 +50,7 @@ void vpMorphHandEyeEstimator::addMove(const vpHomogeneousMatrix &eMe, const vpHo
   const vpHomogeneousMatrix A = m_eMc0.inverse() * eMe * m_eMc0;
   const double phi = std::atan2(A[1][0], A[0][0]);
   const double tax = A[0][3], tay = A[1][3], tbx = cMc[0][3], tby = cMc[1][3];
-  if (!std::isfinite(phi) || !std::isfinite(tax) || !std::isfinite(tay) || !std::isfinite(tbx) ||
-      !std::isfinite(tby))
+  if (!std::isfinite(phi) || !std::isfinite(tax) || !std::isfinite(tay) || !std::isfinite(tbx) || !std::isfinite(tby))
     return; // a failed observation adds nothing
   const double c = std::cos(phi), s = std::sin(phi);
   vpMatrix J(2, 4);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <random>
 #include <sstream>
 
 #include <visp3/core/vpVelocityTwistMatrix.h>
@@ -29,18 +30,19 @@ struct Setup
   vpServoMorph::ControlLaw law = vpServoMorph::HOMOGENEOUS_TRANSFORMS;
   bool online = true;
   int maxIterations = 400;
+  double noisePx = 0; // Gaussian noise on the vertices (seeded)
 };
 
 struct Result
 {
   bool converged = false;
   int iterations = 0;
-  double tErr = 0, rDeg = 0;           // final pose error against the simulator's truth
-  double path = 0, straight = 0;       // camera path length and straight-line distance (m)
-  double maxDepth = 0;                 // largest object depth seen (m)
-  double eMcT0 = 0, eMcR0 = 0;         // hand-eye estimate error at the start (m, deg)
-  double eMcT = 0, eMcR = 0;           // and at the end
-  double scale = 1;                    // final projection scale estimate
+  double tErr = 0, rDeg = 0;     // final pose error against the simulator's truth
+  double path = 0, straight = 0; // camera path length and straight-line distance (m)
+  double maxDepth = 0;           // largest object depth seen (m)
+  double eMcT0 = 0, eMcR0 = 0;   // hand-eye estimate error at the start (m, deg)
+  double eMcT = 0, eMcR = 0;     // and at the end
+  double scale = 1;              // final projection scale estimate
   std::size_t lastSubGoal = 0;
   vpServoMorph::Status status = vpServoMorph::NOT_STARTED;
 };
@@ -64,6 +66,10 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
   servo.setSamplingTime(0.1);
   servo.setGain(0.5);
   servo.setTarget(projectPixels(cdMo), depth(cdMo));
+  if (st.noisePx > 0)
+    servo.setFinalThresholds(0.004, 0.6); // a few times the noise of the fit
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, st.noisePx > 0 ? st.noisePx : 1.0);
 
   vpSimulatorCamera robot;
   robot.setSamplingTime(0.1);
@@ -81,7 +87,16 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
   for (r.iterations = 0; r.iterations < st.maxIterations; ++r.iterations) {
     const vpHomogeneousMatrix cMo = robot.getPosition().inverse() * wMo;
     r.maxDepth = std::max(r.maxDepth, depth(cMo));
-    const vpColVector ve = servo.computeControlLaw(projectPixels(cMo));
+    vpMorphContour c = projectPixels(cMo);
+    if (st.noisePx > 0) {
+      std::vector<double> x = c.xs(), y = c.ys();
+      for (std::size_t k = 0; k < x.size(); ++k) {
+        x[k] += noise(rng);
+        y[k] += noise(rng);
+      }
+      c = vpMorphContour(x, y);
+    }
+    const vpColVector ve = servo.computeControlLaw(c);
     if (servo.converged()) {
       r.converged = true;
       break;
@@ -105,19 +120,18 @@ const vpHomogeneousMatrix cdMo = planarPose(20, 0.01, 0.0);
 const vpHomogeneousMatrix eMcTrue(0.01, 0.05, 0.12, 0, 0, vpMath::rad(90));
 } // namespace
 
-TEST_CASE("vpServoMorph converges from in-plane rotations 0, 90, 170, 180 deg with translations up to 80 mm",
-          "[servo]")
+TEST_CASE("vpServoMorph converges from in-plane rotations 0, 90, 170, 180 deg with translations up to 80 mm", "[servo]")
 {
-  const double starts[][3] = {{0, 0.08, 0.0}, {90, 0.05, -0.06}, {170, -0.06, 0.05}, {180, 0.0, 0.08},
-                              {-170, 0.04, 0.04}};
+  const double starts[][3] = {
+      {0, 0.08, 0.0}, {90, 0.05, -0.06}, {170, -0.06, 0.05}, {180, 0.0, 0.08}, {-170, 0.04, 0.04}};
   Setup st;
   st.eMcTrue = st.eMcEstimate = eMcTrue;
   for (const auto &s : starts) {
     const Result r = run(planarPose(20 + s[0], s[1], s[2]), cdMo, st);
     std::printf("[servo] start %6.1f deg (%4.0f, %4.0f) mm: %s after %d iterations, error %.4f mm %.4f deg, path "
                 "%.1f mm (straight %.1f mm), max depth %.3f m\n",
-                s[0], s[1] * 1000, s[2] * 1000, vpServoMorph::statusName(r.status), r.iterations, r.tErr * 1000,
-                r.rDeg, r.path * 1000, r.straight * 1000, r.maxDepth);
+                s[0], s[1] * 1000, s[2] * 1000, vpServoMorph::statusName(r.status), r.iterations, r.tErr * 1000, r.rDeg,
+                r.path * 1000, r.straight * 1000, r.maxDepth);
     INFO("start " << s[0] << " deg: " << vpServoMorph::statusName(r.status) << " after " << r.iterations);
     CHECK(r.converged);
     CHECK(r.tErr < 1e-3);
@@ -230,6 +244,25 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
   CHECK_THROWS_AS(servo.setTarget(projectPixels(cdMo), 0), vpMorphException);
   CHECK_THROWS_AS(servo.setTarget(projectNormalized(cdMo), 0.5), vpMorphException);
   CHECK_THROWS_AS(servo.computeControlLaw(projectNormalized(cdMo)), vpMorphException);
+}
+
+TEST_CASE("vpServoMorph with image noise (0.3 px) and calibration errors", "[servo][noise]")
+{
+  Setup st;
+  st.eMcTrue = eMcTrue;
+  st.eMcEstimate = eMcTrue * vpHomogeneousMatrix(0.024, -0.018, 0, 0, 0, vpMath::rad(15)).inverse();
+  st.camEstimate = vpCameraParameters(960, 960, 320, 240);
+  st.noisePx = 0.3;
+  const Result r = run(planarPose(20 + 175, -0.05, 0.06), cdMo, st);
+  std::printf("[noise] 0.3 px: %s after %d iterations, pose error %.3f mm %.3f deg; eMc error %.1f mm %.2f deg -> "
+              "%.2f mm %.3f deg\n",
+              vpServoMorph::statusName(r.status), r.iterations, r.tErr * 1000, r.rDeg, r.eMcT0 * 1000, r.eMcR0,
+              r.eMcT * 1000, r.eMcR);
+  CHECK(r.converged);
+  CHECK(r.tErr < 1e-3);
+  CHECK(r.rDeg < 0.5);
+  CHECK(r.eMcR < 0.5 * r.eMcR0);
+  CHECK(r.eMcT < 0.5 * r.eMcT0);
 }
 
 TEST_CASE("vpServoMorph goal only (0 sub-goals)", "[servo]")

@@ -42,9 +42,9 @@ class vpMorphCorrespondenceTracker
 public:
   //! Where the last correspondence came from.
   enum Source {
-    NONE,    //!< No correspondence yet.
-    FULL,    //!< Full cyclic search (first frame, new target, or the tracked one was unreliable).
-    TRACKED  //!< Windowed search around the previous start.
+    NONE,   //!< No correspondence yet.
+    FULL,   //!< Full cyclic search (first frame, new target, or the tracked one was unreliable).
+    TRACKED //!< Windowed search around the previous start.
   };
 
   explicit vpMorphCorrespondenceTracker(const vpMorphMatcher &matcher = vpMorphMatcher());

@@ -34,8 +34,9 @@
   its equations and e_ref a tenth of the largest e so far (information-weighted: the tiny moves of the final
   convergence do not wash out the large moves that determined the estimate). The normal equations start
   from a ridge prior towards Y = I, k = 1 (weight priorWeight()), forgotten with the data, which only decides
-  what the moves leave unobserved. Then \f$\psi = \mathrm{atan2}(u_4, u_3)\f$, \f$k = |(u_3, u_4)|\f$ and eMc = eMc0 * Y(psi, t1, t2).
-  Rotations give t, translations give psi and k: a morph sequence (rigid frames then deformation) has both.
+  what the moves leave unobserved. Then \f$\psi = \mathrm{atan2}(u_4, u_3)\f$, \f$k = |(u_3, u_4)|\f$ and eMc = eMc0 *
+  Y(psi, t1, t2). Rotations give t, translations give psi and k: a morph sequence (rigid frames then deformation) has
+  both.
 */
 class vpMorphHandEyeEstimator
 {
@@ -69,8 +70,8 @@ private:
   void solve();
 
   vpHomogeneousMatrix m_eMc0, m_eMc;
-  vpMatrix m_M;     // 4x4 data normal matrix
-  vpColVector m_r;  // data right-hand side
+  vpMatrix m_M;    // 4x4 data normal matrix
+  vpColVector m_r; // data right-hand side
   double m_forget = 0.95, m_prior = 1e-6, m_k = 1.0, m_eRef = 0.0;
   unsigned int m_moves = 0;
 };

@@ -65,13 +65,13 @@ class vpServoMorph
 public:
   //! Outcome of the last computeControlLaw().
   enum Status {
-    NOT_STARTED,               //!< No iteration yet.
-    MOVING,                    //!< Moving towards the current sub-goal.
-    SUBGOAL_REACHED,           //!< A sub-goal was reached at this iteration; moving towards the next one.
-    CONVERGED,                 //!< The final goal is reached within finalThresholds(); zero velocity.
-    TARGET_LOST,               //!< Empty contour given; zero velocity.
-    DEGENERATE_CONTOUR,        //!< Contour too small, non-finite, or unusable by the morph; zero velocity.
-    UNRELIABLE_CORRESPONDENCE  //!< Distance jump or low margin; zero velocity.
+    NOT_STARTED,              //!< No iteration yet.
+    MOVING,                   //!< Moving towards the current sub-goal.
+    SUBGOAL_REACHED,          //!< A sub-goal was reached at this iteration; moving towards the next one.
+    CONVERGED,                //!< The final goal is reached within finalThresholds(); zero velocity.
+    TARGET_LOST,              //!< Empty contour given; zero velocity.
+    DEGENERATE_CONTOUR,       //!< Contour too small, non-finite, or unusable by the morph; zero velocity.
+    UNRELIABLE_CORRESPONDENCE //!< Distance jump or low margin; zero velocity.
   };
   //! How the sub-goal error becomes a velocity.
   enum ControlLaw {
