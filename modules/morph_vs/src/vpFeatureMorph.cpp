@@ -54,6 +54,8 @@ void vpFeatureMorph::init()
   flags[0] = false;
   m_contour = vpMorphContour();
   m_Z = 1.0;
+  m_A = m_B = 0.0;
+  m_C = 1.0;
   m_n20 = m_n02 = m_n11 = 0.0;
   m_tracker.reset();
   m_fit = vpMorphRigidTransform();
@@ -79,14 +81,55 @@ void vpFeatureMorph::buildFrom(const vpMorphContour &normalizedContour, double Z
     os << "vpFeatureMorph::buildFrom: the depth Z must be finite and > 0, got " << Z;
     throw vpMorphException(vpMorphException::badParameterError, os.str());
   }
-  m_contour = normalizedContour;
-  m_Z = Z;
+  setContour(normalizedContour, 0.0, 0.0, 1.0 / Z);
+}
+
+void vpFeatureMorph::buildFrom(const vpMorphContour &contour, const vpCameraParameters &cam, double A, double B,
+                               double C)
+{
+  if (contour.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpFeatureMorph::buildFrom: empty contour");
+  if (!std::isfinite(A) || !std::isfinite(B) || !std::isfinite(C))
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpFeatureMorph::buildFrom: the plane coefficients must be finite");
+  const vpMorphContour n = contour.units() == vpMorphContour::PIXEL ? contour.toNormalized(cam) : contour;
+  for (std::size_t k = 0; k < n.size(); ++k)
+    if (!(A * n.x(k) + B * n.y(k) + C > 0.0)) {
+      std::ostringstream os;
+      os << "vpFeatureMorph::buildFrom: the plane 1/Z = " << A << " x + " << B << " y + " << C
+         << " is not in front of the camera at vertex " << k;
+      throw vpMorphException(vpMorphException::badParameterError, os.str());
+    }
+  m_cam = cam;
+  setContour(n, A, B, C);
+}
+
+void vpFeatureMorph::setContour(const vpMorphContour &normalized, double A, double B, double C)
+{
+  m_contour = normalized;
+  m_A = A;
+  m_B = B;
+  m_C = C;
   double a, xg, yg;
   regionMoments(m_contour, a, xg, yg, m_n20, m_n02, m_n11);
+  m_Z = 1.0 / (A * xg + B * yg + C);
   s[0] = xg;
   s[1] = yg;
   s[3] = 0.5 * std::log(a);
   flags[0] = true;
+}
+
+void vpFeatureMorph::planeFromPose(const vpHomogeneousMatrix &cMo, double &A, double &B, double &C)
+{
+  // Plane n . X = d in the camera frame, n the object z axis: 1/Z = (n_x x + n_y y + n_z) / d.
+  const double nx = cMo[0][2], ny = cMo[1][2], nz = cMo[2][2];
+  const double d = nx * cMo[0][3] + ny * cMo[1][3] + nz * cMo[2][3];
+  if (std::fabs(d) < 1e-12)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpFeatureMorph::planeFromPose: the camera centre lies in the object plane");
+  A = nx / d;
+  B = ny / d;
+  C = nz / d;
 }
 
 void vpFeatureMorph::checkBuilt(const char *caller) const
@@ -103,13 +146,13 @@ void vpFeatureMorph::checkBuilt(const char *caller) const
 vpMatrix vpFeatureMorph::interaction(unsigned int select)
 {
   checkBuilt("interaction");
-  const double xg = s[0], yg = s[1], iZ = 1.0 / m_Z;
+  const double xg = s[0], yg = s[1], iZ = 1.0 / m_Z, A = m_A, B = m_B, C = m_C;
   vpMatrix L(0, 6);
   if (select & selectXg()) {
     vpMatrix r(1, 6);
     r[0][0] = -iZ;
     r[0][1] = 0;
-    r[0][2] = xg * iZ;
+    r[0][2] = xg * iZ + 4 * (A * m_n20 + B * m_n11);
     r[0][3] = xg * yg + 4 * m_n11;
     r[0][4] = -(1 + xg * xg + 4 * m_n20);
     r[0][5] = yg;
@@ -119,7 +162,7 @@ vpMatrix vpFeatureMorph::interaction(unsigned int select)
     vpMatrix r(1, 6);
     r[0][0] = 0;
     r[0][1] = -iZ;
-    r[0][2] = yg * iZ;
+    r[0][2] = yg * iZ + 4 * (A * m_n11 + B * m_n02);
     r[0][3] = 1 + yg * yg + 4 * m_n02;
     r[0][4] = -xg * yg - 4 * m_n11;
     r[0][5] = -xg;
@@ -142,8 +185,9 @@ vpMatrix vpFeatureMorph::interaction(unsigned int select)
     double N = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const double x = m_contour.x(i), y = m_contour.y(i), ax = x - cx, ay = y - cy;
-      const double Lx[6] = {-iZ, 0, x * iZ, x * y, -(1 + x * x), y};
-      const double Ly[6] = {0, -iZ, y * iZ, 1 + y * y, -x * y, -x};
+      const double iZi = A * x + B * y + C; // 1 / depth of the vertex on the plane
+      const double Lx[6] = {-iZi, 0, x * iZi, x * y, -(1 + x * x), y};
+      const double Ly[6] = {0, -iZi, y * iZi, 1 + y * y, -x * y, -x};
       for (unsigned int k = 0; k < 6; ++k)
         r[0][k] += w[i] * (ax * Ly[k] - ay * Lx[k]);
       N += w[i] * (ax * ax + ay * ay);
@@ -153,7 +197,9 @@ vpMatrix vpFeatureMorph::interaction(unsigned int select)
   }
   if (select & selectScale()) {
     vpMatrix r(1, 6);
-    r[0][2] = iZ;
+    r[0][0] = -0.5 * A;
+    r[0][1] = -0.5 * B;
+    r[0][2] = 0.5 * (3 * iZ - C);
     r[0][3] = 1.5 * yg;
     r[0][4] = -1.5 * xg;
     L = vpMatrix::stack(L, r);

@@ -19,10 +19,17 @@ using namespace vpMorphVsTest;
 
 namespace
 {
-vpFeatureMorph featureAt(const vpHomogeneousMatrix &cMo)
+// The feature seen from cMo: with the depth of a plane parallel to the image, or with the plane itself (tilted).
+vpFeatureMorph featureAt(const vpHomogeneousMatrix &cMo, bool withPlane = false)
 {
   vpFeatureMorph f;
-  f.buildFrom(projectPixels(cMo), camera(), depth(cMo));
+  if (withPlane) {
+    double A, B, C;
+    vpFeatureMorph::planeFromPose(cMo, A, B, C);
+    f.buildFrom(projectPixels(cMo), camera(), A, B, C);
+  } else {
+    f.buildFrom(projectPixels(cMo), camera(), depth(cMo));
+  }
   return f;
 }
 
@@ -30,7 +37,7 @@ vpFeatureMorph featureAt(const vpHomogeneousMatrix &cMo)
 vpColVector movedValue(const vpHomogeneousMatrix &cMo, const vpColVector &v, double dt, const vpFeatureMorph &ref)
 {
   const vpHomogeneousMatrix cMcp = vpExponentialMap::direct(v, dt);
-  vpFeatureMorph f = featureAt(cMcp.inverse() * cMo);
+  vpFeatureMorph f = featureAt(cMcp.inverse() * cMo, true);
   vpColVector e = f.error(ref); // (xg - xg0, yg - yg0, theta - theta0, sigma - sigma0)
   return e;
 }
@@ -57,6 +64,34 @@ TEST_CASE("vpFeatureMorph interaction matrices match finite differences of a cam
       }
     }
   }
+}
+
+TEST_CASE("vpFeatureMorph interaction matrices with a tilted plane match finite differences", "[feature]")
+{
+  const double poses[][6] = {{0.02, -0.01, 0.5, 20, -15, 40}, {-0.04, 0.03, 0.6, -25, 10, 160}};
+  for (const auto &p : poses) {
+    const vpHomogeneousMatrix cMo(p[0], p[1], p[2], vpMath::rad(p[3]), vpMath::rad(p[4]), vpMath::rad(p[5]));
+    vpFeatureMorph s0 = featureAt(cMo, true);
+    const vpMatrix L = s0.interaction();
+    const double dt = 1e-5;
+    for (unsigned int k = 0; k < 6; ++k) {
+      vpColVector v(6, 0.0);
+      v[k] = 1.0;
+      const vpColVector fd = (movedValue(cMo, v, dt, s0) - movedValue(cMo, -v, dt, s0)) / (2 * dt);
+      for (unsigned int r = 0; r < 4; ++r) {
+        INFO("tilted pose " << p[3] << "/" << p[4] << " row " << r << " column " << k << ": analytic " << L[r][k]
+                            << " finite " << fd[r]);
+        CHECK(std::fabs(L[r][k] - fd[r]) < 1e-4 * (1 + std::fabs(L[r][k])));
+      }
+    }
+  }
+  // The parallel-plane build is the special case A = B = 0, C = 1/Z.
+  const vpHomogeneousMatrix cMo = planarPose(30, 0.03, -0.02);
+  vpFeatureMorph a = featureAt(cMo, false), b = featureAt(cMo, true);
+  const vpMatrix La = a.interaction(), Lb = b.interaction();
+  CHECK((La - Lb).frobeniusNorm() < 1e-9);
+  vpFeatureMorph f;
+  CHECK_THROWS_AS(f.buildFrom(projectPixels(cMo), camera(), 0.0, 0.0, -2.0), vpMorphException); // behind
 }
 
 TEST_CASE("vpFeatureMorph selection, error from the correspondence, duplicate and bad input", "[feature]")

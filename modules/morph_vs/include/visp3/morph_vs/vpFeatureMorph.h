@@ -8,6 +8,7 @@
 #include <ostream>
 
 #include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_vs/vpMorphCorrespondenceTracker.h>
@@ -31,18 +32,20 @@
   - \f$\sigma = \ln \sqrt{a}\f$ with \e a the region area: \f$\sigma - \sigma^* = \ln(Z^{*} / Z)\f$ for a plane
     parallel to the image, so it drives depth.
 
-  <b>Interaction matrices</b> (6 columns, camera velocity \f$(v, \omega)\f$), for a planar object parallel to
-  the image plane at depth \e Z (the assumption of the paper's task; a tilted plane adds terms in its slope
-  that are neglected here). With \f$n_{ij} = \mu_{ij}/a\f$ the normalised centred region moments
-  (Chaumette, "Image moments: a general and useful set of features for visual servoing", T-RO 2004):
-  \f[ L_{x_g} = [-1/Z,\ 0,\ x_g/Z,\ x_g y_g + 4 n_{11},\ -(1 + x_g^2 + 4 n_{20}),\ y_g] \f]
-  \f[ L_{y_g} = [0,\ -1/Z,\ y_g/Z,\ 1 + y_g^2 + 4 n_{02},\ -x_g y_g - 4 n_{11},\ -x_g] \f]
-  \f[ L_{\sigma} = [0,\ 0,\ 1/Z,\ \tfrac{3}{2} y_g,\ -\tfrac{3}{2} x_g,\ 0] \f]
+  <b>Interaction matrices</b> (6 columns, camera velocity \f$(v, \omega)\f$), for a planar object whose plane is
+  \f$1/Z = A x + B y + C\f$ in the camera frame (buildFrom() with a depth Z assumes the plane parallel to the
+  image, A = B = 0, C = 1/Z: the paper's task; pass A, B, C when the tilt is known). With \f$n_{ij} = \mu_{ij}/a\f$
+  the normalised centred region moments and \f$1/Z_g = A x_g + B y_g + C\f$ (Chaumette, "Image moments: a general
+  and useful set of features for visual servoing", T-RO 2004):
+  \f[ L_{x_g} = [-1/Z_g,\ 0,\ x_g/Z_g + 4(A n_{20} + B n_{11}),\ x_g y_g + 4 n_{11},\ -(1 + x_g^2 + 4 n_{20}),\ y_g] \f]
+  \f[ L_{y_g} = [0,\ -1/Z_g,\ y_g/Z_g + 4(A n_{11} + B n_{02}),\ 1 + y_g^2 + 4 n_{02},\ -x_g y_g - 4 n_{11},\ -x_g] \f]
+  \f[ L_{\sigma} = [-A/2,\ -B/2,\ (3/Z_g - C)/2,\ \tfrac{3}{2} y_g,\ -\tfrac{3}{2} x_g,\ 0] \f]
   \f$L_\theta\f$ is the derivative of the least-squares angle: the weighted mean angular velocity of the
   vertices about their weighted mean \f$c\f$, \f$L_\theta = \sum_i w_i (a_{x,i} L_{y,i} - a_{y,i} L_{x,i}) /
   \sum_i w_i |a_i|^2\f$ with \f$a_i = p_i - c\f$, \f$L_{x,i}, L_{y,i}\f$ the point interaction matrices of vertex
-  \e i and \f$w_i\f$ half its two adjacent edge lengths (the fit's length weights); its last entry is -1 and its
-  three first are 0 for a parallel plane.
+  \e i at its depth on the plane and \f$w_i\f$ half its two adjacent edge lengths (the fit's length weights);
+  for a parallel plane its last entry is -1 and its three first are 0. It is exact while the current contour is
+  a similarity of the desired one, as near convergence.
 
   <b>With vpServo.</b> Always add it as task.addFeature(s, s_star) with a built desired feature: vpServo keeps
   raw pointers, so both objects must outlive the task, and vpServo::addFeature(s) alone would use a duplicate()
@@ -63,6 +66,15 @@ public:
   void buildFrom(const vpMorphContour &contour, const vpCameraParameters &cam, double Z);
   //! From a contour in normalised coordinates (the camera parameters are then only used by display()).
   void buildFrom(const vpMorphContour &normalizedContour, double Z);
+  /*!
+    With the object's plane 1/Z = A x + B y + C in the camera frame (normalised coordinates), for a tilted
+    object: the interaction matrices are then exact for it.
+    \throw vpMorphException::badParameterError if the plane is not in front of the camera at every vertex.
+  */
+  void buildFrom(const vpMorphContour &contour, const vpCameraParameters &cam, double A, double B, double C);
+  //! Plane coefficients (A, B, C) of the object plane in the camera frame, from its pose cMo and its normal
+  //! in the object frame (z axis by default); a helper for simulations and pose-based set-ups.
+  static void planeFromPose(const vpHomogeneousMatrix &cMo, double &A, double &B, double &C);
 
   void init() override;
   vpMatrix interaction(unsigned int select = FEATURE_ALL) override;
@@ -93,7 +105,11 @@ public:
   double get_yg() const { return s[1]; }
   double get_theta() const { return s[2]; }
   double get_sigma() const { return s[3]; }
+  //! Depth of the plane at the centroid, 1 / (A xg + B yg + C).
   double get_Z() const { return m_Z; }
+  double get_A() const { return m_A; }
+  double get_B() const { return m_B; }
+  double get_C() const { return m_C; }
   //! The contour in normalised coordinates.
   const vpMorphContour &contour() const { return m_contour; }
   //! The correspondence tracker (statistics: full and tracked searches, margin).
@@ -104,10 +120,11 @@ public:
 
 private:
   void checkBuilt(const char *caller) const;
+  void setContour(const vpMorphContour &normalized, double A, double B, double C);
 
   vpMorphContour m_contour; // normalised
   vpCameraParameters m_cam;
-  double m_Z = 1.0;
+  double m_Z = 1.0, m_A = 0.0, m_B = 0.0, m_C = 1.0;
   double m_n20 = 0.0, m_n02 = 0.0, m_n11 = 0.0;
   vpMorphCorrespondenceTracker m_tracker;
   vpMorphRigidTransform m_fit;
