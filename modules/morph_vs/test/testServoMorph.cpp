@@ -218,6 +218,8 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
     robot.setVelocity(vpRobot::CAMERA_FRAME, vpVelocityTwistMatrix(servo.get_eMc().inverse()) * ve);
   }
   REQUIRE(servo.converged());
+  vpImage<vpRGBa> I(480, 640);
+  CHECK_NOTHROW(servo.display(I)); // headless: no display attached, nothing drawn
   CHECK(servo.subGoals().size() == 6);
   CHECK(servo.subGoalIndex() == 5);
   const auto &h = servo.history();

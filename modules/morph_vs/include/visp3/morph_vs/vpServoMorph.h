@@ -10,7 +10,10 @@
 
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/core/vpColVector.h>
+#include <visp3/core/vpColor.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpRGBa.h>
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph/vpMorphTemplate.h>
@@ -166,6 +169,12 @@ public:
   const vpColVector &cameraVelocity() const { return m_vc; }
   const std::vector<Iteration> &history() const { return m_history; }
   const vpMorphCorrespondenceTracker &tracker() const { return m_tracker; }
+
+  //! Draws the current sub-goal and the final target (vpDisplay: no-op without a display attached to I).
+  void display(const vpImage<unsigned char> &I, const vpColor &subGoalColor = vpColor::orange,
+               const vpColor &targetColor = vpColor::green, unsigned int thickness = 1) const;
+  void display(const vpImage<vpRGBa> &I, const vpColor &subGoalColor = vpColor::orange,
+               const vpColor &targetColor = vpColor::green, unsigned int thickness = 1) const;
 
 private:
   void start(const vpMorphContour &current);
