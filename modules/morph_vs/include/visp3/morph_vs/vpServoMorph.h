@@ -123,7 +123,8 @@ public:
   void setTarget(const vpMorphTemplate &t);
   //! Number of sub-goals (0: the target only). Restarts the sequence.
   void setSubGoalCount(std::size_t n);
-  std::size_t subGoalCountParameter() const { return m_nSub; }
+  //! The parameter of setSubGoalCount() (subGoals().size() is max(1, it) once started).
+  std::size_t subGoalCount() const { return m_nSub; }
   //! Residual below which a sub-goal is reached (default: the paper's 0.10 rad and 5 px; translation and scale).
   void setSubGoalThresholds(double rotationRad, double translationPx);
   //! Residual below which the final goal is reached (default 0.001 rad and 0.1 px: noise-free images; with
