@@ -213,7 +213,7 @@ StockResult runStock(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix 
 }
 } // namespace
 
-TEST_CASE("vpFeatureMorph converges in a stock vpServo (current, desired, mean L; camera and cVe eJe laws)",
+TEST_CASE("vpFeatureMorph converges in a stock vpServo with current, desired and mean L, camera and cVe eJe laws",
           "[feature][servo]")
 {
   const vpHomogeneousMatrix cdMo = planarPose(20, 0.01, 0.0);

@@ -13,7 +13,7 @@
 
 using namespace vpMorphVsTest;
 
-TEST_CASE("vpMorphCorrespondenceTracker: full search first, then tracked; full again on a new target or a jump",
+TEST_CASE("vpMorphCorrespondenceTracker: full search first, then tracked, full again on a new target or a jump",
           "[tracker]")
 {
   vpMorphCorrespondenceTracker tr;
