@@ -181,6 +181,22 @@ TEST_CASE("vpServoMorph online calibration: wrong eMc (15 deg, 30 mm) and intrin
               "path %.1f mm vs %.1f mm online\n",
               vpServoMorph::statusName(off.status), off.iterations, off.tErr * 1000, off.rDeg, off.path * 1000,
               r.path * 1000);
+
+  // The other side: focal length 20 % too short, the hand-eye error the other way round, from -175 deg.
+  st.online = true;
+  st.eMcEstimate = eMcTrue * Yerr;
+  st.camEstimate = vpCameraParameters(640, 640, 320, 240);
+  const Result r2 = run(planarPose(20 - 175, -0.05, -0.06), cdMo, st);
+  std::printf("[calibration] online, focal -20 %%: %s after %d iterations, pose error %.4f mm %.4f deg; eMc error "
+              "%.1f mm %.2f deg -> %.2f mm %.3f deg; projection scale %.4f (true 0.8)\n",
+              vpServoMorph::statusName(r2.status), r2.iterations, r2.tErr * 1000, r2.rDeg, r2.eMcT0 * 1000, r2.eMcR0,
+              r2.eMcT * 1000, r2.eMcR, r2.scale);
+  CHECK(r2.converged);
+  CHECK(r2.tErr < 1e-3);
+  CHECK(r2.rDeg < 0.5);
+  CHECK(r2.eMcR < 0.25 * r2.eMcR0);
+  CHECK(r2.eMcT < 0.25 * r2.eMcT0);
+  CHECK(r2.scale == Approx(640.0 / 800.0).epsilon(0.02));
 }
 
 TEST_CASE("vpServoMorph: Eq. 5-11 law and stock vpServo over vpFeatureMorph compared", "[servo]")
