@@ -414,7 +414,9 @@ vpMorphDatabase vpMorphDatabase::fromImages(const std::string &dir, const vpMorp
   return db;
 }
 
-std::string vpMorphDatabase::toJson() const
+std::string vpMorphDatabase::toJson() const { return toJson(std::string()); }
+
+std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
 {
   json j;
   j["format"] = kFormat;
@@ -435,7 +437,15 @@ std::string vpMorphDatabase::toJson() const
   for (const vpMorphTemplate &t : m_templates) {
     json o;
     o["name"] = t.name();
-    o["image"] = t.imagePath();
+    std::string image = t.imagePath();
+    if (!image.empty() && !relativeTo.empty()) {
+      std::error_code ec;
+      const fs::path rel = fs::absolute(image, ec).lexically_normal().lexically_relative(
+          fs::absolute(relativeTo, ec).lexically_normal());
+      if (!ec && !rel.empty())
+        image = rel.generic_string();
+    }
+    o["image"] = image;
     o["units"] = t.contour().units() == vpMorphContour::PIXEL ? "pixel" : "normalized";
     o["x"] = t.contour().xs();
     o["y"] = t.contour().ys();
@@ -449,9 +459,9 @@ std::string vpMorphDatabase::toJson() const
 
 void vpMorphDatabase::save(const std::string &path) const
 {
-  const std::string text = toJson();
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  const std::string text = toJson(dir.string());
   // Temporary file in the same directory, so that the rename is atomic (same file system).
   std::ostringstream name;
   name << "." << target.filename().string() << ".tmp-" << std::random_device()();
@@ -551,14 +561,15 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
     for (unsigned int r = 0; r < 4; ++r)
       for (unsigned int cc = 0; cc < 4; ++cc)
         M[r][cc] = m[4 * r + cc];
-    const std::string image = o.contains("image") ? field<std::string>(o, "image", where.str()) : std::string();
-    if (checkImages && !image.empty()) {
-      fs::path ip(image);
-      if (ip.is_relative() && !baseDir.empty())
-        ip = fs::path(baseDir) / ip;
+    std::string image = o.contains("image") ? field<std::string>(o, "image", where.str()) : std::string();
+    if (!image.empty() && fs::path(image).is_relative() && !baseDir.empty()) {
       std::error_code ec;
-      if (!fs::exists(ip, ec))
-        throw ioError("vpMorphDatabase: " + where.str() + ": image '" + ip.string() + "' not found");
+      image = (fs::absolute(baseDir, ec) / image).lexically_normal().string();
+    }
+    if (checkImages && !image.empty()) {
+      std::error_code ec;
+      if (!fs::exists(image, ec))
+        throw ioError("vpMorphDatabase: " + where.str() + ": image '" + image + "' not found");
     }
     vpMorphTemplate t(name, c, image, M);
     if (o.contains("metadata"))

@@ -134,8 +134,8 @@ vpMorphShapeDistance::vpMorphShapeDistance(Model model) : m_model(model), m_poin
   case MULTISCALE:
     m_points = 48;
     m_mirrors = true;
-    m_work = vpMorphWorkModel(1.0, 0.1, 0.5);
-    m_scales = {0.01, 0.02, 0.05};
+    m_work = vpMorphWorkModel(1.0, 0.2, 0.5);
+    m_scales = {0.01, 0.05, 0.1};
     break;
   }
 }

@@ -90,11 +90,12 @@ public:
   */
   static vpMorphDatabase load(const std::string &path, bool checkImages = true);
   /*!
-    Writes the database as JSON atomically (temporary file then rename); image paths are written as given.
+    Writes the database as JSON atomically (temporary file then rename). Image paths are written relative to
+    the file's directory, so that a database moves with its images; load() resolves them back.
     \throw vpMorphException::ioError if the file cannot be written.
   */
   void save(const std::string &path) const;
-  //! The JSON text save() writes.
+  //! The JSON text of the database, image paths as they are in memory (save() makes them relative).
   std::string toJson() const;
   //! Parses the text of a database file; \e baseDir resolves relative image paths for \e checkImages.
   static vpMorphDatabase fromJson(const std::string &text, bool checkImages = false, const std::string &baseDir = "");
@@ -163,6 +164,7 @@ private:
   vpMorphRecognition search(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q, bool prune,
                             vpMorphMatcher &matcher) const;
   void invalidate();
+  std::string toJson(const std::string &relativeTo) const;
 
   vpMorphShapeDistance m_distance;
   std::vector<vpMorphTemplate> m_templates;
