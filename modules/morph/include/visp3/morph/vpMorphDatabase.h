@@ -23,8 +23,9 @@
   \code
   vpMorphDatabase db = vpMorphDatabase::fromImages("data/objects");  // one template per image, calibrated
   db.save("objects.json");
-  vpMorphRecognition r = db.recognize(vpMorphContourExtractor().extract(I));
-  if (r.accepted) vpMorph morph(c, db[r.index].contour(), r.correspondence);
+  vpMorphContour c = vpMorphContourExtractor().extract(I);
+  vpMorphRecognition r = db.recognize(c);
+  if (r.accepted) vpMorph morph(c, db[r.index].contour(), r.correspondence); // then servo to db[r.index].cdMo()
   \endcode
 
   <b>Distance.</b> A vpMorphShapeDistance, saved with the database so that it is always queried with the
