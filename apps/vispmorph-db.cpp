@@ -42,7 +42,8 @@ void usage(std::ostream &os)
         "  recognize  the template of the largest object of IMAGE, accepted or rejected\n";
 }
 
-struct Args {
+struct Args
+{
   std::string verb, out, model = "multiscale";
   std::vector<std::string> positional;
   double threshold = 0.0;
@@ -147,16 +148,18 @@ int main(int argc, char **argv)
                 << db.distance().points() << " points, kb " << db.distance().workModel().kb()
                 << (db.distance().mirrors() ? ", mirrors" : "") << "), "
                 << (db.isThresholdManual() ? "manual threshold"
-                                           : db.isCalibrated() ? "calibrated thresholds" : "not calibrated")
+                    : db.isCalibrated()    ? "calibrated thresholds"
+                                           : "not calibrated")
                 << "\n";
       std::cout << std::left << std::setw(24) << "name" << std::right << std::setw(9) << "vertices" << std::setw(10)
-                << "within" << std::setw(10) << "nearest" << std::setw(11) << "threshold" << "  image\n";
+                << "within" << std::setw(10) << "nearest" << std::setw(11) << "threshold"
+                << "  image\n";
       for (std::size_t k = 0; k < db.size(); ++k) {
         const bool cal = db.isCalibrated();
-        std::cout << std::left << std::setw(24) << db[k].name() << std::right << std::setw(9)
-                  << db[k].contour().size() << std::setw(10) << (cal ? fmt(db.withinDistances()[k]) : "-")
-                  << std::setw(10) << (cal ? fmt(db.betweenDistances()[k]) : "-") << std::setw(11)
-                  << fmt(db.threshold(k)) << "  " << db[k].imagePath() << "\n";
+        std::cout << std::left << std::setw(24) << db[k].name() << std::right << std::setw(9) << db[k].contour().size()
+                  << std::setw(10) << (cal ? fmt(db.withinDistances()[k]) : "-") << std::setw(10)
+                  << (cal ? fmt(db.betweenDistances()[k]) : "-") << std::setw(11) << fmt(db.threshold(k)) << "  "
+                  << db[k].imagePath() << "\n";
       }
     } else {
       const vpMorphDatabase db = vpMorphDatabase::load(a.positional[0]);
@@ -189,10 +192,9 @@ int main(int argc, char **argv)
       } else {
         std::cout << (r.accepted ? "ACCEPTED " : "REJECTED ") << db[r.index].name() << (r.mirrored ? " (mirrored)" : "")
                   << ": distance " << fmt(r.distance) << " (threshold " << fmt(r.threshold) << "), runner-up "
-                  << (r.secondIndex == vpMorphRecognition::npos ? std::string("none") : db[r.secondIndex].name())
-                  << " " << fmt(r.secondDistance) << ", margin " << std::setprecision(1) << std::fixed
-                  << 100.0 * r.margin << " %; " << r.evaluated << " of " << db.size() << " templates matched in "
-                  << ms << " ms\n";
+                  << (r.secondIndex == vpMorphRecognition::npos ? std::string("none") : db[r.secondIndex].name()) << " "
+                  << fmt(r.secondDistance) << ", margin " << std::setprecision(1) << std::fixed << 100.0 * r.margin
+                  << " %; " << r.evaluated << " of " << db.size() << " templates matched in " << ms << " ms\n";
       }
     }
   } catch (const vpException &e) {

@@ -58,7 +58,8 @@ void usage(std::ostream &os)
         "  --limit N        use only the first N images (quick runs)\n";
 }
 
-struct Options {
+struct Options
+{
   std::string images, classes, out, model = "multiscale", scales;
   long points = 0, threads = 0, limit = 0;
   double kb = -1.0, cs = -1.0;
@@ -268,7 +269,7 @@ int main(int argc, char **argv)
       ++classSize[c];
     std::vector<std::size_t> rankCounts(10, 0);
     std::size_t bullHits = 0, bullTotal = 0, top1 = 0;
-    std::vector<std::vector<std::size_t> > nn(N);
+    std::vector<std::vector<std::size_t>> nn(N);
     for (std::size_t i = 0; i < N; ++i) {
       std::vector<std::size_t> order(N);
       for (std::size_t j = 0; j < N; ++j)
@@ -314,15 +315,15 @@ int main(int argc, char **argv)
       f << "query,class,rank,neighbour,neighbour_class,distance\n" << std::setprecision(9);
       for (std::size_t i = 0; i < N; ++i)
         for (std::size_t r = 0; r < nn[i].size(); ++r)
-          f << names[i] << "," << classes[i] << "," << r + 1 << "," << names[nn[i][r]] << ","
-            << classes[nn[i][r]] << "," << D[i * N + nn[i][r]] << "\n";
+          f << names[i] << "," << classes[i] << "," << r + 1 << "," << names[nn[i][r]] << "," << classes[nn[i][r]]
+            << "," << D[i * N + nn[i][r]] << "\n";
     }
     nlohmann::json j;
     j["images"] = o.images;
     j["shapes"] = N;
     j["classes"] = classSize.size();
-    j["distance"] = {{"model", dist.name()},      {"points", dist.points()},         {"mirrors", dist.mirrors()},
-                     {"scales", dist.scales()},   {"ks", dist.workModel().ks()},     {"kb", dist.workModel().kb()},
+    j["distance"] = {{"model", dist.name()},       {"points", dist.points()},     {"mirrors", dist.mirrors()},
+                     {"scales", dist.scales()},    {"ks", dist.workModel().ks()}, {"kb", dist.workModel().kb()},
                      {"cs", dist.workModel().cs()}};
     j["bullseye_percent"] = bullseye;
     j["rank_counts"] = rankCounts;
@@ -335,11 +336,12 @@ int main(int argc, char **argv)
     j["pairs"] = N * (N - 1) / 2;
     std::ofstream(fs::path(o.out) / "summary.json") << j.dump(2) << "\n";
     std::ostringstream md;
-    md << std::fixed << std::setprecision(2) << "| images | model | shapes | bull's-eye (top-40) | ranks 1..10 (sum) | top-1 | matrix time |\n"
+    md << std::fixed << std::setprecision(2)
+       << "| images | model | shapes | bull's-eye (top-40) | ranks 1..10 (sum) | top-1 | matrix time |\n"
        << "|---|---|---|---|---|---|---|\n"
-       << "| " << fs::path(o.images).filename().string() << " | " << dist.name() << " (" << dist.points()
-       << " pts, kb " << dist.workModel().kb() << ", cs " << dist.workModel().cs() << (dist.mirrors() ? ", mirrors" : "") << ") | " << N << " | "
-       << bullseye << " % | ";
+       << "| " << fs::path(o.images).filename().string() << " | " << dist.name() << " (" << dist.points() << " pts, kb "
+       << dist.workModel().kb() << ", cs " << dist.workModel().cs() << (dist.mirrors() ? ", mirrors" : "") << ") | "
+       << N << " | " << bullseye << " % | ";
     for (std::size_t r = 0; r < 10; ++r)
       md << (r ? ", " : "") << rankCounts[r];
     md << " (" << rankSum << ") | " << top1acc << " % | " << std::setprecision(1) << secMatrix << " s ("

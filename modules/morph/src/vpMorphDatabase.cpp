@@ -58,13 +58,13 @@ vpMorphContour renderAndExtract(const vpMorphContour &c, double theta, double no
   };
   for (std::size_t k = 0; k < r.size(); ++k)
     pts.push_back(toPix(r.x(k), r.y(k)));
-  cv::fillPoly(img, std::vector<std::vector<cv::Point> >{pts}, cv::Scalar(255));
+  cv::fillPoly(img, std::vector<std::vector<cv::Point>>{pts}, cv::Scalar(255));
   if (!cut.empty()) {
     // The cut is given in the unrotated contour's coordinates (theta is 0 for occlusions).
     std::vector<cv::Point> cp;
     for (const cv::Point &p : cut)
       cp.push_back(toPix(p.x, p.y));
-    cv::fillPoly(img, std::vector<std::vector<cv::Point> >{cp}, cv::Scalar(0));
+    cv::fillPoly(img, std::vector<std::vector<cv::Point>>{cp}, cv::Scalar(0));
   }
   vpImage<unsigned char> I(static_cast<unsigned int>(H), static_cast<unsigned int>(W));
   std::mt19937 rng(seed);
@@ -77,8 +77,7 @@ vpMorphContour renderAndExtract(const vpMorphContour &c, double theta, double no
       I[v][u] = static_cast<unsigned char>(std::min(255.0, std::max(0.0, std::round(val))));
     }
   vpMorphContour e = vpMorphContourExtractor().extract(I);
-  return e.units() == c.units() && c.units() == vpMorphContour::PIXEL ? e
-                                                                       : vpMorphContour(e.xs(), e.ys(), c.units());
+  return e.units() == c.units() && c.units() == vpMorphContour::PIXEL ? e : vpMorphContour(e.xs(), e.ys(), c.units());
 }
 
 // The piece of outline from arc length s0 to s0 + fraction of the perimeter, closed by its chord: painting it
@@ -313,7 +312,7 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
       ++r.evaluated;
     }
   } else {
-    std::vector<std::pair<double, std::size_t> > order(T);
+    std::vector<std::pair<double, std::size_t>> order(T);
     for (std::size_t k = 0; k < T; ++k)
       order[k] = std::make_pair(m_distance.lowerBound(q, m_shapes[k]), k);
     std::sort(order.begin(), order.end());
@@ -422,8 +421,8 @@ std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
   j["format"] = kFormat;
   j["version"] = kVersion;
   const vpMorphShapeDistance &d = m_distance;
-  j["distance"] = {{"model", d.name()}, {"points", d.points()},  {"mirrors", d.mirrors()},
-                   {"scales", d.scales()}, {"ks", d.workModel().ks()}, {"kb", d.workModel().kb()},
+  j["distance"] = {{"model", d.name()},       {"points", d.points()},     {"mirrors", d.mirrors()},
+                   {"scales", d.scales()},    {"ks", d.workModel().ks()}, {"kb", d.workModel().kb()},
                    {"cs", d.workModel().cs()}};
   json cal;
   cal["calibrated"] = m_calibrated;
@@ -526,7 +525,7 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
                                     field<double>(dj, "cs", "\"distance\"")));
     if (d.model() != vpMorphShapeDistance::POLYGON) {
       d.setPoints(field<std::size_t>(dj, "points", "\"distance\""));
-      d.setScales(field<std::vector<double> >(dj, "scales", "\"distance\""));
+      d.setScales(field<std::vector<double>>(dj, "scales", "\"distance\""));
     }
     d.setMirrors(field<bool>(dj, "mirrors", "\"distance\""));
   } catch (const vpMorphException &e) {
@@ -546,15 +545,15 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
     const std::string units = field<std::string>(o, "units", where.str());
     if (units != "pixel" && units != "normalized")
       throw ioError("vpMorphDatabase: " + where.str() + ": units must be \"pixel\" or \"normalized\"");
-    const std::vector<double> x = field<std::vector<double> >(o, "x", where.str());
-    const std::vector<double> y = field<std::vector<double> >(o, "y", where.str());
+    const std::vector<double> x = field<std::vector<double>>(o, "x", where.str());
+    const std::vector<double> y = field<std::vector<double>>(o, "y", where.str());
     vpMorphContour c;
     try {
       c = vpMorphContour(x, y, units == "pixel" ? vpMorphContour::PIXEL : vpMorphContour::NORMALIZED);
     } catch (const vpException &e) {
       throw ioError("vpMorphDatabase: " + where.str() + ": invalid contour: " + e.getStringMessage());
     }
-    const std::vector<double> m = field<std::vector<double> >(o, "cdMo", where.str());
+    const std::vector<double> m = field<std::vector<double>>(o, "cdMo", where.str());
     if (m.size() != 16)
       throw ioError("vpMorphDatabase: " + where.str() + ": \"cdMo\" needs 16 numbers (row-major 4x4)");
     vpHomogeneousMatrix M;
@@ -573,7 +572,7 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
     }
     vpMorphTemplate t(name, c, image, M);
     if (o.contains("metadata"))
-      t.setMetadata(field<std::map<std::string, std::string> >(o, "metadata", where.str()));
+      t.setMetadata(field<std::map<std::string, std::string>>(o, "metadata", where.str()));
     if (db.find(name) != vpMorphRecognition::npos)
       throw vpMorphException(vpMorphException::badParameterError,
                              "vpMorphDatabase: duplicate template name '" + name + "'");

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include <visp3/core/vpRzyxVector.h>
 #include <visp3/core/vpRotationMatrix.h>
+#include <visp3/core/vpRzyxVector.h>
 #include <visp3/core/vpTranslationVector.h>
 #include <visp3/morph/vpMorphException.h>
 

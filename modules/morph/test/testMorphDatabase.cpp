@@ -48,10 +48,7 @@ template <typename F> std::pair<int, std::string> errorOf(F f)
   return {0, ""};
 }
 
-vpMorphContour square(double s = 10.0)
-{
-  return vpMorphContour({0, s, s, 0}, {0, 0, s, s});
-}
+vpMorphContour square(double s = 10.0) { return vpMorphContour({0, s, s, 0}, {0, 0, s, s}); }
 
 // One database of the twelve generated images (the six tools and their deformed variants), built once.
 const vpMorphDatabase &folderDatabase()
@@ -64,8 +61,8 @@ const vpMorphDatabase &folderDatabase()
 TEST_CASE("database: built from a folder of images in one call", "[database]")
 {
   std::size_t calls = 0;
-  const vpMorphDatabase db = vpMorphDatabase::fromImages(objectsDir(), vpMorphShapeDistance(),
-                                                         [&](std::size_t, std::size_t) { ++calls; });
+  const vpMorphDatabase db =
+      vpMorphDatabase::fromImages(objectsDir(), vpMorphShapeDistance(), [&](std::size_t, std::size_t) { ++calls; });
   REQUIRE(db.size() == 12);
   CHECK(calls >= 2);
   CHECK(db.isCalibrated());

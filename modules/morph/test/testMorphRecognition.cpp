@@ -23,7 +23,10 @@ namespace
 {
 const char *kObjects[] = {"key", "pliers", "wedge", "wrench", "screwdriver", "hammer"};
 
-std::string objectPath(const std::string &name) { return std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png"; }
+std::string objectPath(const std::string &name)
+{
+  return std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png";
+}
 
 cv::Mat readGray(const std::string &path)
 {
@@ -81,20 +84,19 @@ cv::Mat view(const cv::Mat &src, double deg, double tx, double ty, double sigma,
 cv::Mat occlude(const cv::Mat &src, double where, double fraction)
 {
   cv::Mat bin = src < 128;
-  std::vector<std::vector<cv::Point> > cs;
+  std::vector<std::vector<cv::Point>> cs;
   cv::findContours(bin, cs, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
   REQUIRE_FALSE(cs.empty());
-  const auto &c = *std::max_element(cs.begin(), cs.end(), [](const auto &a, const auto &b) {
-    return cv::contourArea(a) < cv::contourArea(b);
-  });
+  const auto &c = *std::max_element(
+      cs.begin(), cs.end(), [](const auto &a, const auto &b) { return cv::contourArea(a) < cv::contourArea(b); });
   const std::size_t a = static_cast<std::size_t>(where * c.size()) % c.size();
   const std::size_t len = static_cast<std::size_t>(fraction * c.size());
   std::vector<cv::Point> piece;
   for (std::size_t k = 0; k <= len; ++k)
     piece.push_back(c[(a + k) % c.size()]);
   cv::Mat out = src.clone();
-  cv::fillPoly(out, std::vector<std::vector<cv::Point> >{piece}, cv::Scalar(255));
-  cv::polylines(out, std::vector<std::vector<cv::Point> >{piece}, false, cv::Scalar(255), 2);
+  cv::fillPoly(out, std::vector<std::vector<cv::Point>>{piece}, cv::Scalar(255));
+  cv::polylines(out, std::vector<std::vector<cv::Point>>{piece}, false, cv::Scalar(255), 2);
   return out;
 }
 
@@ -108,7 +110,7 @@ cv::Mat unknownObject(int kind)
       const double r = k % 2 ? 60 : 150, a = k * M_PI / 5;
       star.emplace_back(static_cast<int>(320 + r * std::cos(a)), static_cast<int>(240 + r * std::sin(a)));
     }
-    cv::fillPoly(m, std::vector<std::vector<cv::Point> >{star}, cv::Scalar(0));
+    cv::fillPoly(m, std::vector<std::vector<cv::Point>>{star}, cv::Scalar(0));
   } else {
     cv::circle(m, cv::Point(320, 240), 120, cv::Scalar(0), cv::FILLED);
     cv::circle(m, cv::Point(380, 220), 110, cv::Scalar(255), cv::FILLED);
@@ -124,7 +126,8 @@ TEST_CASE("recognition: each template is accepted under rotation, translation, n
   REQUIRE(db.isCalibrated());
   for (std::size_t k = 0; k < db.size(); ++k) {
     const cv::Mat src = readGray(objectPath(kObjects[k]));
-    struct Case {
+    struct Case
+    {
       const char *what;
       cv::Mat img;
     };
@@ -250,8 +253,8 @@ TEST_CASE("recognition: the lower bound never exceeds the distance", "[recogniti
     cs.push_back(extract(readGray(objectPath(n))));
     cs.push_back(extract(readGray(objectPath(std::string(n) + "-deformed"))));
   }
-  for (vpMorphShapeDistance::Model m : {vpMorphShapeDistance::POLYGON, vpMorphShapeDistance::PAPER,
-                                        vpMorphShapeDistance::MULTISCALE}) {
+  for (vpMorphShapeDistance::Model m :
+       {vpMorphShapeDistance::POLYGON, vpMorphShapeDistance::PAPER, vpMorphShapeDistance::MULTISCALE}) {
     const vpMorphShapeDistance d(m);
     vpMorphMatcher matcher = d.matcher();
     const std::vector<vpMorphShapeDistance::Shape> s = d.prepareAll(cs);
@@ -334,8 +337,8 @@ TEST_CASE("recognition: distance models by name, and bad input", "[recognition]"
   // the polygons; resampled models only approximately (the samples fall elsewhere on the outline): 0.25 here,
   // against 1.18 from the key to its nearest other tool.
   const vpMorphContour key = extract(readGray(objectPath("key")));
-  for (const vpMorphShapeDistance &d : {vpMorphShapeDistance(vpMorphShapeDistance::POLYGON),
-                                        vpMorphShapeDistance(vpMorphShapeDistance::MULTISCALE)})
+  for (const vpMorphShapeDistance &d :
+       {vpMorphShapeDistance(vpMorphShapeDistance::POLYGON), vpMorphShapeDistance(vpMorphShapeDistance::MULTISCALE)})
     CHECK(d.distance(key, key.transformed(1.0, 30, -12, 2.0).rotatedStart(key.size() / 3)) ==
           Approx(0.0).margin(d.model() == vpMorphShapeDistance::POLYGON ? 1e-9 : 0.3));
 
@@ -344,7 +347,6 @@ TEST_CASE("recognition: distance models by name, and bad input", "[recognition]"
   CHECK_THROWS_AS(empty.calibrate(), vpMorphException);
   CHECK_THROWS_AS(objectDatabase().recognize(vpMorphContour()), vpMorphException);
 }
-
 
 TEST_CASE("recognition: a part turned over is recognised as the mirror image of its template", "[recognition]")
 {
@@ -365,8 +367,8 @@ TEST_CASE("recognition: nearest neighbours on a few Kimia-99 silhouettes, read i
 {
   const std::string dir = std::string(VISPMORPH_DATASETS_DIR) + "/kimia99/";
   // Three images of each of four classes (classes.csv of the dataset).
-  const char *files[] = {"fish14.png", "fish23.png", "herrings.png", "f15.png",    "f16.png",    "harrier.png",
-                         "tool04.png", "tool07.png", "tool08.png",   "dude0.png",  "dude1.png",  "dude2.png"};
+  const char *files[] = {"fish14.png", "fish23.png", "herrings.png", "f15.png",   "f16.png",   "harrier.png",
+                         "tool04.png", "tool07.png", "tool08.png",   "dude0.png", "dude1.png", "dude2.png"};
   std::vector<vpMorphContour> cs;
   for (const char *f : files) {
     const cv::Mat m = cv::imread(dir + f, cv::IMREAD_GRAYSCALE);

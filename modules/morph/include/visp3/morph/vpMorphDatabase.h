@@ -70,19 +70,20 @@ class vpMorphDatabase
 public:
   typedef vpMorphShapeDistance::Progress Progress;
 
-  explicit vpMorphDatabase(const vpMorphShapeDistance &distance = vpMorphShapeDistance(vpMorphShapeDistance::MULTISCALE));
+  explicit vpMorphDatabase(
+      const vpMorphShapeDistance &distance = vpMorphShapeDistance(vpMorphShapeDistance::MULTISCALE));
 
   /*!
     One template per image of \e dir (png, jpg, jpeg, pgm, ppm, bmp, tif, tiff), named after
-    the file without its extension (sorted by that name); the largest object of each image (vpMorphContourExtractor) on all cores,
-    then calibrate(). \e progress counts the images, then the calibration steps.
-    \throw vpMorphException::ioError if \e dir is not a readable directory, holds no image or an image cannot
-    be read; badImageError if an image has no object; badParameterError on two images with the same name.
+    the file without its extension (sorted by that name); the largest object of each image (vpMorphContourExtractor) on
+    all cores, then calibrate(). \e progress counts the images, then the calibration steps. \throw
+    vpMorphException::ioError if \e dir is not a readable directory, holds no image or an image cannot be read;
+    badImageError if an image has no object; badParameterError on two images with the same name.
   */
-  static vpMorphDatabase fromImages(const std::string &dir,
-                                    const vpMorphShapeDistance &distance =
-                                        vpMorphShapeDistance(vpMorphShapeDistance::MULTISCALE),
-                                    const Progress &progress = Progress());
+  static vpMorphDatabase
+  fromImages(const std::string &dir,
+             const vpMorphShapeDistance &distance = vpMorphShapeDistance(vpMorphShapeDistance::MULTISCALE),
+             const Progress &progress = Progress());
 
   /*!
     Reads a database written by save().

@@ -24,15 +24,15 @@ class vpMorphRecognition
 public:
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
-  std::size_t index = npos;                                         //!< best template
+  std::size_t index = npos;                                        //!< best template
   double distance = std::numeric_limits<double>::infinity();       //!< its distance (vpMorphShapeDistance)
-  std::size_t secondIndex = npos;                                   //!< runner-up (npos with one template)
+  std::size_t secondIndex = npos;                                  //!< runner-up (npos with one template)
   double secondDistance = std::numeric_limits<double>::infinity(); //!< its distance
   //! Relative gap (secondDistance - distance) / secondDistance in [0, 1]; 1 with a single template.
   double margin = 0.0;
   double threshold = std::numeric_limits<double>::infinity(); //!< acceptance threshold used
-  bool accepted = false;                                       //!< distance <= threshold
-  bool mirrored = false;                                       //!< the template's mirror image matched best
+  bool accepted = false;                                      //!< distance <= threshold
+  bool mirrored = false;                                      //!< the template's mirror image matched best
   /*!
     Minimal-work correspondence from the query contour to the best template's contour (as stored, not
     resampled), ready for vpMorph(query, db[index].contour(), correspondence).

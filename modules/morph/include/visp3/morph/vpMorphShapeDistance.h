@@ -58,12 +58,13 @@ public:
   };
 
   //! A contour in the representation(s) of a model, ready for distance() and lowerBound().
-  struct Shape {
-    std::vector<vpMorphContour> forms;         //!< per scale: the form, then its mirror image if mirrors are used
-    std::vector<std::vector<double> > len;     //!< per scale: incoming edge lengths (positive traversal, unit perimeter)
-    std::vector<std::vector<double> > phi;     //!< per scale: turning angles (positive traversal)
-    std::vector<std::vector<double> > lenSort; //!< per scale: lengths sorted
-    std::vector<std::vector<double> > phiSort; //!< per scale: angles sorted
+  struct Shape
+  {
+    std::vector<vpMorphContour> forms;        //!< per scale: the form, then its mirror image if mirrors are used
+    std::vector<std::vector<double>> len;     //!< per scale: incoming edge lengths (positive traversal, unit perimeter)
+    std::vector<std::vector<double>> phi;     //!< per scale: turning angles (positive traversal)
+    std::vector<std::vector<double>> lenSort; //!< per scale: lengths sorted
+    std::vector<std::vector<double>> phiSort; //!< per scale: angles sorted
   };
 
   //! Progress of a batch job: \e done of \e total units; called from the calling thread only.
@@ -126,9 +127,10 @@ public:
     matcher, and reports progress (units done) from the calling thread about ten times a second.
     The first exception thrown by a job is rethrown after all threads stop.
   */
-  void parallelFor(std::size_t count, unsigned int threads, const std::function<void(std::size_t, vpMorphMatcher &)> &job,
-                   const Progress &progress = Progress(), const std::function<std::size_t(std::size_t)> &weight =
-                                                              std::function<std::size_t(std::size_t)>()) const;
+  void
+  parallelFor(std::size_t count, unsigned int threads, const std::function<void(std::size_t, vpMorphMatcher &)> &job,
+              const Progress &progress = Progress(),
+              const std::function<std::size_t(std::size_t)> &weight = std::function<std::size_t(std::size_t)>()) const;
 
 private:
   Model m_model;
