@@ -105,7 +105,10 @@ public:
                   bool *mirrored = nullptr) const;
   //! Convenience: distance between two contours.
   double distance(const vpMorphContour &a, const vpMorphContour &b) const;
-  //! Valid lower bound of distance(a, b) (see the class description); about 1 % of a distance's cost.
+  /*!
+    Valid lower bound of distance(a, b) (see the class description): an O(mn) pass per scale, measured at
+    16-22 % of the cost of distance() (the six tools, one core), so pruning pays once it skips a fifth.
+  */
   double lowerBound(const Shape &a, const Shape &b) const;
   //! A matcher configured with this work model (scale normalisation on).
   vpMorphMatcher matcher() const { return vpMorphMatcher(m_work, true); }
