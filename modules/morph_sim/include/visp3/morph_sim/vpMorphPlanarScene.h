@@ -1,0 +1,154 @@
+/*!
+  \file vpMorphPlanarScene.h
+  \brief The benchmark scene: a plane with one object silhouette and an AprilTag beside it, rendered headless.
+*/
+#ifndef VP_MORPH_PLANAR_SCENE_H
+#define VP_MORPH_PLANAR_SCENE_H
+
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpPoint.h>
+#include <visp3/core/vpRGBa.h>
+#include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
+
+/*!
+  \class vpMorphPlanarScene
+  \ingroup group_morph_sim
+  \brief A plane carrying one object silhouette (from a template image) and an AprilTag 36h11, rendered by
+  vpImageSimulator for any camera pose, with optional seeded faults.
+
+  <b>Object frame</b> (the frame of cMo): the plane is z = 0, x and y follow the template image axes (x right,
+  y down), z points into the plane, so cMo = [I | (0, 0, 0.5)] views the object upright from 0.5 m, optical axis
+  normal to the plane. The silhouette's area centroid is at (x, y) = setObjectPlacement() (default the origin),
+  turned by theta about z; its longest bounding-box side in the template measures objectSize() metres.
+
+  <b>Why a ground-truth contour from the template:</b> the object's outline is extracted once from the template
+  (vpMorphContourExtractor, pixel centres) and mapped to metres with the same texel-to-plane mapping as
+  vpImageSimulator (texel centres 0 .. W-1 span the texture rectangle), so projectedContour() is what a perfect
+  extraction of a rendered image would give, whatever the pose.
+
+  <b>Look:</b> light plane (grey 210), dark object (40), tag black 40 on 210. The light-grey occluder (170) is
+  a square card lying on the plane over a chosen share of the contour; distractors are small dark rectangles
+  away from the object and the tag. Colour renders use a blue object on a beige plane (same geometry).
+
+  <b>Determinism:</b> no clock and no global state: the same scene, faults, pose and frame index give the
+  same image bit for bit. The noise generator is seeded with (seed, frame) so a sequence gets fresh noise.
+  Distractors and the occluder depend only on the seed and the fault settings.
+*/
+class vpMorphPlanarScene
+{
+public:
+  //! Image faults; everything off by default.
+  struct Faults
+  {
+    double noiseSigma = 0.0;    //!< Std of additive Gaussian noise, grey levels.
+    double blurSigma = 0.0;     //!< Std of a Gaussian blur, pixels.
+    double gain = 1.0;          //!< Illumination change I' = gain I + offset (applied before the noise).
+    double offset = 0.0;        //!< See gain, grey levels.
+    double occludedShare = 0.0; //!< Share of the object's contour length hidden by the occluder, [0, 0.9].
+    double occluderPosition =
+        0.0;                      //!< Where the occluder sits: fraction of the perimeter from contour vertex 0, [0, 1).
+    unsigned int distractors = 0; //!< Number of small distractor objects (at most 20).
+    unsigned int seed = 0;        //!< Seed of the noise and of the distractor placement.
+  };
+
+  /*!
+    \param objectImage : template image (dark object on light background, e.g. data/objects/pliers.png).
+    \param objectSize : longest side of the object's bounding box, metres (> 0).
+    \param tagId : AprilTag 36h11 id.
+    \param tagSize : black-border side of the tag, metres (> 0). 8 cm by default because the tilt of a smaller tag
+    is poorly observable at 0.5 m (a 6 cm tag gives up to 1.4 deg of error from 0.1 px corner errors, an 8 cm
+    one 0.15 deg): the tag is there to measure the truth, so it is sized for that.
+    \throw vpMorphException notFoundError for a missing file, badImageError for an image without object,
+    badParameterError for non-positive or NaN sizes.
+  */
+  explicit vpMorphPlanarScene(const std::string &objectImage, double objectSize = 0.15, int tagId = 0,
+                              double tagSize = 0.08);
+
+  //! Places the object's centroid at (x, y) of the object frame, turned by theta (rad) about z.
+  void setObjectPlacement(double x, double y, double theta);
+  /*!
+    Places the tag centre at (x, y) of the object frame (tag axes = object axes). By default it sits on the
+    side of the object where it stays closest to the object's centroid, 1 cm clear of the silhouette, so it
+    remains in view at the desired pose whatever the in-plane rotation.
+  */
+  void setTagPlacement(double x, double y);
+  void setFaults(const Faults &faults);
+  const Faults &faults() const { return m_faults; }
+  //! Camera intrinsics and image size used by render() (default: defaultCamera(), 640 x 480).
+  void setCamera(const vpCameraParameters &cam, unsigned int width, unsigned int height);
+  const vpCameraParameters &camera() const { return m_cam; }
+  unsigned int imageWidth() const { return m_width; }
+  unsigned int imageHeight() const { return m_height; }
+  //! The benchmark camera: px = py = 800, u0 = 320, v0 = 240, no distortion.
+  static vpCameraParameters defaultCamera() { return vpCameraParameters(800.0, 800.0, 320.0, 240.0); }
+
+  //! Renders the view from cMo (grey levels), with the faults; \e frame selects the noise realisation.
+  void render(const vpHomogeneousMatrix &cMo, vpImage<unsigned char> &I, unsigned int frame = 0) const;
+  //! Same in colour.
+  void render(const vpHomogeneousMatrix &cMo, vpImage<vpRGBa> &I, unsigned int frame = 0) const;
+
+  //! The object's outline in the object frame (metres, z = 0), polygon vertices.
+  std::vector<vpPoint> objectContour3D() const;
+  //! The object's outline projected in the image for cMo (pixels): the ground truth of contour extraction.
+  vpMorphContour projectedContour(const vpHomogeneousMatrix &cMo) const;
+  //! The four corners of the tag's black border in the object frame, in vpDetectorAprilTag's 3-D point order.
+  std::vector<vpPoint> tagCorners3D() const;
+  //! The four tag corners projected in the image for cMo (pixels).
+  std::vector<vpImagePoint> projectedTagCorners(const vpHomogeneousMatrix &cMo) const;
+  //! Pose of the tag frame in the object frame (a pure translation).
+  vpHomogeneousMatrix oMt() const;
+  int tagId() const { return m_tagId; }
+  double tagSize() const { return m_tagSize; }
+  double objectSize() const { return m_objectSize; }
+  //! Metres per template pixel.
+  double metresPerTexel() const { return m_metresPerTexel; }
+  //! An estimator of cMo from the tag in images of this scene.
+  vpMorphTagPoseEstimator tagPoseEstimator() const;
+
+  /*!
+    Share of the object's contour length actually hidden by the occluder (measured on the outline densely
+    sampled every 0.5 mm); 0 without occluder. Close to, but not exactly, Faults::occludedShare.
+  */
+  double occludedShare() const;
+  //! Corners of the occluder square in the object frame (empty without occluder).
+  std::vector<vpPoint> occluderCorners3D() const;
+  //! Corners of each distractor rectangle in the object frame.
+  std::vector<std::vector<vpPoint>> distractorCorners3D() const;
+
+private:
+  struct Patch
+  {
+    std::vector<vpPoint> corners; // top-left, top-right, bottom-right, bottom-left (object frame)
+    int kind;                     // 0 object, 1 tag, 2 occluder, 3 distractor
+  };
+  void updateLayout();
+  std::vector<Patch> patches() const;
+  template <typename T> void renderT(const vpHomogeneousMatrix &cMo, vpImage<T> &I, unsigned int frame) const;
+
+  std::string m_path;
+  double m_objectSize, m_tagSize;
+  int m_tagId;
+  vpImage<unsigned char> m_texture, m_tag;
+  std::vector<double> m_texX, m_texY; // outline in template pixels
+  double m_texCx = 0, m_texCy = 0;    // outline centroid in template pixels
+  double m_metresPerTexel = 0;
+  double m_objX = 0, m_objY = 0, m_objTheta = 0;
+  bool m_tagAuto = true;
+  double m_tagX = 0, m_tagY = 0;
+  Faults m_faults;
+  vpCameraParameters m_cam;
+  unsigned int m_width = 640, m_height = 480;
+  // Derived from the faults and placement.
+  std::vector<vpPoint> m_occluder;
+  std::vector<std::vector<vpPoint>> m_distractors;
+  double m_occludedShare = 0.0;
+};
+
+#endif

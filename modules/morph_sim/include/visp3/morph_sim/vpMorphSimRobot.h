@@ -1,0 +1,136 @@
+/*!
+  \file vpMorphSimRobot.h
+  \brief Headless, deterministic eye-in-hand robots for the benchmark: free camera, Viper850, Afma6.
+*/
+#ifndef VP_MORPH_SIM_ROBOT_H
+#define VP_MORPH_SIM_ROBOT_H
+
+#include <memory>
+#include <string>
+
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpMatrix.h>
+#include <visp3/core/vpVelocityTwistMatrix.h>
+#include <visp3/robot/vpRobot.h>
+
+/*!
+  \class vpMorphSimRobot
+  \ingroup group_morph_sim
+  \brief A simulated eye-in-hand robot stepped by a fixed sampling period, with a camera mounted by a true eMc
+  that the controller may not know.
+
+  Kinds:
+  - FREE_CAMERA: a free-flying end-effector (vpSimulatorCamera integrates its velocity); its 6 "joints" are
+    the end-effector velocity, eJe = identity; no joint limits.
+  - VIPER850: the 6-axis PUMA-like arm, with ViSP's vpViper850 kinematic model and joint limits.
+  - AFMA6: the gantry, with ViSP's vpAfma6 model and joint limits (joint 6 about +-91 deg, so a 180 deg turn
+    about the optical axis is out of reach: it is reported, not hidden).
+
+  <b>Why not vpSimulatorViper850 / vpSimulatorAfma6 directly:</b> they integrate the joint velocity in a
+  wall-clock thread, so two runs differ and a run lasts as long as the simulated motion. This class
+  integrates the same ViSP kinematic models (fMe(q), eJe(q), joint limits) with q += qdot * dt at each
+  setVelocity() call, so runs are bit-for-bit repeatable and as fast as the CPU allows; each call is one
+  sampling period, like a real robot loop.
+
+  <b>Hand-eye:</b> the camera truly sits at eMcTrue() on the end-effector. Camera-frame velocity commands are
+  converted with eMcNominal(), the transform the robot controller believes (by default the true one; set an
+  error with setCameraMount()), exactly like a real robot whose eMc is miscalibrated. A servo loop that works
+  in joint space builds its own cVe from its own eMc estimate and uses get_eJe().
+
+  <b>Joint limits:</b> a step that would cross a limit stops the joint on the limit; status() becomes
+  JOINT_LIMIT (sticky until reset by a new start pose) and jointLimitHits() counts such steps.
+*/
+class vpMorphSimRobot
+{
+public:
+  enum Kind { FREE_CAMERA, VIPER850, AFMA6 };
+  enum Status {
+    OK,          //!< Every command so far executed in full.
+    JOINT_LIMIT, //!< A command was clipped at a joint limit.
+    UNREACHABLE  //!< The last requested start pose has no inverse-kinematics solution within the limits.
+  };
+
+  /*!
+    \param kind : robot.
+    \param samplingTime : integration period, seconds (> 0), one setVelocity() call.
+  */
+  explicit vpMorphSimRobot(Kind kind, double samplingTime = 0.04);
+  ~vpMorphSimRobot();
+  vpMorphSimRobot(const vpMorphSimRobot &other);
+  vpMorphSimRobot &operator=(const vpMorphSimRobot &other);
+
+  Kind kind() const { return m_kind; }
+  static std::string kindName(Kind kind);
+  double samplingTime() const { return m_dt; }
+
+  /*!
+    The true camera mount eMcTrue and the one the robot controller uses for camera-frame commands.
+    Defaults: for the arms, ViSP's eMc of the robot model; for the free camera, a 10 cm offset along z.
+  */
+  void setCameraMount(const vpHomogeneousMatrix &eMcTrue, const vpHomogeneousMatrix &eMcNominal);
+  const vpHomogeneousMatrix &eMcTrue() const { return m_eMcTrue; }
+  const vpHomogeneousMatrix &eMcNominal() const { return m_eMcNominal; }
+  //! A transform offset by (dt metres along x, y, z and dr rad about an axis (1,1,1)/sqrt 3): a hand-eye error.
+  static vpHomogeneousMatrix perturbed(const vpHomogeneousMatrix &eMc, double dt, double dr);
+
+  /*!
+    Places the object in the fixed frame so that the camera sees it at \e cdMo with the robot in its reference
+    configuration (referenceJointPositions()), then puts the robot there. Call once per scenario: afterwards
+    the object does not move, and start poses are set with initialiseCameraRelativeToObject().
+  */
+  void setDesiredPose(const vpHomogeneousMatrix &cdMo);
+  /*!
+    Moves the robot (instantly, in position) so that the true camera sees the object at \e cMo: inverse
+    kinematics with the true eMc, nearest solution to the reference configuration. Returns false and sets
+    status UNREACHABLE (robot not moved) when no solution lies within the joint limits. Resets the path
+    length, the step counter and the status.
+  */
+  bool initialiseCameraRelativeToObject(const vpHomogeneousMatrix &cMo);
+  //! Sets the joint positions directly (checked against the limits); resets path length and status.
+  void setJointPositions(const vpColVector &q);
+
+  /*!
+    One sampling period of motion. \e frame is vpRobot::CAMERA_FRAME (6-vector twist of the camera, converted
+    with eMcNominal()), vpRobot::END_EFFECTOR_FRAME (twist of the end-effector) or vpRobot::JOINT_STATE (joint
+    velocities). Cartesian commands go through the pseudo-inverse of eJe(q).
+    \return the status after the step.
+  */
+  Status setVelocity(vpRobot::vpControlFrameType frame, const vpColVector &v);
+
+  //! Robot Jacobian in the end-effector frame at the current joints.
+  vpMatrix get_eJe() const;
+  //! Twist transform from the end-effector to the TRUE camera (what a perfectly calibrated controller would use).
+  vpVelocityTwistMatrix get_cVe() const;
+  vpHomogeneousMatrix get_fMe() const;
+  //! Pose of the true camera in the fixed frame.
+  vpHomogeneousMatrix get_fMc() const;
+  //! True object pose in the camera frame (the simulator's ground truth).
+  vpHomogeneousMatrix get_cMo() const;
+  const vpHomogeneousMatrix &get_fMo() const { return m_fMo; }
+  vpColVector getJointPositions() const;
+  vpColVector getJointMin() const;
+  vpColVector getJointMax() const;
+  //! The configuration at which setDesiredPose() puts the desired camera pose.
+  vpColVector referenceJointPositions() const;
+
+  Status status() const { return m_status; }
+  unsigned int jointLimitHits() const { return m_limitHits; }
+  unsigned int steps() const { return m_steps; }
+  //! Length of the path travelled by the true camera centre since the last start pose, metres.
+  double cameraPathLength() const { return m_path; }
+
+private:
+  struct Model;
+  void checkPose(const vpHomogeneousMatrix &M, const char *what) const;
+
+  Kind m_kind;
+  double m_dt;
+  std::unique_ptr<Model> m_model;
+  vpHomogeneousMatrix m_eMcTrue, m_eMcNominal, m_fMo;
+  Status m_status = OK;
+  unsigned int m_limitHits = 0, m_steps = 0;
+  double m_path = 0.0;
+};
+
+#endif

@@ -1,0 +1,62 @@
+/*!
+  \file vpMorphTagPoseEstimator.h
+  \brief Object pose measured from an image through an AprilTag: the second, independent ground truth.
+*/
+#ifndef VP_MORPH_TAG_POSE_ESTIMATOR_H
+#define VP_MORPH_TAG_POSE_ESTIMATOR_H
+
+#include <vector>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpImagePoint.h>
+
+/*!
+  \class vpMorphTagPoseEstimator
+  \ingroup group_morph_sim
+  \brief Estimates the object pose cMo from the AprilTag 36h11 lying in the object plane, with vpDetectorAprilTag.
+
+  Why: the simulator knows the exact pose, but a real bench only has what a camera sees. Reporting both, and
+  checking that they agree, shows that the truth used to score controllers is also measurable. The detector is
+  set with setZAlignedWithCameraAxis(true) so that the tag frame has z along the viewing direction, like the
+  object frame of the scenes (x right, y down, z into the plane); the object pose is cMo = cMt * oMt^-1.
+*/
+class vpMorphTagPoseEstimator
+{
+public:
+  /*!
+    \param tagId : the 36h11 id to look for (other tags are ignored).
+    \param tagSize : side of the black border square, metres.
+    \param oMt : pose of the tag frame (centre of the tag) in the object frame.
+    \param cam : camera intrinsics (no distortion).
+  */
+  vpMorphTagPoseEstimator(int tagId, double tagSize, const vpHomogeneousMatrix &oMt, const vpCameraParameters &cam);
+
+  /*!
+    Detects the tag and returns true with the object pose \e cMo (and optionally the four tag corners in
+    pixels, in the detector's order) when the tag is found; false otherwise (cMo untouched).
+  */
+  bool estimate(const vpImage<unsigned char> &I, vpHomogeneousMatrix &cMo,
+                std::vector<vpImagePoint> *corners = nullptr) const;
+
+  /*!
+    Difference between two poses of the object seen from a camera: distance between the object origins (metres,
+    in the camera frame) and angle of the relative rotation (radians, norm of theta-u). Measured at the object
+    (not as a camera displacement) so that a rotation error is not amplified by the viewing distance.
+  */
+  static void poseDifference(const vpHomogeneousMatrix &aMo, const vpHomogeneousMatrix &bMo, double &translation,
+                             double &rotation);
+
+  int tagId() const { return m_tagId; }
+  double tagSize() const { return m_tagSize; }
+  const vpHomogeneousMatrix &oMt() const { return m_oMt; }
+
+private:
+  int m_tagId;
+  double m_tagSize;
+  vpHomogeneousMatrix m_oMt;
+  vpCameraParameters m_cam;
+};
+
+#endif

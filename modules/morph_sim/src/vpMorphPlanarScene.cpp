@@ -1,0 +1,424 @@
+#include <visp3/morph_sim/vpMorphPlanarScene.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <sstream>
+
+#include <opencv2/imgproc.hpp>
+
+#include <visp3/core/vpException.h>
+#include <visp3/core/vpImageConvert.h>
+#include <visp3/core/vpMeterPixelConversion.h>
+#include <visp3/io/vpImageIo.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph_sim/vpMorphTagTexture.h>
+#include <visp3/robot/vpImageSimulator.h>
+
+namespace
+{
+const unsigned int kTagCell = 10; // tag texture: 10 x 10 cells of 10 px
+const double kBackground = 210, kObject = 40, kOccluder = 170;
+const vpRGBa kBackgroundRGB(215, 210, 195), kObjectRGB(25, 45, 120), kOccluderRGB(190, 165, 125);
+
+void badParameter(const std::string &msg) { throw vpMorphException(vpMorphException::badParameterError, msg); }
+
+bool isFinite(double v) { return std::isfinite(v); }
+
+vpPoint planePoint(double x, double y)
+{
+  vpPoint p;
+  p.setWorldCoordinates(x, y, 0.0);
+  return p;
+}
+
+// Dense samples (every step metres) along the closed polygon (x, y).
+void densify(const std::vector<double> &x, const std::vector<double> &y, double step, std::vector<double> &sx,
+             std::vector<double> &sy)
+{
+  sx.clear();
+  sy.clear();
+  const size_t n = x.size();
+  for (size_t k = 0; k < n; ++k) {
+    const size_t l = (k + 1) % n;
+    const double dx = x[l] - x[k], dy = y[l] - y[k];
+    const int m = std::max(1, static_cast<int>(std::ceil(std::hypot(dx, dy) / step)));
+    for (int i = 0; i < m; ++i) {
+      sx.push_back(x[k] + dx * i / m);
+      sy.push_back(y[k] + dy * i / m);
+    }
+  }
+}
+
+// Even-odd point-in-polygon test.
+bool inside(const std::vector<double> &x, const std::vector<double> &y, double px, double py)
+{
+  bool in = false;
+  for (size_t i = 0, j = x.size() - 1; i < x.size(); j = i++)
+    if ((y[i] > py) != (y[j] > py) && px < (x[j] - x[i]) * (py - y[i]) / (y[j] - y[i]) + x[i])
+      in = !in;
+  return in;
+}
+
+bool finitePose(const vpHomogeneousMatrix &M)
+{
+  for (unsigned int i = 0; i < 4; ++i)
+    for (unsigned int j = 0; j < 4; ++j)
+      if (!std::isfinite(M[i][j]))
+        return false;
+  return M.isAnHomogeneousMatrix();
+}
+
+unsigned char clip(double v) { return static_cast<unsigned char>(std::min(255.0, std::max(0.0, std::round(v)))); }
+
+// Texture of the given patch kind in grey levels or colour.
+template <typename T> T level(double grey, const vpRGBa &rgb);
+template <> unsigned char level<unsigned char>(double grey, const vpRGBa &) { return clip(grey); }
+template <> vpRGBa level<vpRGBa>(double, const vpRGBa &rgb) { return rgb; }
+
+template <typename T> T mix(double a, const T &dark, const T &light); // a = 1 dark, 0 light
+template <> unsigned char mix<unsigned char>(double a, const unsigned char &d, const unsigned char &l)
+{
+  return clip(l + (static_cast<double>(d) - l) * a);
+}
+template <> vpRGBa mix<vpRGBa>(double a, const vpRGBa &d, const vpRGBa &l)
+{
+  return vpRGBa(clip(l.R + (static_cast<double>(d.R) - l.R) * a), clip(l.G + (static_cast<double>(d.G) - l.G) * a),
+                clip(l.B + (static_cast<double>(d.B) - l.B) * a), 255);
+}
+
+template <typename T> vpImage<T> recolour(const vpImage<unsigned char> &src)
+{
+  const T dark = level<T>(kObject, kObjectRGB), light = level<T>(kBackground, kBackgroundRGB);
+  vpImage<T> out(src.getHeight(), src.getWidth());
+  for (unsigned int k = 0; k < src.getSize(); ++k)
+    out.bitmap[k] = mix<T>(1.0 - src.bitmap[k] / 255.0, dark, light);
+  return out;
+}
+
+template <typename T> void applyFaults(vpImage<T> &I, const vpMorphPlanarScene::Faults &f, unsigned int frame);
+
+template <typename T>
+void photometric(vpImage<T> &I, const vpMorphPlanarScene::Faults &f, unsigned int frame, int cvType,
+                 unsigned int channels)
+{
+  cv::Mat m(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), cvType, static_cast<void *>(I.bitmap));
+  if (f.blurSigma > 0.0) {
+    cv::Mat b;
+    cv::GaussianBlur(m, b, cv::Size(0, 0), f.blurSigma, f.blurSigma, cv::BORDER_REPLICATE);
+    b.copyTo(m);
+  }
+  if (f.gain == 1.0 && f.offset == 0.0 && f.noiseSigma <= 0.0)
+    return;
+  std::mt19937 rng(static_cast<std::mt19937::result_type>(f.seed * 2654435761u + frame * 40503u + 12345u));
+  std::normal_distribution<double> noise(0.0, f.noiseSigma > 0.0 ? f.noiseSigma : 1.0);
+  unsigned char *p = reinterpret_cast<unsigned char *>(I.bitmap);
+  const size_t n = static_cast<size_t>(I.getSize()) * (cvType == CV_8UC1 ? 1 : 4);
+  for (size_t k = 0; k < n; ++k) {
+    if (channels == 4 && (k % 4) == 3)
+      continue; // alpha
+    double v = f.gain * p[k] + f.offset;
+    if (f.noiseSigma > 0.0)
+      v += noise(rng);
+    p[k] = clip(v);
+  }
+}
+
+template <>
+void applyFaults<unsigned char>(vpImage<unsigned char> &I, const vpMorphPlanarScene::Faults &f, unsigned int frame)
+{
+  photometric(I, f, frame, CV_8UC1, 1);
+}
+template <> void applyFaults<vpRGBa>(vpImage<vpRGBa> &I, const vpMorphPlanarScene::Faults &f, unsigned int frame)
+{
+  photometric(I, f, frame, CV_8UC4, 4);
+}
+} // namespace
+
+vpMorphPlanarScene::vpMorphPlanarScene(const std::string &objectImage, double objectSize, int tagId, double tagSize)
+  : m_path(objectImage), m_objectSize(objectSize), m_tagSize(tagSize), m_tagId(tagId), m_cam(defaultCamera())
+{
+  if (!isFinite(objectSize) || objectSize <= 0.0 || !isFinite(tagSize) || tagSize <= 0.0) {
+    std::ostringstream os;
+    os << "vpMorphPlanarScene: object and tag sizes must be positive and finite (object " << objectSize << " m, tag "
+       << tagSize << " m)";
+    badParameter(os.str());
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(objectImage, ec))
+    throw vpMorphException(vpMorphException::notFoundError,
+                           "vpMorphPlanarScene: object image not found: '" + objectImage + "'");
+  try {
+    vpImageIo::read(m_texture, objectImage);
+  } catch (const vpException &e) {
+    throw vpMorphException(vpMorphException::ioError, "vpMorphPlanarScene: cannot read object image '" + objectImage +
+                                                          "': " + e.getStringMessage());
+  }
+  m_tag = vpMorphTagTexture::create(tagId, kTagCell);                    // checks the id
+  const vpMorphContour c = vpMorphContourExtractor().extract(m_texture); // throws badImageError without object
+  m_texX = c.xs();
+  m_texY = c.ys();
+  c.centroid(m_texCx, m_texCy);
+  const auto [xmin, xmax] = std::minmax_element(m_texX.begin(), m_texX.end());
+  const auto [ymin, ymax] = std::minmax_element(m_texY.begin(), m_texY.end());
+  m_metresPerTexel = objectSize / std::max(*xmax - *xmin, *ymax - *ymin);
+  updateLayout();
+}
+
+void vpMorphPlanarScene::setObjectPlacement(double x, double y, double theta)
+{
+  if (!isFinite(x) || !isFinite(y) || !isFinite(theta))
+    badParameter("vpMorphPlanarScene::setObjectPlacement: NaN or infinite placement");
+  m_objX = x;
+  m_objY = y;
+  m_objTheta = theta;
+  updateLayout();
+}
+
+void vpMorphPlanarScene::setTagPlacement(double x, double y)
+{
+  if (!isFinite(x) || !isFinite(y))
+    badParameter("vpMorphPlanarScene::setTagPlacement: NaN or infinite placement");
+  m_tagAuto = false;
+  m_tagX = x;
+  m_tagY = y;
+  updateLayout();
+}
+
+void vpMorphPlanarScene::setFaults(const Faults &f)
+{
+  std::ostringstream os;
+  if (!isFinite(f.noiseSigma) || f.noiseSigma < 0.0 || !isFinite(f.blurSigma) || f.blurSigma < 0.0 ||
+      f.blurSigma > 20.0)
+    os << "noise and blur sigmas must be finite, >= 0 (blur <= 20 px): noise " << f.noiseSigma << ", blur "
+       << f.blurSigma;
+  else if (!isFinite(f.gain) || f.gain <= 0.0 || !isFinite(f.offset))
+    os << "gain must be positive and offset finite: gain " << f.gain << ", offset " << f.offset;
+  else if (!isFinite(f.occludedShare) || f.occludedShare < 0.0 || f.occludedShare > 0.9)
+    os << "occluded share must be in [0, 0.9], got " << f.occludedShare;
+  else if (!isFinite(f.occluderPosition) || f.occluderPosition < 0.0 || f.occluderPosition >= 1.0)
+    os << "occluder position must be in [0, 1), got " << f.occluderPosition;
+  else if (f.distractors > 20)
+    os << "at most 20 distractors, got " << f.distractors;
+  if (!os.str().empty())
+    badParameter("vpMorphPlanarScene::setFaults: " + os.str());
+  m_faults = f;
+  updateLayout();
+}
+
+void vpMorphPlanarScene::setCamera(const vpCameraParameters &cam, unsigned int width, unsigned int height)
+{
+  if (!(cam.get_px() > 0.0) || !(cam.get_py() > 0.0) || !isFinite(cam.get_u0()) || !isFinite(cam.get_v0()) ||
+      width < 8 || height < 8 || width > 10000 || height > 10000)
+    badParameter(
+        "vpMorphPlanarScene::setCamera: positive focal lengths and an image of 8..10000 pixels per side needed");
+  m_cam = cam;
+  m_width = width;
+  m_height = height;
+}
+
+std::vector<vpPoint> vpMorphPlanarScene::objectContour3D() const
+{
+  const double c = std::cos(m_objTheta), s = std::sin(m_objTheta), p = m_metresPerTexel;
+  std::vector<vpPoint> P;
+  for (size_t k = 0; k < m_texX.size(); ++k) {
+    const double lx = (m_texX[k] - m_texCx) * p, ly = (m_texY[k] - m_texCy) * p;
+    P.push_back(planePoint(m_objX + c * lx - s * ly, m_objY + s * lx + c * ly));
+  }
+  return P;
+}
+
+vpMorphContour vpMorphPlanarScene::projectedContour(const vpHomogeneousMatrix &cMo) const
+{
+  if (!finitePose(cMo))
+    badParameter("vpMorphPlanarScene::projectedContour: cMo is not a valid homogeneous matrix (NaN?)");
+  std::vector<double> u, v;
+  for (vpPoint P : objectContour3D()) {
+    P.track(cMo);
+    if (P.get_Z() <= 0.0)
+      badParameter("vpMorphPlanarScene::projectedContour: the object is behind the camera");
+    double uu, vv;
+    vpMeterPixelConversion::convertPoint(m_cam, P.get_x(), P.get_y(), uu, vv);
+    u.push_back(uu);
+    v.push_back(vv);
+  }
+  return vpMorphContour(u, v, vpMorphContour::PIXEL);
+}
+
+vpHomogeneousMatrix vpMorphPlanarScene::oMt() const { return vpHomogeneousMatrix(m_tagX, m_tagY, 0.0, 0.0, 0.0, 0.0); }
+
+std::vector<vpPoint> vpMorphPlanarScene::tagCorners3D() const
+{
+  // vpDetectorAprilTag's order with z along the viewing direction: (-,+), (+,+), (+,-), (-,-) in tag coordinates.
+  const double h = m_tagSize / 2;
+  return {planePoint(m_tagX - h, m_tagY + h), planePoint(m_tagX + h, m_tagY + h), planePoint(m_tagX + h, m_tagY - h),
+          planePoint(m_tagX - h, m_tagY - h)};
+}
+
+std::vector<vpImagePoint> vpMorphPlanarScene::projectedTagCorners(const vpHomogeneousMatrix &cMo) const
+{
+  if (!finitePose(cMo))
+    badParameter("vpMorphPlanarScene::projectedTagCorners: cMo is not a valid homogeneous matrix (NaN?)");
+  std::vector<vpImagePoint> ips;
+  for (vpPoint P : tagCorners3D()) {
+    P.track(cMo);
+    vpImagePoint ip;
+    vpMeterPixelConversion::convertPoint(m_cam, P.get_x(), P.get_y(), ip);
+    ips.push_back(ip);
+  }
+  return ips;
+}
+
+vpMorphTagPoseEstimator vpMorphPlanarScene::tagPoseEstimator() const
+{
+  return vpMorphTagPoseEstimator(m_tagId, m_tagSize, oMt(), m_cam);
+}
+
+double vpMorphPlanarScene::occludedShare() const { return m_occludedShare; }
+std::vector<vpPoint> vpMorphPlanarScene::occluderCorners3D() const { return m_occluder; }
+std::vector<std::vector<vpPoint>> vpMorphPlanarScene::distractorCorners3D() const { return m_distractors; }
+
+void vpMorphPlanarScene::updateLayout()
+{
+  const std::vector<vpPoint> P = objectContour3D();
+  std::vector<double> x, y;
+  double radius = 0.0; // of the outline about its centroid
+  for (const vpPoint &p : P) {
+    x.push_back(p.get_oX());
+    y.push_back(p.get_oY());
+    radius = std::max(radius, std::hypot(p.get_oX() - m_objX, p.get_oY() - m_objY));
+  }
+  const double tagHalf = vpMorphTagTexture::textureSideForTagSize(m_tagSize, kTagCell) / 2; // with quiet zone
+  if (m_tagAuto) {
+    std::vector<double> ox, oy;
+    densify(x, y, 0.001, ox, oy);
+    // Candidate directions around the object: the nearest centre that keeps the whole tag texture 1 cm clear of
+    // the silhouette (distance measured from the outline vertices to the square).
+    double best = 1e9;
+    for (int k = 0; k < 8; ++k) {
+      const double a = k * M_PI / 4;
+      for (double d = 0.0; d < radius + 3 * tagHalf + 0.02; d += 0.001) {
+        const double tx = m_objX + d * std::cos(a), ty = m_objY + d * std::sin(a);
+        // Clear when no outline sample comes within 1 cm of the tag texture and the centre is outside the object.
+        bool clear = !inside(x, y, tx, ty);
+        for (size_t i = 0; i < ox.size() && clear; ++i)
+          clear = std::max(std::fabs(ox[i] - tx), std::fabs(oy[i] - ty)) > tagHalf + 0.01;
+        if (clear) {
+          if (d < best - 1e-9) {
+            best = d;
+            m_tagX = tx;
+            m_tagY = ty;
+          }
+          break;
+        }
+      }
+    }
+  }
+
+  // Occluder: a square centred on the outline point at the requested arc length, grown by bisection until the
+  // requested share of the densely sampled outline lies inside it.
+  m_occluder.clear();
+  m_occludedShare = 0.0;
+  std::vector<double> sx, sy;
+  densify(x, y, 0.0005, sx, sy);
+  if (m_faults.occludedShare > 0.0) {
+    const size_t c = std::min(sx.size() - 1, static_cast<size_t>(m_faults.occluderPosition * sx.size()));
+    auto share = [&](double h) {
+      size_t in = 0;
+      for (size_t i = 0; i < sx.size(); ++i)
+        in += (std::fabs(sx[i] - sx[c]) <= h && std::fabs(sy[i] - sy[c]) <= h) ? 1 : 0;
+      return static_cast<double>(in) / sx.size();
+    };
+    double lo = 0.0, hi = 2.5 * radius;
+    for (int it = 0; it < 40; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (share(mid) < m_faults.occludedShare ? lo : hi) = mid;
+    }
+    const double h = hi;
+    m_occludedShare = share(h);
+    m_occluder = {planePoint(sx[c] - h, sy[c] - h), planePoint(sx[c] + h, sy[c] - h), planePoint(sx[c] + h, sy[c] + h),
+                  planePoint(sx[c] - h, sy[c] + h)};
+  }
+
+  // Distractors: small dark rectangles placed by the seeded generator, clear of the object and of the tag.
+  m_distractors.clear();
+  std::mt19937 rng(m_faults.seed * 7919u + 17u);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const double keepObject = radius + 0.015, keepTag = tagHalf * std::sqrt(2.0) + 0.01;
+  for (unsigned int k = 0, tries = 0; k < m_faults.distractors && tries < 10000; ++tries) {
+    const double L = 0.015 + 0.02 * U(rng), W = 0.006 + 0.01 * U(rng), a = 2 * M_PI * U(rng);
+    const double cx = m_objX + (U(rng) - 0.5) * 0.36, cy = m_objY + (U(rng) - 0.5) * 0.26;
+    const double r = 0.5 * std::hypot(L, W);
+    if (std::hypot(cx - m_objX, cy - m_objY) < keepObject + r || std::hypot(cx - m_tagX, cy - m_tagY) < keepTag + r)
+      continue;
+    bool overlaps = false;
+    for (const auto &d : m_distractors) {
+      const double dx = 0.5 * (d[0].get_oX() + d[2].get_oX()), dy = 0.5 * (d[0].get_oY() + d[2].get_oY());
+      overlaps = overlaps || std::hypot(cx - dx, cy - dy) < r + 0.03;
+    }
+    if (overlaps)
+      continue;
+    const double c = std::cos(a), s = std::sin(a);
+    auto corner = [&](double u, double v) { return planePoint(cx + c * u - s * v, cy + s * u + c * v); };
+    m_distractors.push_back(
+        {corner(-L / 2, -W / 2), corner(L / 2, -W / 2), corner(L / 2, W / 2), corner(-L / 2, W / 2)});
+    ++k;
+  }
+}
+
+std::vector<vpMorphPlanarScene::Patch> vpMorphPlanarScene::patches() const
+{
+  std::vector<Patch> out;
+  // Object texture: texel (i, j) centre lands at ((j - cx) p, (i - cy) p) before placement (vpImageSimulator maps
+  // texel centres 0 .. W-1 onto the rectangle).
+  const double p = m_metresPerTexel, c = std::cos(m_objTheta), s = std::sin(m_objTheta);
+  auto place = [&](double tx, double ty) {
+    const double lx = (tx - m_texCx) * p, ly = (ty - m_texCy) * p;
+    return planePoint(m_objX + c * lx - s * ly, m_objY + s * lx + c * ly);
+  };
+  const double W = m_texture.getWidth() - 1.0, H = m_texture.getHeight() - 1.0;
+  out.push_back({{place(0, 0), place(W, 0), place(W, H), place(0, H)}, 0});
+  for (const auto &d : m_distractors)
+    out.push_back({d, 3});
+  const double h = vpMorphTagTexture::textureSideForTagSize(m_tagSize, kTagCell) / 2;
+  out.push_back({{planePoint(m_tagX - h, m_tagY - h), planePoint(m_tagX + h, m_tagY - h),
+                  planePoint(m_tagX + h, m_tagY + h), planePoint(m_tagX - h, m_tagY + h)},
+                 1});
+  if (!m_occluder.empty())
+    out.push_back({m_occluder, 2});
+  return out;
+}
+
+template <typename T>
+void vpMorphPlanarScene::renderT(const vpHomogeneousMatrix &cMo, vpImage<T> &I, unsigned int frame) const
+{
+  if (!finitePose(cMo))
+    badParameter("vpMorphPlanarScene::render: cMo is not a valid homogeneous matrix (NaN?)");
+  const T background = level<T>(kBackground, kBackgroundRGB);
+  I.resize(m_height, m_width, background);
+  const vpImage<T> object = recolour<T>(m_texture), tag = recolour<T>(m_tag);
+  vpImage<T> dark(2, 2, level<T>(kObject, kObjectRGB)), occluder(2, 2, level<T>(kOccluder, kOccluderRGB));
+  const vpImageSimulator::vpColorPlan plan =
+      std::is_same<T, unsigned char>::value ? vpImageSimulator::GRAY_SCALED : vpImageSimulator::COLORED;
+  for (const Patch &patch : patches()) {
+    vpImageSimulator sim(plan);
+    sim.setInterpolationType(vpImageSimulator::BILINEAR_INTERPOLATION);
+    const vpImage<T> &tex = patch.kind == 0 ? object : patch.kind == 1 ? tag : patch.kind == 2 ? occluder : dark;
+    sim.init(tex, patch.corners);
+    sim.setCameraPosition(cMo);
+    sim.getImage(I, m_cam); // paints only where the patch is seen, over what is already there (coplanar: in order)
+  }
+  applyFaults(I, m_faults, frame);
+}
+
+void vpMorphPlanarScene::render(const vpHomogeneousMatrix &cMo, vpImage<unsigned char> &I, unsigned int frame) const
+{
+  renderT(cMo, I, frame);
+}
+
+void vpMorphPlanarScene::render(const vpHomogeneousMatrix &cMo, vpImage<vpRGBa> &I, unsigned int frame) const
+{
+  renderT(cMo, I, frame);
+}

@@ -1,0 +1,367 @@
+#include <visp3/morph_sim/vpMorphSimRobot.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpThetaUVector.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/robot/vpAfma6.h>
+#include <visp3/robot/vpSimulatorCamera.h>
+#include <visp3/robot/vpViper850.h>
+
+namespace
+{
+void badParameter(const std::string &msg) { throw vpMorphException(vpMorphException::badParameterError, msg); }
+
+bool finiteVector(const vpColVector &v)
+{
+  for (unsigned int i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]))
+      return false;
+  return true;
+}
+} // namespace
+
+// The kinematic model behind each kind: ViSP's own classes, stepped here (no thread, no clock).
+struct vpMorphSimRobot::Model
+{
+  vpViper850 viper;
+  vpAfma6 afma;
+  vpSimulatorCamera flyer; // FREE_CAMERA: its "camera" frame is our end-effector frame
+  vpColVector q = vpColVector(6, 0.0);
+};
+
+vpMorphSimRobot::vpMorphSimRobot(Kind kind, double samplingTime) : m_kind(kind), m_dt(samplingTime), m_model(new Model)
+{
+  if (!std::isfinite(samplingTime) || samplingTime <= 0.0 || samplingTime > 1.0) {
+    std::ostringstream os;
+    os << "vpMorphSimRobot: sampling time must be in (0, 1] s, got " << samplingTime;
+    badParameter(os.str());
+  }
+  if (kind != FREE_CAMERA && kind != VIPER850 && kind != AFMA6)
+    badParameter("vpMorphSimRobot: unknown robot kind");
+  switch (kind) {
+  case VIPER850:
+    m_model->viper.get_eMc(m_eMcTrue);
+    break;
+  case AFMA6:
+    m_eMcTrue = m_model->afma.get_eMc();
+    break;
+  default:
+    m_eMcTrue.buildFrom(0.0, 0.0, 0.1, 0.0, 0.0, 0.0);
+    m_model->flyer.setSamplingTime(samplingTime);
+    // No hidden saturation: every controller is compared on the same, unsaturated robot.
+    m_model->flyer.setMaxTranslationVelocity(100.0);
+    m_model->flyer.setMaxRotationVelocity(100.0);
+    m_model->flyer.setRobotState(vpRobot::STATE_VELOCITY_CONTROL);
+    break;
+  }
+  m_eMcNominal = m_eMcTrue;
+  m_model->q = referenceJointPositions();
+  m_fMo = get_fMc() * vpHomogeneousMatrix(0, 0, 0.5, 0, 0, 0);
+}
+
+vpMorphSimRobot::~vpMorphSimRobot() = default;
+
+vpMorphSimRobot::vpMorphSimRobot(const vpMorphSimRobot &o)
+  : m_kind(o.m_kind), m_dt(o.m_dt), m_model(new Model(*o.m_model)), m_eMcTrue(o.m_eMcTrue),
+    m_eMcNominal(o.m_eMcNominal), m_fMo(o.m_fMo), m_status(o.m_status), m_limitHits(o.m_limitHits), m_steps(o.m_steps),
+    m_path(o.m_path)
+{
+}
+
+vpMorphSimRobot &vpMorphSimRobot::operator=(const vpMorphSimRobot &o)
+{
+  if (this != &o) {
+    vpMorphSimRobot tmp(o);
+    std::swap(m_kind, tmp.m_kind);
+    std::swap(m_dt, tmp.m_dt);
+    std::swap(m_model, tmp.m_model);
+    m_eMcTrue = o.m_eMcTrue;
+    m_eMcNominal = o.m_eMcNominal;
+    m_fMo = o.m_fMo;
+    m_status = o.m_status;
+    m_limitHits = o.m_limitHits;
+    m_steps = o.m_steps;
+    m_path = o.m_path;
+  }
+  return *this;
+}
+
+std::string vpMorphSimRobot::kindName(Kind kind)
+{
+  switch (kind) {
+  case FREE_CAMERA:
+    return "camera";
+  case VIPER850:
+    return "viper850";
+  case AFMA6:
+    return "afma6";
+  }
+  return "unknown";
+}
+
+void vpMorphSimRobot::checkPose(const vpHomogeneousMatrix &M, const char *what) const
+{
+  bool finite = true;
+  for (unsigned int i = 0; i < 4; ++i)
+    for (unsigned int j = 0; j < 4; ++j)
+      finite = finite && std::isfinite(M[i][j]);
+  if (!finite || !M.isAnHomogeneousMatrix())
+    badParameter(std::string("vpMorphSimRobot: ") + what +
+                 " is not a valid homogeneous matrix (NaN or not a rotation)");
+}
+
+vpHomogeneousMatrix vpMorphSimRobot::perturbed(const vpHomogeneousMatrix &eMc, double dt, double dr)
+{
+  if (!std::isfinite(dt) || !std::isfinite(dr))
+    badParameter("vpMorphSimRobot::perturbed: NaN or infinite offset");
+  const double a = dr / std::sqrt(3.0);
+  return eMc * vpHomogeneousMatrix(dt, dt, dt, a, a, a);
+}
+
+void vpMorphSimRobot::setCameraMount(const vpHomogeneousMatrix &eMcTrue, const vpHomogeneousMatrix &eMcNominal)
+{
+  checkPose(eMcTrue, "eMcTrue");
+  checkPose(eMcNominal, "eMcNominal");
+  const vpHomogeneousMatrix fMc = get_fMc();
+  m_eMcTrue = eMcTrue;
+  m_eMcNominal = eMcNominal;
+  (void)fMc;
+}
+
+vpColVector vpMorphSimRobot::referenceJointPositions() const
+{
+  vpColVector q(6, 0.0);
+  switch (m_kind) {
+  case VIPER850:
+    // Elbow up, wrist bent: the camera looks down, every joint far from its limits and from singularities.
+    q[1] = vpMath::rad(-45);
+    q[2] = vpMath::rad(135);
+    q[4] = vpMath::rad(-90);
+    break;
+  case AFMA6:
+    // Gantry in the middle of its workspace, camera looking down (joint 5 at 90 deg).
+    q[0] = 0.05;
+    q[1] = -0.04;
+    q[2] = 0.0;
+    q[4] = vpMath::rad(90);
+    break;
+  default:
+    break;
+  }
+  return q;
+}
+
+void vpMorphSimRobot::setDesiredPose(const vpHomogeneousMatrix &cdMo)
+{
+  checkPose(cdMo, "cdMo");
+  if (m_kind == FREE_CAMERA) {
+    m_model->flyer.setPosition(vpHomogeneousMatrix());
+  }
+  m_model->q = referenceJointPositions();
+  m_fMo = get_fMc() * cdMo;
+  m_status = OK;
+  m_limitHits = 0;
+  m_steps = 0;
+  m_path = 0.0;
+}
+
+bool vpMorphSimRobot::initialiseCameraRelativeToObject(const vpHomogeneousMatrix &cMo)
+{
+  checkPose(cMo, "cMo");
+  const vpHomogeneousMatrix fMc = m_fMo * cMo.inverse();
+  const vpHomogeneousMatrix fMe = fMc * m_eMcTrue.inverse();
+  vpColVector q = referenceJointPositions();
+  bool ok = true;
+  switch (m_kind) {
+  case FREE_CAMERA:
+    m_model->flyer.setPosition(fMe);
+    break;
+  case VIPER850: {
+    m_model->viper.set_eMc(m_eMcTrue);
+    ok = m_model->viper.getInverseKinematics(fMc, q) > 0;
+    break;
+  }
+  case AFMA6: {
+    m_model->afma.set_eMc(m_eMcTrue);
+    ok = m_model->afma.getInverseKinematics(fMc, q, true) > 0;
+    break;
+  }
+  }
+  if (m_kind != FREE_CAMERA) {
+    const vpColVector qmin = getJointMin(), qmax = getJointMax();
+    for (unsigned int i = 0; ok && i < 6; ++i)
+      ok = std::isfinite(q[i]) && q[i] >= qmin[i] && q[i] <= qmax[i];
+    if (ok) {
+      // The solvers may return the nearest configuration even when it is not exact: check the reached pose.
+      vpHomogeneousMatrix fMe_q;
+      if (m_kind == VIPER850)
+        m_model->viper.get_fMe(q, fMe_q);
+      else
+        m_model->afma.get_fMe(q, fMe_q);
+      const vpHomogeneousMatrix d = fMe_q.inverse() * fMe;
+      vpThetaUVector tu(d.getRotationMatrix());
+      ok = d.getTranslationVector().frobeniusNorm() < 1e-6 && std::sqrt(tu.sumSquare()) < 1e-6;
+    }
+    if (!ok) {
+      m_status = UNREACHABLE;
+      return false;
+    }
+    m_model->q = q;
+  }
+  m_status = OK;
+  m_limitHits = 0;
+  m_steps = 0;
+  m_path = 0.0;
+  return true;
+}
+
+void vpMorphSimRobot::setJointPositions(const vpColVector &q)
+{
+  if (q.size() != 6 || !finiteVector(q))
+    badParameter("vpMorphSimRobot::setJointPositions: 6 finite joint positions needed");
+  if (m_kind == FREE_CAMERA) {
+    // The free camera's joints are the end-effector pose (translation, theta-u).
+    m_model->flyer.setPosition(vpHomogeneousMatrix(q[0], q[1], q[2], q[3], q[4], q[5]));
+  } else {
+    const vpColVector qmin = getJointMin(), qmax = getJointMax();
+    for (unsigned int i = 0; i < 6; ++i)
+      if (q[i] < qmin[i] || q[i] > qmax[i]) {
+        std::ostringstream os;
+        os << "vpMorphSimRobot::setJointPositions: joint " << i + 1 << " = " << q[i] << " outside [" << qmin[i] << ", "
+           << qmax[i] << "]";
+        badParameter(os.str());
+      }
+    m_model->q = q;
+  }
+  m_status = OK;
+  m_limitHits = 0;
+  m_steps = 0;
+  m_path = 0.0;
+}
+
+vpMorphSimRobot::Status vpMorphSimRobot::setVelocity(vpRobot::vpControlFrameType frame, const vpColVector &v)
+{
+  if (v.size() != 6 || !finiteVector(v))
+    badParameter("vpMorphSimRobot::setVelocity: a 6-vector of finite velocities is needed");
+  vpColVector ve;
+  switch (frame) {
+  case vpRobot::CAMERA_FRAME:
+    // The robot controller converts with the eMc it believes.
+    ve = vpVelocityTwistMatrix(m_eMcNominal) * v;
+    break;
+  case vpRobot::END_EFFECTOR_FRAME:
+    ve = v;
+    break;
+  case vpRobot::JOINT_STATE:
+    break;
+  default:
+    badParameter("vpMorphSimRobot::setVelocity: frame must be CAMERA_FRAME, END_EFFECTOR_FRAME or JOINT_STATE");
+  }
+  const vpTranslationVector before = get_fMc().getTranslationVector();
+  if (m_kind == FREE_CAMERA) {
+    m_model->flyer.setVelocity(vpRobot::CAMERA_FRAME, frame == vpRobot::JOINT_STATE ? v : ve);
+  } else {
+    vpColVector qdot = frame == vpRobot::JOINT_STATE ? v : get_eJe().pseudoInverse(1e-6) * ve;
+    const vpColVector qmin = getJointMin(), qmax = getJointMax();
+    bool clipped = false;
+    for (unsigned int i = 0; i < 6; ++i) {
+      double qi = m_model->q[i] + qdot[i] * m_dt;
+      if (qi < qmin[i] || qi > qmax[i]) {
+        qi = std::min(qmax[i], std::max(qmin[i], qi));
+        clipped = true;
+      }
+      m_model->q[i] = qi;
+    }
+    if (clipped) {
+      m_status = JOINT_LIMIT;
+      ++m_limitHits;
+    }
+  }
+  ++m_steps;
+  m_path += (get_fMc().getTranslationVector() - before).frobeniusNorm();
+  return m_status;
+}
+
+vpMatrix vpMorphSimRobot::get_eJe() const
+{
+  vpMatrix eJe;
+  switch (m_kind) {
+  case VIPER850:
+    m_model->viper.get_eJe(m_model->q, eJe);
+    break;
+  case AFMA6:
+    m_model->afma.get_eJe(m_model->q, eJe);
+    break;
+  default:
+    eJe.eye(6);
+    break;
+  }
+  return eJe;
+}
+
+vpVelocityTwistMatrix vpMorphSimRobot::get_cVe() const { return vpVelocityTwistMatrix(m_eMcTrue.inverse()); }
+
+vpHomogeneousMatrix vpMorphSimRobot::get_fMe() const
+{
+  vpHomogeneousMatrix fMe;
+  switch (m_kind) {
+  case VIPER850:
+    m_model->viper.get_fMe(m_model->q, fMe);
+    break;
+  case AFMA6:
+    m_model->afma.get_fMe(m_model->q, fMe);
+    break;
+  default:
+    fMe = m_model->flyer.getPosition();
+    break;
+  }
+  return fMe;
+}
+
+vpHomogeneousMatrix vpMorphSimRobot::get_fMc() const { return get_fMe() * m_eMcTrue; }
+
+vpHomogeneousMatrix vpMorphSimRobot::get_cMo() const { return get_fMc().inverse() * m_fMo; }
+
+vpColVector vpMorphSimRobot::getJointPositions() const
+{
+  if (m_kind == FREE_CAMERA) {
+    const vpHomogeneousMatrix fMe = get_fMe();
+    const vpTranslationVector t = fMe.getTranslationVector();
+    const vpThetaUVector tu(fMe.getRotationMatrix());
+    vpColVector q(6);
+    for (unsigned int i = 0; i < 3; ++i) {
+      q[i] = t[i];
+      q[i + 3] = tu[i];
+    }
+    return q;
+  }
+  return m_model->q;
+}
+
+vpColVector vpMorphSimRobot::getJointMin() const
+{
+  switch (m_kind) {
+  case VIPER850:
+    return m_model->viper.getJointMin();
+  case AFMA6:
+    return m_model->afma.getJointMin();
+  default:
+    return vpColVector(6, -std::numeric_limits<double>::infinity());
+  }
+}
+
+vpColVector vpMorphSimRobot::getJointMax() const
+{
+  switch (m_kind) {
+  case VIPER850:
+    return m_model->viper.getJointMax();
+  case AFMA6:
+    return m_model->afma.getJointMax();
+  default:
+    return vpColVector(6, std::numeric_limits<double>::infinity());
+  }
+}

@@ -1,0 +1,192 @@
+// Tests of the simulated eye-in-hand robots (vpMorphSimRobot): start poses, deterministic motion, camera, end-effector
+// and joint-space commands through eJe and cVe, hand-eye error, joint limits and bad input.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpThetaUVector.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph_sim/vpMorphSimRobot.h>
+#include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
+
+namespace
+{
+const vpHomogeneousMatrix cdMo(0.01, -0.02, 0.5, 0, 0, vpMath::rad(20));
+
+vpHomogeneousMatrix startOf(double tx, double ty, double rzDeg)
+{
+  // The start camera is the desired one moved in its own frame.
+  return vpHomogeneousMatrix(tx, ty, 0, 0, 0, vpMath::rad(rzDeg)).inverse() * cdMo;
+}
+
+// Position-based law on the true pose, in the camera frame: v = -lambda (c t cd, theta-u) of cdMc.
+vpColVector pbvs(const vpHomogeneousMatrix &cMo, double lambda = 1.0)
+{
+  const vpHomogeneousMatrix cdMc = cdMo * cMo.inverse();
+  const vpHomogeneousMatrix cMcd = cdMc.inverse();
+  const vpThetaUVector tu(cdMc.getRotationMatrix());
+  vpColVector v(6);
+  const vpTranslationVector t = cMcd.getTranslationVector();
+  for (unsigned int i = 0; i < 3; ++i) {
+    v[i] = lambda * t[i];
+    v[i + 3] = -lambda * tu[i];
+  }
+  // v above moves the camera towards cd: translation along c t cd, rotation -theta-u of cdMc
+  return v;
+}
+
+struct Run
+{
+  vpHomogeneousMatrix cMo;
+  double path;
+  vpColVector q;
+};
+
+Run servo(vpMorphSimRobot::Kind kind, vpRobot::vpControlFrameType frame, int steps,
+          const vpHomogeneousMatrix &eMcBelieved = vpHomogeneousMatrix(), bool useBelieved = false)
+{
+  vpMorphSimRobot robot(kind);
+  robot.setDesiredPose(cdMo);
+  REQUIRE(robot.initialiseCameraRelativeToObject(startOf(0.04, -0.03, 35)));
+  const vpHomogeneousMatrix eMc = useBelieved ? eMcBelieved : robot.eMcTrue();
+  for (int k = 0; k < steps; ++k) {
+    const vpColVector vc = pbvs(robot.get_cMo());
+    if (frame == vpRobot::JOINT_STATE) {
+      // A ViSP-style joint-space law: qdot = (cVe eJe)^+ v, with the controller's own eMc.
+      const vpMatrix J = vpVelocityTwistMatrix(eMc.inverse()) * robot.get_eJe();
+      robot.setVelocity(vpRobot::JOINT_STATE, J.pseudoInverse() * vc);
+    } else {
+      robot.setVelocity(vpRobot::CAMERA_FRAME, vc);
+    }
+  }
+  return {robot.get_cMo(), robot.cameraPathLength(), robot.getJointPositions()};
+}
+} // namespace
+
+TEST_CASE("start poses are set from the desired pose and a relative transform", "[morph_sim][robot]")
+{
+  for (auto kind : {vpMorphSimRobot::FREE_CAMERA, vpMorphSimRobot::VIPER850, vpMorphSimRobot::AFMA6}) {
+    vpMorphSimRobot robot(kind);
+    robot.setDesiredPose(cdMo);
+    double t, r;
+    vpMorphTagPoseEstimator::poseDifference(robot.get_cMo(), cdMo, t, r);
+    INFO(vpMorphSimRobot::kindName(kind));
+    CHECK(t < 1e-9);
+    CHECK(r < 1e-9);
+    const vpHomogeneousMatrix start = startOf(0.05, 0.02, 60);
+    REQUIRE(robot.initialiseCameraRelativeToObject(start));
+    vpMorphTagPoseEstimator::poseDifference(robot.get_cMo(), start, t, r);
+    CHECK(t < 1e-6);
+    CHECK(r < 1e-6);
+    CHECK(robot.status() == vpMorphSimRobot::OK);
+    CHECK(robot.cameraPathLength() == 0.0);
+  }
+}
+
+TEST_CASE("each robot moves deterministically and converges under a camera-frame law", "[morph_sim][robot]")
+{
+  for (auto kind : {vpMorphSimRobot::FREE_CAMERA, vpMorphSimRobot::VIPER850, vpMorphSimRobot::AFMA6}) {
+    INFO(vpMorphSimRobot::kindName(kind));
+    const Run a = servo(kind, vpRobot::CAMERA_FRAME, 250), b = servo(kind, vpRobot::CAMERA_FRAME, 250);
+    for (unsigned int i = 0; i < 4; ++i)
+      for (unsigned int j = 0; j < 4; ++j)
+        CHECK(a.cMo[i][j] == b.cMo[i][j]);
+    CHECK(a.path == b.path);
+    double t, r;
+    vpMorphTagPoseEstimator::poseDifference(a.cMo, cdMo, t, r);
+    INFO("final error " << t * 1000 << " mm " << vpMath::deg(r) << " deg, path " << a.path << " m");
+    CHECK(t < 1e-4);
+    CHECK(vpMath::deg(r) < 0.01);
+    CHECK(a.path > 0.045);
+    CHECK(a.path < 0.08);
+  }
+}
+
+TEST_CASE("joint-space law through eJe and cVe matches the camera-frame law with the true eMc", "[morph_sim][robot]")
+{
+  for (auto kind : {vpMorphSimRobot::FREE_CAMERA, vpMorphSimRobot::VIPER850, vpMorphSimRobot::AFMA6}) {
+    INFO(vpMorphSimRobot::kindName(kind));
+    const Run a = servo(kind, vpRobot::CAMERA_FRAME, 40), b = servo(kind, vpRobot::JOINT_STATE, 40);
+    double t, r;
+    vpMorphTagPoseEstimator::poseDifference(a.cMo, b.cMo, t, r);
+    CHECK(t < 1e-6);
+    CHECK(r < 1e-6);
+  }
+}
+
+TEST_CASE("the camera mount the controller believes differs from the true one", "[morph_sim][robot]")
+{
+  vpMorphSimRobot robot(vpMorphSimRobot::VIPER850);
+  const vpHomogeneousMatrix truth = robot.eMcTrue();
+  const vpHomogeneousMatrix believed = vpMorphSimRobot::perturbed(truth, 0.01, vpMath::rad(5));
+  robot.setCameraMount(truth, believed);
+  robot.setDesiredPose(cdMo);
+  REQUIRE(robot.initialiseCameraRelativeToObject(startOf(0, 0, 0)));
+  // A pure rotation about the optical axis commanded through the wrong eMc also translates the true camera.
+  vpColVector w(6, 0.0);
+  w[5] = 0.5;
+  for (int k = 0; k < 10; ++k)
+    robot.setVelocity(vpRobot::CAMERA_FRAME, w);
+  const vpHomogeneousMatrix cdMc = cdMo * robot.get_cMo().inverse();
+  const double wrongShift = cdMc.getTranslationVector().frobeniusNorm();
+  CHECK(wrongShift > 1e-3);
+  // With the true eMc the optical centre moves only by the first-order integration error of the arm.
+  vpMorphSimRobot exact(vpMorphSimRobot::VIPER850);
+  exact.setDesiredPose(cdMo);
+  for (int k = 0; k < 10; ++k)
+    exact.setVelocity(vpRobot::CAMERA_FRAME, w);
+  CHECK((cdMo * exact.get_cMo().inverse()).getTranslationVector().frobeniusNorm() < 0.1 * wrongShift);
+  // The controller's joint-space law with the wrong eMc still converges (the law is robust to it).
+  const Run run = servo(vpMorphSimRobot::VIPER850, vpRobot::JOINT_STATE, 300, believed, true);
+  double t, r;
+  vpMorphTagPoseEstimator::poseDifference(run.cMo, cdMo, t, r);
+  CHECK(t < 1e-3);
+}
+
+TEST_CASE("Afma6 reports its joint-6 limit on a 180 deg turn about the optical axis; Viper850 does not",
+          "[morph_sim][robot]")
+{
+  vpMorphSimRobot afma(vpMorphSimRobot::AFMA6), viper(vpMorphSimRobot::VIPER850);
+  afma.setDesiredPose(cdMo);
+  viper.setDesiredPose(cdMo);
+  // Start pose turned by 180 deg: out of reach for the Afma6.
+  CHECK_FALSE(afma.initialiseCameraRelativeToObject(startOf(0, 0, 180)));
+  CHECK(afma.status() == vpMorphSimRobot::UNREACHABLE);
+  CHECK(viper.initialiseCameraRelativeToObject(startOf(0, 0, 180)));
+  // Turning by 180 deg in velocity: the Afma6 stops on the limit and says so.
+  REQUIRE(afma.initialiseCameraRelativeToObject(startOf(0, 0, 0)));
+  REQUIRE(viper.initialiseCameraRelativeToObject(startOf(0, 0, 0)));
+  vpColVector w(6, 0.0);
+  w[5] = vpMath::rad(45); // 4 s at 45 deg/s
+  for (int k = 0; k < 100; ++k) {
+    afma.setVelocity(vpRobot::CAMERA_FRAME, w);
+    viper.setVelocity(vpRobot::CAMERA_FRAME, w);
+  }
+  CHECK(afma.status() == vpMorphSimRobot::JOINT_LIMIT);
+  CHECK(afma.jointLimitHits() > 0);
+  const vpColVector q = afma.getJointPositions();
+  CHECK((std::fabs(q[5] - afma.getJointMax()[5]) < 1e-12 || std::fabs(q[5] - afma.getJointMin()[5]) < 1e-12));
+  CHECK(viper.status() == vpMorphSimRobot::OK);
+  const vpThetaUVector tu((cdMo * viper.get_cMo().inverse()).getRotationMatrix());
+  CHECK(vpMath::deg(std::sqrt(tu.sumSquare())) == Approx(180).margin(0.01));
+}
+
+TEST_CASE("bad robot input throws vpMorphException", "[morph_sim][errors]")
+{
+  CHECK_THROWS_AS(vpMorphSimRobot(vpMorphSimRobot::VIPER850, 0.0), vpMorphException);
+  CHECK_THROWS_AS(vpMorphSimRobot(vpMorphSimRobot::VIPER850, std::nan("")), vpMorphException);
+  vpMorphSimRobot robot(vpMorphSimRobot::VIPER850);
+  vpHomogeneousMatrix bad = cdMo;
+  bad[1][3] = std::nan("");
+  CHECK_THROWS_AS(robot.setDesiredPose(bad), vpMorphException);
+  CHECK_THROWS_AS(robot.initialiseCameraRelativeToObject(bad), vpMorphException);
+  vpColVector v(6, 0.0);
+  v[2] = std::nan("");
+  CHECK_THROWS_AS(robot.setVelocity(vpRobot::CAMERA_FRAME, v), vpMorphException);
+  CHECK_THROWS_AS(robot.setVelocity(vpRobot::CAMERA_FRAME, vpColVector(5, 0.0)), vpMorphException);
+  CHECK_THROWS_AS(robot.setVelocity(vpRobot::REFERENCE_FRAME, vpColVector(6, 0.0)), vpMorphException);
+  vpColVector q = robot.getJointMax();
+  q[0] += 0.1;
+  CHECK_THROWS_AS(robot.setJointPositions(q), vpMorphException);
+}

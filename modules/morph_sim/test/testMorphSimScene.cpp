@@ -1,0 +1,338 @@
+// Tests of the simulated scenes (vpMorphPlanarScene, vpMorphTagTexture, vpMorphTagPoseEstimator): tag textures,
+// deterministic rendering, contour ground truth, tag ground truth, fault injection and bad input.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpMeterPixelConversion.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph_sim/vpMorphPlanarScene.h>
+#include <visp3/morph_sim/vpMorphTagTexture.h>
+
+namespace
+{
+std::string object(const std::string &name) { return std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png"; }
+
+// Camera at depth z looking at the plane, turned by rz about the optical axis, tilted by rx, translated (tx, ty).
+vpHomogeneousMatrix view(double tx, double ty, double z, double rxDeg, double ryDeg, double rzDeg)
+{
+  return vpHomogeneousMatrix(tx, ty, z, 0, 0, 0) *
+         vpHomogeneousMatrix(0, 0, 0, vpMath::rad(rxDeg), vpMath::rad(ryDeg), vpMath::rad(rzDeg));
+}
+
+double segmentDistance(double px, double py, double ax, double ay, double bx, double by)
+{
+  const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+  const double t = l2 > 0 ? std::min(1.0, std::max(0.0, ((px - ax) * dx + (py - ay) * dy) / l2)) : 0.0;
+  return std::hypot(px - ax - t * dx, py - ay - t * dy);
+}
+
+double polygonDistance(double px, double py, const vpMorphContour &c)
+{
+  double d = std::numeric_limits<double>::max();
+  for (size_t k = 0; k < c.size(); ++k) {
+    const size_t l = (k + 1) % c.size();
+    d = std::min(d, segmentDistance(px, py, c.x(k), c.y(k), c.x(l), c.y(l)));
+  }
+  return d;
+}
+
+// Symmetric contour error: mean and max vertex-to-polygon distance both ways (pixels).
+void contourError(const vpMorphContour &a, const vpMorphContour &b, double &mean, double &maxd)
+{
+  double sum = 0;
+  size_t n = 0;
+  maxd = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    const vpMorphContour &p = pass ? b : a, &q = pass ? a : b;
+    const vpMorphContour dense = p.resampled(200);
+    for (size_t k = 0; k < dense.size(); ++k) {
+      const double d = polygonDistance(dense.x(k), dense.y(k), q);
+      sum += d;
+      maxd = std::max(maxd, d);
+      ++n;
+    }
+  }
+  mean = sum / n;
+}
+
+template <typename T> bool same(const vpImage<T> &a, const vpImage<T> &b)
+{
+  return a.getWidth() == b.getWidth() && a.getHeight() == b.getHeight() &&
+         std::equal(reinterpret_cast<const unsigned char *>(a.bitmap),
+                    reinterpret_cast<const unsigned char *>(a.bitmap + a.getSize()),
+                    reinterpret_cast<const unsigned char *>(b.bitmap));
+}
+
+// The extracted region nearest the ground-truth centroid (the tag's black border is a dark region too).
+vpMorphContour extractObject(const vpImage<unsigned char> &I, const vpMorphContour &truth)
+{
+  double tx, ty;
+  truth.centroid(tx, ty);
+  vpMorphContour best;
+  double bestD = std::numeric_limits<double>::max();
+  for (const vpMorphContour &c : vpMorphContourExtractor().extractAll(I)) {
+    double cx, cy;
+    c.centroid(cx, cy);
+    if (std::hypot(cx - tx, cy - ty) < bestD) {
+      bestD = std::hypot(cx - tx, cy - ty);
+      best = c;
+    }
+  }
+  return best;
+}
+} // namespace
+
+TEST_CASE("tag texture from libapriltag: black border, quiet zone, exact tag size", "[morph_sim][tag]")
+{
+  const vpImage<unsigned char> T = vpMorphTagTexture::create(3, 10);
+  REQUIRE(T.getWidth() == 100);
+  REQUIRE(T.getHeight() == 100);
+  for (unsigned int k = 0; k < 100; ++k) {
+    CHECK(T[0][k] == 255); // quiet zone
+    CHECK(T[k][99] == 255);
+    if (k >= 10 && k < 90) {
+      CHECK(T[10][k] == 0); // black border
+      CHECK(T[k][89] == 0);
+    }
+  }
+  CHECK(vpMorphTagTexture::tagSizeForTextureSide(0.099, 10) == Approx(0.08));
+  CHECK(vpMorphTagTexture::textureSideForTagSize(vpMorphTagTexture::tagSizeForTextureSide(0.07, 4), 4) == Approx(0.07));
+  CHECK_THROWS_AS(vpMorphTagTexture::create(587), vpMorphException);
+  CHECK_THROWS_AS(vpMorphTagTexture::create(-1), vpMorphException);
+  CHECK_THROWS_AS(vpMorphTagTexture::tagSizeForTextureSide(0.0), vpMorphException);
+  CHECK_THROWS_AS(vpMorphTagTexture::textureSideForTagSize(std::nan("")), vpMorphException);
+}
+
+TEST_CASE("rendering is deterministic, grey and colour", "[morph_sim][scene]")
+{
+  vpMorphPlanarScene scene(object("pliers"));
+  const vpHomogeneousMatrix cMo = view(0.01, -0.02, 0.5, 5, -3, 40);
+  vpImage<unsigned char> I1, I2;
+  scene.render(cMo, I1);
+  scene.render(cMo, I2);
+  REQUIRE(I1.getWidth() == 640);
+  REQUIRE(I1.getHeight() == 480);
+  CHECK(same(I1, I2));
+  vpImage<vpRGBa> C1, C2;
+  scene.render(cMo, C1);
+  scene.render(cMo, C2);
+  CHECK(same(C1, C2));
+  // A copy of the scene renders the same; with noise, the same frame is the same and another frame differs.
+  vpMorphPlanarScene::Faults f;
+  f.noiseSigma = 4;
+  f.seed = 7;
+  scene.setFaults(f);
+  const vpMorphPlanarScene copy = scene;
+  scene.render(cMo, I1, 3);
+  copy.render(cMo, I2, 3);
+  CHECK(same(I1, I2));
+  copy.render(cMo, I2, 4);
+  CHECK_FALSE(same(I1, I2));
+}
+
+TEST_CASE("extracted contour of the rendered object matches the projected ground truth", "[morph_sim][scene]")
+{
+  for (const std::string name : {"pliers", "key", "wedge", "wrench", "screwdriver", "hammer"}) {
+    vpMorphPlanarScene scene(object(name));
+    const vpHomogeneousMatrix poses[] = {view(0, 0, 0.5, 0, 0, 0), view(0.03, -0.02, 0.5, 0, 0, 120),
+                                         view(-0.02, 0.01, 0.45, 15, -10, -70), view(0.0, 0.0, 0.65, 0, 20, 180)};
+    for (const vpHomogeneousMatrix &cMo : poses) {
+      vpImage<unsigned char> I;
+      scene.render(cMo, I);
+      const vpMorphContour truth = scene.projectedContour(cMo);
+      const vpMorphContour found = extractObject(I, truth);
+      double mean, maxd;
+      contourError(found, truth, mean, maxd);
+      INFO(name << " at " << vpPoseVector(cMo).t() << ": contour error mean " << mean << " px, max " << maxd << " px");
+      CHECK(mean < 0.8);
+      CHECK(maxd < 4.0);
+      CHECK(found.area() == Approx(truth.area()).epsilon(0.03));
+    }
+  }
+}
+
+TEST_CASE("AprilTag pose agrees with the simulator's pose", "[morph_sim][tag]")
+{
+  vpMorphPlanarScene scene(object("key"), 0.15, 5, 0.08);
+  const vpMorphTagPoseEstimator estimator = scene.tagPoseEstimator();
+  const vpHomogeneousMatrix poses[] = {view(0, 0, 0.5, 0, 0, 0),           view(0.04, 0.03, 0.5, 0, 0, 90),
+                                       view(-0.05, 0.02, 0.5, 0, 0, 180),  view(0.02, -0.03, 0.5, 10, 5, -45),
+                                       view(0.0, 0.01, 0.4, -15, 10, 150), view(0.0, 0.0, 0.6, 20, 0, 30)};
+  double worstT = 0, worstR = 0;
+  for (const vpHomogeneousMatrix &cMo : poses) {
+    vpImage<unsigned char> I;
+    scene.render(cMo, I);
+    vpHomogeneousMatrix cMo_tag;
+    std::vector<vpImagePoint> corners;
+    REQUIRE(estimator.estimate(I, cMo_tag, &corners));
+    double t, r;
+    vpMorphTagPoseEstimator::poseDifference(cMo_tag, cMo, t, r);
+    worstT = std::max(worstT, t);
+    worstR = std::max(worstR, r);
+    INFO("pose " << vpPoseVector(cMo).t() << ": tag vs simulator " << t * 1000 << " mm, " << vpMath::deg(r) << " deg");
+    CHECK(t < 0.002);
+    CHECK(vpMath::deg(r) < 0.5);
+    // The detected corners are the projected ones, in the same order.
+    const std::vector<vpImagePoint> truth = scene.projectedTagCorners(cMo);
+    REQUIRE(corners.size() == 4);
+    for (size_t k = 0; k < 4; ++k) {
+      INFO("corner " << k << " detected " << corners[k] << " projected " << truth[k]);
+      CHECK(vpImagePoint::distance(corners[k], truth[k]) < 0.7);
+    }
+  }
+  INFO("worst disagreement " << worstT * 1000 << " mm, " << vpMath::deg(worstR) << " deg");
+  CHECK(worstT < 0.002);
+}
+
+TEST_CASE("image noise, blur and illumination change are applied as specified", "[morph_sim][faults]")
+{
+  vpMorphPlanarScene scene(object("wedge"));
+  const vpHomogeneousMatrix cMo = view(0, 0, 0.5, 0, 0, 0);
+  vpImage<unsigned char> clean, I;
+  scene.render(cMo, clean);
+  const unsigned char bg = clean[5][5];
+  CHECK(bg == 210);
+
+  vpMorphPlanarScene::Faults f;
+  f.noiseSigma = 5.0;
+  scene.setFaults(f);
+  scene.render(cMo, I);
+  double s = 0, s2 = 0;
+  for (unsigned int k = 0; k < I.getSize(); ++k) {
+    const double d = static_cast<double>(I.bitmap[k]) - clean.bitmap[k];
+    s += d;
+    s2 += d * d;
+  }
+  const double n = I.getSize(), mean = s / n, sd = std::sqrt(s2 / n - mean * mean);
+  INFO("noise mean " << mean << " std " << sd);
+  CHECK(std::fabs(mean) < 0.1);
+  CHECK(sd == Approx(5.0).epsilon(0.05));
+
+  f = vpMorphPlanarScene::Faults();
+  f.gain = 0.7;
+  f.offset = 20;
+  scene.setFaults(f);
+  scene.render(cMo, I);
+  CHECK(I[5][5] == static_cast<unsigned char>(std::lround(0.7 * 210 + 20)));
+
+  f = vpMorphPlanarScene::Faults();
+  f.blurSigma = 2.0;
+  scene.setFaults(f);
+  scene.render(cMo, I);
+  CHECK_FALSE(same(I, clean));
+  CHECK(I[5][5] == bg); // flat areas keep their level
+  // The blurred object is still extracted close to the truth.
+  const vpMorphContour truth = scene.projectedContour(cMo);
+  double cm, cx;
+  contourError(extractObject(I, truth), truth, cm, cx);
+  INFO("blurred contour error mean " << cm << " max " << cx);
+  CHECK(cm < 1.0);
+}
+
+TEST_CASE("the occluder hides the requested share of the contour", "[morph_sim][faults]")
+{
+  vpMorphPlanarScene scene(object("pliers"));
+  const vpHomogeneousMatrix cMo = view(0.01, 0.0, 0.5, 0, 0, 30);
+  vpImage<unsigned char> clean, I;
+  scene.render(cMo, clean);
+  for (double share : {0.05, 0.1, 0.2}) {
+    for (double where : {0.0, 0.3, 0.7}) {
+      vpMorphPlanarScene::Faults f;
+      f.occludedShare = share;
+      f.occluderPosition = where;
+      scene.setFaults(f);
+      INFO("requested " << share << " at " << where << ", measured " << scene.occludedShare());
+      CHECK(scene.occludedShare() == Approx(share).margin(0.01));
+      REQUIRE(scene.occluderCorners3D().size() == 4);
+      scene.render(cMo, I);
+      // Measured in the image: contour points nudged 0.8 mm inwards are dark (object) unless occluded (170).
+      std::vector<vpPoint> P = scene.objectContour3D();
+      std::vector<double> x, y;
+      for (const vpPoint &p : P) {
+        x.push_back(p.get_oX());
+        y.push_back(p.get_oY());
+      }
+      const vpMorphContour c(x, y, vpMorphContour::NORMALIZED);
+      const double sign =
+          c.isCounterClockwise() ? 1.0 : -1.0; // inward normal is to the left when CCW (x right, y down)
+      const vpMorphContour dense = c.resampled(600);
+      size_t hidden = 0, counted = 0;
+      for (size_t k = 0; k < dense.size(); ++k) {
+        const size_t l = (k + 1) % dense.size();
+        const double dx = dense.x(l) - dense.x(k), dy = dense.y(l) - dense.y(k), len = std::hypot(dx, dy);
+        vpPoint q;
+        q.setWorldCoordinates(dense.x(k) - sign * dy / len * 0.0008, dense.y(k) + sign * dx / len * 0.0008, 0);
+        q.track(cMo);
+        double u, v;
+        vpMeterPixelConversion::convertPoint(scene.camera(), q.get_x(), q.get_y(), u, v);
+        const unsigned char was = clean[static_cast<unsigned int>(v + 0.5)][static_cast<unsigned int>(u + 0.5)];
+        if (was > 100)
+          continue; // the nudge left the object (thin part): not a usable probe
+        ++counted;
+        hidden += I[static_cast<unsigned int>(v + 0.5)][static_cast<unsigned int>(u + 0.5)] > 100 ? 1 : 0;
+      }
+      const double measured = static_cast<double>(hidden) / counted;
+      INFO("image-measured share " << measured << " over " << counted << " probes");
+      CHECK(counted > 400);
+      CHECK(measured == Approx(share).margin(0.04));
+    }
+  }
+}
+
+TEST_CASE("distractors are placed clear of the object and the tag", "[morph_sim][faults]")
+{
+  vpMorphPlanarScene scene(object("hammer"));
+  const vpHomogeneousMatrix cMo = view(0, 0, 0.5, 0, 0, 0);
+  vpImage<unsigned char> clean, I;
+  scene.render(cMo, clean);
+  const size_t before = vpMorphContourExtractor().extractAll(clean).size();
+  vpMorphPlanarScene::Faults f;
+  f.distractors = 4;
+  f.seed = 11;
+  scene.setFaults(f);
+  REQUIRE(scene.distractorCorners3D().size() == 4);
+  scene.render(cMo, I);
+  const std::vector<vpMorphContour> all = vpMorphContourExtractor().extractAll(I);
+  CHECK(all.size() >= before + 3); // one may leave the field of view
+  const vpMorphContour truth = scene.projectedContour(cMo);
+  double m, mx;
+  contourError(extractObject(I, truth), truth, m, mx);
+  CHECK(m < 0.8);
+  // Another seed, another layout; the same seed, the same layout.
+  vpMorphPlanarScene other = scene;
+  f.seed = 12;
+  other.setFaults(f);
+  CHECK(other.distractorCorners3D()[0][0].get_oX() != scene.distractorCorners3D()[0][0].get_oX());
+}
+
+TEST_CASE("bad scene input throws vpMorphException", "[morph_sim][errors]")
+{
+  CHECK_THROWS_AS(vpMorphPlanarScene(object("no-such-object")), vpMorphException);
+  CHECK_THROWS_AS(vpMorphPlanarScene(object("pliers"), 0.0), vpMorphException);
+  CHECK_THROWS_AS(vpMorphPlanarScene(object("pliers"), -0.1), vpMorphException);
+  CHECK_THROWS_AS(vpMorphPlanarScene(object("pliers"), std::nan("")), vpMorphException);
+  CHECK_THROWS_AS(vpMorphPlanarScene(object("pliers"), 0.15, 0, 0.0), vpMorphException);
+  CHECK_THROWS_AS(vpMorphPlanarScene(object("pliers"), 0.15, 900), vpMorphException);
+  vpMorphPlanarScene scene(object("pliers"));
+  vpHomogeneousMatrix bad(0, 0, 0.5, 0, 0, 0);
+  bad[0][3] = std::nan("");
+  vpImage<unsigned char> I;
+  CHECK_THROWS_AS(scene.render(bad, I), vpMorphException);
+  CHECK_THROWS_AS(scene.projectedContour(bad), vpMorphException);
+  CHECK_THROWS_AS(scene.setObjectPlacement(0, std::nan(""), 0), vpMorphException);
+  vpMorphPlanarScene::Faults f;
+  f.occludedShare = 0.95;
+  CHECK_THROWS_AS(scene.setFaults(f), vpMorphException);
+  f = vpMorphPlanarScene::Faults();
+  f.noiseSigma = -1;
+  CHECK_THROWS_AS(scene.setFaults(f), vpMorphException);
+  f = vpMorphPlanarScene::Faults();
+  f.gain = 0;
+  CHECK_THROWS_AS(scene.setFaults(f), vpMorphException);
+}
