@@ -1,5 +1,6 @@
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -81,4 +82,58 @@ void vpMorphTagPoseEstimator::poseDifference(const vpHomogeneousMatrix &aMo, con
   translation = (aMo.getTranslationVector() - bMo.getTranslationVector()).frobeniusNorm();
   const vpThetaUVector tu(aMo.getRotationMatrix() * bMo.getRotationMatrix().inverse());
   rotation = std::sqrt(tu[0] * tu[0] + tu[1] * tu[1] + tu[2] * tu[2]);
+}
+
+void vpMorphTagPoseEstimator::maskTag(vpImage<unsigned char> &I, const std::vector<vpImagePoint> &corners,
+                                      double margin)
+{
+  if (corners.size() != 4 || !std::isfinite(margin) || margin < 0.0)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphTagPoseEstimator::maskTag: 4 corners and a non-negative margin are needed");
+  double cu = 0, cv = 0;
+  for (const vpImagePoint &c : corners) {
+    cu += c.get_u() / 4;
+    cv += c.get_v() / 4;
+  }
+  // The black square is 8 of the 10 cells of the texture: grow by 10/8, then by the margin (along the diagonal).
+  std::vector<double> u(4), v(4);
+  for (size_t k = 0; k < 4; ++k) {
+    const double du = corners[k].get_u() - cu, dv = corners[k].get_v() - cv, d = std::hypot(du, dv);
+    const double g = d > 0 ? (1.25 * d + margin * std::sqrt(2.0)) / d : 1.0;
+    u[k] = cu + g * du;
+    v[k] = cv + g * dv;
+  }
+  auto inside = [&](double pu, double pv) {
+    bool in = false;
+    for (size_t i = 0, j = 3; i < 4; j = i++)
+      if ((v[i] > pv) != (v[j] > pv) && pu < (u[j] - u[i]) * (pv - v[i]) / (v[j] - v[i]) + u[i])
+        in = !in;
+    return in;
+  };
+  // Fill level: median of the pixels on the grown quadrilateral's outline (the plane around the tag).
+  std::vector<unsigned char> ring;
+  for (size_t k = 0; k < 4; ++k) {
+    const size_t l = (k + 1) % 4;
+    const int n = std::max(1, static_cast<int>(std::hypot(u[l] - u[k], v[l] - v[k])));
+    for (int i = 0; i < n; ++i) {
+      const double pu = u[k] + (u[l] - u[k]) * i / n + (u[k] - cu) * 0.02,
+                   pv = v[k] + (v[l] - v[k]) * i / n + (v[k] - cv) * 0.02;
+      if (pu >= 0 && pv >= 0 && pu < I.getWidth() - 0.5 && pv < I.getHeight() - 0.5)
+        ring.push_back(I[static_cast<unsigned int>(pv + 0.5)][static_cast<unsigned int>(pu + 0.5)]);
+    }
+  }
+  if (ring.empty())
+    return; // the whole tag region is outside the image
+  std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
+  const unsigned char fill = ring[ring.size() / 2];
+  const double umin = std::max(0.0, *std::min_element(u.begin(), u.end()));
+  const double umax = std::min(I.getWidth() - 1.0, *std::max_element(u.begin(), u.end()));
+  const double vmin = std::max(0.0, *std::min_element(v.begin(), v.end()));
+  const double vmax = std::min(I.getHeight() - 1.0, *std::max_element(v.begin(), v.end()));
+  for (unsigned int pv = static_cast<unsigned int>(std::floor(vmin));
+       pv <= static_cast<unsigned int>(std::ceil(vmax)) && pv < I.getHeight(); ++pv)
+    for (unsigned int pu = static_cast<unsigned int>(std::floor(umin));
+         pu <= static_cast<unsigned int>(std::ceil(umax)) && pu < I.getWidth(); ++pu)
+      if (inside(pu, pv))
+        I[pv][pu] = fill;
 }

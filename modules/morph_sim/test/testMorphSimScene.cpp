@@ -190,6 +190,30 @@ TEST_CASE("AprilTag pose agrees with the simulator's pose", "[morph_sim][tag]")
   CHECK(worstT < 0.002);
 }
 
+TEST_CASE("masking the detected tag leaves the object as the largest region", "[morph_sim][tag]")
+{
+  vpMorphPlanarScene scene(object("pliers"));
+  vpMorphPlanarScene::Faults f;
+  f.noiseSigma = 2;
+  scene.setFaults(f);
+  const vpHomogeneousMatrix cMo = view(0.02, -0.01, 0.5, 5, 0, 110);
+  vpImage<unsigned char> I;
+  scene.render(cMo, I);
+  const vpMorphContour truth = scene.projectedContour(cMo);
+  double m, mx;
+  contourError(vpMorphContourExtractor().extract(I), truth, m, mx);
+  CHECK(m > 10); // the tag is the largest dark region
+  vpHomogeneousMatrix cMo_tag;
+  std::vector<vpImagePoint> corners;
+  REQUIRE(scene.tagPoseEstimator().estimate(I, cMo_tag, &corners));
+  vpMorphTagPoseEstimator::maskTag(I, corners);
+  contourError(vpMorphContourExtractor().extract(I), truth, m, mx);
+  INFO("contour error after masking the tag: mean " << m << " px, max " << mx << " px");
+  CHECK(m < 0.8);
+  CHECK(mx < 4.0);
+  CHECK_THROWS_AS(vpMorphTagPoseEstimator::maskTag(I, std::vector<vpImagePoint>(3)), vpMorphException);
+}
+
 TEST_CASE("image noise, blur and illumination change are applied as specified", "[morph_sim][faults]")
 {
   vpMorphPlanarScene scene(object("wedge"));

@@ -41,6 +41,15 @@ public:
                 std::vector<vpImagePoint> *corners = nullptr) const;
 
   /*!
+    Paints the detected tag (its \e corners, grown to the whole texture with its quiet zone, plus \e margin
+    pixels) with the grey level found just around it. Why: an 8 cm tag is a larger dark region than most
+    objects, so an automatic silhouette extraction (largest region) would take the tag; a real bench removes it
+    the same way, from the detector's corners, never from the simulator's truth. Throws vpMorphException
+    unless there are 4 corners.
+  */
+  static void maskTag(vpImage<unsigned char> &I, const std::vector<vpImagePoint> &corners, double margin = 2.0);
+
+  /*!
     Difference between two poses of the object seen from a camera: distance between the object origins (metres,
     in the camera frame) and angle of the relative rotation (radians, norm of theta-u). Measured at the object
     (not as a camera displacement) so that a rotation error is not amplified by the viewing distance.
