@@ -239,12 +239,42 @@ vpMorphContour vpMorphPlanarScene::projectedContour(const vpHomogeneousMatrix &c
     P.track(cMo);
     if (P.get_Z() <= 0.0)
       badParameter("vpMorphPlanarScene::projectedContour: the object is behind the camera");
-    double uu, vv;
+    double uu = 0.0, vv = 0.0;
     vpMeterPixelConversion::convertPoint(m_cam, P.get_x(), P.get_y(), uu, vv);
     u.push_back(uu);
     v.push_back(vv);
   }
   return vpMorphContour(u, v, vpMorphContour::PIXEL);
+}
+
+namespace
+{
+bool pointsInView(const std::vector<vpPoint> &P, const vpHomogeneousMatrix &cMo, const vpCameraParameters &cam,
+                  unsigned int width, unsigned int height, double margin)
+{
+  if (!finitePose(cMo) || !std::isfinite(margin))
+    badParameter("vpMorphPlanarScene: in-view test needs a valid cMo and a finite margin");
+  for (vpPoint p : P) {
+    p.track(cMo);
+    if (p.get_Z() <= 0.0)
+      return false;
+    double u = 0.0, v = 0.0;
+    vpMeterPixelConversion::convertPoint(cam, p.get_x(), p.get_y(), u, v);
+    if (u < margin || v < margin || u > width - 1.0 - margin || v > height - 1.0 - margin)
+      return false;
+  }
+  return true;
+}
+} // namespace
+
+bool vpMorphPlanarScene::objectInView(const vpHomogeneousMatrix &cMo, double margin) const
+{
+  return pointsInView(objectContour3D(), cMo, m_cam, m_width, m_height, margin);
+}
+
+bool vpMorphPlanarScene::tagInView(const vpHomogeneousMatrix &cMo, double margin) const
+{
+  return pointsInView(tagCorners3D(), cMo, m_cam, m_width, m_height, margin);
 }
 
 vpHomogeneousMatrix vpMorphPlanarScene::oMt() const { return vpHomogeneousMatrix(m_tagX, m_tagY, 0.0, 0.0, 0.0, 0.0); }

@@ -335,6 +335,17 @@ TEST_CASE("distractors are placed clear of the object and the tag", "[morph_sim]
   CHECK(other.distractorCorners3D()[0][0].get_oX() != scene.distractorCorners3D()[0][0].get_oX());
 }
 
+TEST_CASE("object and tag in view", "[morph_sim][scene]")
+{
+  vpMorphPlanarScene scene(object("wrench"));
+  CHECK(scene.objectInView(view(0, 0, 0.5, 0, 0, 0)));
+  CHECK(scene.tagInView(view(0, 0, 0.5, 0, 0, 0)));
+  CHECK_FALSE(scene.objectInView(view(0.25, 0, 0.5, 0, 0, 0)));   // shifted out of the image
+  CHECK_FALSE(scene.objectInView(view(0, 0, 0.5, 0, 0, 0), 300)); // margin larger than half the image
+  CHECK_FALSE(scene.objectInView(view(0, 0, -0.5, 0, 0, 0)));     // behind the camera
+  CHECK_THROWS_AS(scene.tagInView(view(0, 0, 0.5, 0, 0, 0), std::nan("")), vpMorphException);
+}
+
 TEST_CASE("bad scene input throws vpMorphException", "[morph_sim][errors]")
 {
   CHECK_THROWS_AS(vpMorphPlanarScene(object("no-such-object")), vpMorphException);

@@ -98,6 +98,13 @@ public:
   std::vector<vpPoint> objectContour3D() const;
   //! The object's outline projected in the image for cMo (pixels): the ground truth of contour extraction.
   vpMorphContour projectedContour(const vpHomogeneousMatrix &cMo) const;
+  /*!
+    True when the whole object outline projects inside the image, at least \e margin pixels from the border
+    (and in front of the camera): the benchmark's "target never out of view" criterion, from the truth.
+  */
+  bool objectInView(const vpHomogeneousMatrix &cMo, double margin = 0.0) const;
+  //! Same for the four tag corners.
+  bool tagInView(const vpHomogeneousMatrix &cMo, double margin = 0.0) const;
   //! The four corners of the tag's black border in the object frame, in vpDetectorAprilTag's 3-D point order.
   std::vector<vpPoint> tagCorners3D() const;
   //! The four tag corners projected in the image for cMo (pixels).
