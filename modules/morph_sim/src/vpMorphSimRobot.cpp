@@ -126,10 +126,8 @@ void vpMorphSimRobot::setCameraMount(const vpHomogeneousMatrix &eMcTrue, const v
 {
   checkPose(eMcTrue, "eMcTrue");
   checkPose(eMcNominal, "eMcNominal");
-  const vpHomogeneousMatrix fMc = get_fMc();
   m_eMcTrue = eMcTrue;
   m_eMcNominal = eMcNominal;
-  (void)fMc;
 }
 
 vpColVector vpMorphSimRobot::referenceJointPositions() const

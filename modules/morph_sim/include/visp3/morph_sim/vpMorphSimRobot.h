@@ -67,6 +67,8 @@ public:
   /*!
     The true camera mount eMcTrue and the one the robot controller uses for camera-frame commands.
     Defaults: for the arms, ViSP's eMc of the robot model; for the free camera, a 10 cm offset along z.
+    The end-effector stays where it is, so the true camera moves with the new mount: call it before
+    setDesiredPose().
   */
   void setCameraMount(const vpHomogeneousMatrix &eMcTrue, const vpHomogeneousMatrix &eMcNominal);
   const vpHomogeneousMatrix &eMcTrue() const { return m_eMcTrue; }
