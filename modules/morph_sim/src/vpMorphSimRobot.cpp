@@ -60,15 +60,16 @@ vpMorphSimRobot::vpMorphSimRobot(Kind kind, double samplingTime) : m_kind(kind),
   }
   m_eMcNominal = m_eMcTrue;
   m_model->q = referenceJointPositions();
-  m_fMo = get_fMc() * vpHomogeneousMatrix(0, 0, 0.5, 0, 0, 0);
+  m_cdMo.buildFrom(0, 0, 0.5, 0, 0, 0);
+  m_fMo = get_fMc() * m_cdMo;
 }
 
 vpMorphSimRobot::~vpMorphSimRobot() = default;
 
 vpMorphSimRobot::vpMorphSimRobot(const vpMorphSimRobot &o)
   : m_kind(o.m_kind), m_dt(o.m_dt), m_model(new Model(*o.m_model)), m_eMcTrue(o.m_eMcTrue),
-    m_eMcNominal(o.m_eMcNominal), m_fMo(o.m_fMo), m_status(o.m_status), m_limitHits(o.m_limitHits), m_steps(o.m_steps),
-    m_path(o.m_path)
+    m_eMcNominal(o.m_eMcNominal), m_fMo(o.m_fMo), m_cdMo(o.m_cdMo), m_status(o.m_status), m_limitHits(o.m_limitHits),
+    m_steps(o.m_steps), m_path(o.m_path)
 {
 }
 
@@ -82,6 +83,7 @@ vpMorphSimRobot &vpMorphSimRobot::operator=(const vpMorphSimRobot &o)
     m_eMcTrue = o.m_eMcTrue;
     m_eMcNominal = o.m_eMcNominal;
     m_fMo = o.m_fMo;
+    m_cdMo = o.m_cdMo;
     m_status = o.m_status;
     m_limitHits = o.m_limitHits;
     m_steps = o.m_steps;
@@ -161,6 +163,7 @@ void vpMorphSimRobot::setDesiredPose(const vpHomogeneousMatrix &cdMo)
   }
   m_model->q = referenceJointPositions();
   m_fMo = get_fMc() * cdMo;
+  m_cdMo = cdMo;
   m_status = OK;
   m_limitHits = 0;
   m_steps = 0;
@@ -215,6 +218,12 @@ bool vpMorphSimRobot::initialiseCameraRelativeToObject(const vpHomogeneousMatrix
   m_steps = 0;
   m_path = 0.0;
   return true;
+}
+
+bool vpMorphSimRobot::initialiseCameraRelativeToDesired(const vpHomogeneousMatrix &cdMc)
+{
+  checkPose(cdMc, "cdMc");
+  return initialiseCameraRelativeToObject(cdMc.inverse() * m_cdMo);
 }
 
 void vpMorphSimRobot::setJointPositions(const vpColVector &q)

@@ -81,6 +81,14 @@ TEST_CASE("start poses are set from the desired pose and a relative transform", 
     CHECK(r < 1e-6);
     CHECK(robot.status() == vpMorphSimRobot::OK);
     CHECK(robot.cameraPathLength() == 0.0);
+    // The same start given relative to the desired camera.
+    const vpHomogeneousMatrix cdMc = cdMo * start.inverse();
+    vpMorphSimRobot other(kind);
+    other.setDesiredPose(cdMo);
+    REQUIRE(other.initialiseCameraRelativeToDesired(cdMc));
+    vpMorphTagPoseEstimator::poseDifference(other.get_cMo(), start, t, r);
+    CHECK(t < 1e-6);
+    CHECK(r < 1e-6);
   }
 }
 

@@ -89,6 +89,14 @@ public:
     length, the step counter and the status.
   */
   bool initialiseCameraRelativeToObject(const vpHomogeneousMatrix &cMo);
+  /*!
+    Start pose given relative to the desired camera: the camera is put at cdMc (pose of the start camera in
+    the desired camera frame), i.e. it sees the object at cMo = cdMc^-1 * cdMo. Same result and status as
+    initialiseCameraRelativeToObject(). Needs setDesiredPose() first.
+  */
+  bool initialiseCameraRelativeToDesired(const vpHomogeneousMatrix &cdMc);
+  //! The desired pose given to setDesiredPose().
+  const vpHomogeneousMatrix &get_cdMo() const { return m_cdMo; }
   //! Sets the joint positions directly (checked against the limits); resets path length and status.
   void setJointPositions(const vpColVector &q);
 
@@ -129,7 +137,7 @@ private:
   Kind m_kind;
   double m_dt;
   std::unique_ptr<Model> m_model;
-  vpHomogeneousMatrix m_eMcTrue, m_eMcNominal, m_fMo;
+  vpHomogeneousMatrix m_eMcTrue, m_eMcNominal, m_fMo, m_cdMo;
   Status m_status = OK;
   unsigned int m_limitHits = 0, m_steps = 0;
   double m_path = 0.0;
