@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <thread>
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpMeterPixelConversion.h>
@@ -134,6 +135,51 @@ TEST_CASE("rendering is deterministic, grey and colour", "[morph_sim][scene]")
   CHECK(same(I1, I2));
   copy.render(cMo, I2, 4);
   CHECK_FALSE(same(I1, I2));
+}
+
+TEST_CASE("rendering and tag detection give the same results from two threads", "[morph_sim][scene]")
+{
+  // The benchmark runs scenarios on both cores: nothing in a scene or an estimator is shared between calls.
+  const vpMorphPlanarScene scene(object("wrench"));
+  const vpHomogeneousMatrix cMo = view(0.01, 0.02, 0.5, 5, 5, 60);
+  vpImage<unsigned char> ref;
+  scene.render(cMo, ref);
+  vpHomogeneousMatrix refPose;
+  REQUIRE(scene.tagPoseEstimator().estimate(ref, refPose));
+  vpImage<unsigned char> I[2];
+  vpHomogeneousMatrix pose[2];
+  bool found[2] = {false, false};
+  std::thread workers[2];
+  for (int k = 0; k < 2; ++k)
+    workers[k] = std::thread([&, k] {
+      for (int it = 0; it < 3; ++it) {
+        scene.render(cMo, I[k]);
+        found[k] = scene.tagPoseEstimator().estimate(I[k], pose[k]);
+      }
+    });
+  for (auto &w : workers)
+    w.join();
+  for (int k = 0; k < 2; ++k) {
+    CHECK(same(I[k], ref));
+    CHECK(found[k]);
+    for (unsigned int i = 0; i < 4; ++i)
+      for (unsigned int j = 0; j < 4; ++j)
+        CHECK(pose[k][i][j] == refPose[i][j]);
+  }
+  // The colour render draws the object in blue.
+  vpImage<vpRGBa> C;
+  scene.render(view(0, 0, 0.5, 0, 0, 0), C);
+  const vpMorphContour truth = scene.projectedContour(view(0, 0, 0.5, 0, 0, 0));
+  double cx, cy;
+  truth.centroid(cx, cy);
+  size_t blue = 0;
+  for (size_t k = 0; k < truth.size(); ++k) {
+    // Points a quarter of the way from the centroid to each vertex: mostly inside the object.
+    const vpRGBa p = C[static_cast<unsigned int>(cy + 0.25 * (truth.y(k) - cy))]
+                      [static_cast<unsigned int>(cx + 0.25 * (truth.x(k) - cx))];
+    blue += (p.B > p.R + 50) ? 1 : 0;
+  }
+  CHECK(blue > truth.size() / 2);
 }
 
 TEST_CASE("extracted contour of the rendered object matches the projected ground truth", "[morph_sim][scene]")
