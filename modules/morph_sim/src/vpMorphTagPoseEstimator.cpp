@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 
 #include <visp3/core/vpPixelMeterConversion.h>
@@ -10,9 +11,22 @@
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/vision/vpPose.h>
 
+struct vpMorphTagPoseEstimator::Detector
+{
+  std::mutex mutex;
+  vpDetectorAprilTag detector{vpDetectorAprilTag::TAG_36h11, vpDetectorAprilTag::HOMOGRAPHY_VIRTUAL_VS};
+  Detector()
+  {
+    // One thread and no decimation: the result must not depend on the machine load (determinism).
+    detector.setZAlignedWithCameraAxis(true);
+    detector.setAprilTagNbThreads(1);
+    detector.setAprilTagQuadDecimate(1.0f);
+  }
+};
+
 vpMorphTagPoseEstimator::vpMorphTagPoseEstimator(int tagId, double tagSize, const vpHomogeneousMatrix &oMt,
                                                  const vpCameraParameters &cam)
-  : m_tagId(tagId), m_tagSize(tagSize), m_oMt(oMt), m_cam(cam)
+  : m_detector(std::make_shared<Detector>()), m_tagId(tagId), m_tagSize(tagSize), m_oMt(oMt), m_cam(cam)
 {
   bool finite = true;
   for (unsigned int i = 0; i < 4; ++i)
@@ -31,11 +45,8 @@ bool vpMorphTagPoseEstimator::estimate(const vpImage<unsigned char> &I, vpHomoge
 {
   if (I.getWidth() == 0 || I.getHeight() == 0)
     throw vpMorphException(vpMorphException::badImageError, "vpMorphTagPoseEstimator: empty image");
-  // One thread and no decimation: the result must not depend on the machine load (determinism).
-  vpDetectorAprilTag detector(vpDetectorAprilTag::TAG_36h11, vpDetectorAprilTag::HOMOGRAPHY_VIRTUAL_VS);
-  detector.setZAlignedWithCameraAxis(true);
-  detector.setAprilTagNbThreads(1);
-  detector.setAprilTagQuadDecimate(1.0f);
+  std::lock_guard<std::mutex> lock(m_detector->mutex);
+  vpDetectorAprilTag &detector = m_detector->detector;
   std::vector<vpHomogeneousMatrix> cMt_detector;
   if (!detector.detect(I, m_tagSize, m_cam, cMt_detector))
     return false;

@@ -116,7 +116,7 @@ public:
   double objectSize() const { return m_objectSize; }
   //! Metres per template pixel.
   double metresPerTexel() const { return m_metresPerTexel; }
-  //! An estimator of cMo from the tag in images of this scene.
+  //! An estimator of cMo from the tag in images of this scene; keep it for a whole run (its detector is built once).
   vpMorphTagPoseEstimator tagPoseEstimator() const;
 
   /*!

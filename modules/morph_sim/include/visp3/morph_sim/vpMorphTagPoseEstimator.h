@@ -5,6 +5,7 @@
 #ifndef VP_MORPH_TAG_POSE_ESTIMATOR_H
 #define VP_MORPH_TAG_POSE_ESTIMATOR_H
 
+#include <memory>
 #include <vector>
 
 #include <visp3/core/vpCameraParameters.h>
@@ -34,6 +35,9 @@ public:
   vpMorphTagPoseEstimator(int tagId, double tagSize, const vpHomogeneousMatrix &oMt, const vpCameraParameters &cam);
 
   /*!
+    The detector is built once per estimator and shared by its copies (calls on copies are serialised):
+    give each thread its own estimator to detect in parallel.
+
     Detects the tag and returns true with the object pose \e cMo (and optionally the four tag corners in
     pixels, in the detector's order) when the tag is found; false otherwise (cMo untouched).
   */
@@ -62,6 +66,8 @@ public:
   const vpHomogeneousMatrix &oMt() const { return m_oMt; }
 
 private:
+  struct Detector; // vpDetectorAprilTag built once (building the 36h11 decoder costs ~20 ms), behind a mutex
+  std::shared_ptr<Detector> m_detector;
   int m_tagId;
   double m_tagSize;
   vpHomogeneousMatrix m_oMt;
