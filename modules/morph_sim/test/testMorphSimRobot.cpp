@@ -180,6 +180,31 @@ TEST_CASE("Afma6 reports its joint-6 limit on a 180 deg turn about the optical a
   CHECK(vpMath::deg(std::sqrt(tu.sumSquare())) == Approx(180).margin(0.01));
 }
 
+TEST_CASE("the Viper850 reaches the benchmark's 6-dof starts from its reference configuration", "[morph_sim][robot]")
+{
+  unsigned int ok = 0, n = 0;
+  for (double rx : {-30., 0., 30.})
+    for (double ry : {-30., 0., 30.})
+      for (double rz : {-180., -90., 0., 90., 170.})
+        for (double dz : {-0.2, 0., 0.2}) {
+          vpMorphSimRobot robot(vpMorphSimRobot::VIPER850);
+          robot.setDesiredPose(cdMo);
+          const vpHomogeneousMatrix cdMc = vpHomogeneousMatrix(0.08, -0.03, dz, 0, 0, 0) *
+                                           vpHomogeneousMatrix(0, 0, 0, vpMath::rad(rx), vpMath::rad(ry), 0) *
+                                           vpHomogeneousMatrix(0, 0, 0, 0, 0, vpMath::rad(rz));
+          ++n;
+          ok += robot.initialiseCameraRelativeToDesired(cdMc) ? 1 : 0;
+        }
+  CHECK(ok == n);
+  vpMorphSimRobot robot(vpMorphSimRobot::VIPER850);
+  vpColVector q = robot.referenceJointPositions();
+  q[0] = 0.2;
+  robot.setReferenceJointPositions(q);
+  CHECK(robot.referenceJointPositions()[0] == 0.2);
+  q[2] = 10.0;
+  CHECK_THROWS_AS(robot.setReferenceJointPositions(q), vpMorphException);
+}
+
 TEST_CASE("bad robot input throws vpMorphException", "[morph_sim][errors]")
 {
   CHECK_THROWS_AS(vpMorphSimRobot(vpMorphSimRobot::VIPER850, 0.0), vpMorphException);

@@ -121,8 +121,10 @@ public:
   vpColVector getJointPositions() const;
   vpColVector getJointMin() const;
   vpColVector getJointMax() const;
-  //! The configuration at which setDesiredPose() puts the desired camera pose.
+  //! The configuration at which setDesiredPose() puts the desired camera pose (and near which IK solutions are sought).
   vpColVector referenceJointPositions() const;
+  //! Changes it (6 finite joint positions within the limits); for the free camera, ignored.
+  void setReferenceJointPositions(const vpColVector &q);
 
   Status status() const { return m_status; }
   unsigned int jointLimitHits() const { return m_limitHits; }
@@ -141,6 +143,7 @@ private:
   Status m_status = OK;
   unsigned int m_limitHits = 0, m_steps = 0;
   double m_path = 0.0;
+  vpColVector m_qRef;
 };
 
 #endif
