@@ -152,7 +152,7 @@ TEST_CASE("the camera mount the controller believes differs from the true one", 
   CHECK(t < 1e-3);
 }
 
-TEST_CASE("Afma6 reports its joint-6 limit on a 180 deg turn about the optical axis; Viper850 does not",
+TEST_CASE("Afma6 reports its joint-6 limit on a 180 deg turn about the optical axis, the Viper850 does not",
           "[morph_sim][robot]")
 {
   vpMorphSimRobot afma(vpMorphSimRobot::AFMA6), viper(vpMorphSimRobot::VIPER850);
