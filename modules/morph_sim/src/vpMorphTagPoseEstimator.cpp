@@ -106,13 +106,17 @@ void vpMorphTagPoseEstimator::maskTag(vpImage<unsigned char> &I, const std::vect
     cu += c.get_u() / 4;
     cv += c.get_v() / 4;
   }
-  // The black square is 8 of the 10 cells of the texture: grow by 10/8, then by the margin (along the diagonal).
-  std::vector<double> u(4), v(4);
+  // The black square is 8 of the 10 cells of the texture; the outer cell is the white quiet zone, already at the
+  // plane's level. Paint the black square grown by the margin only: the quiet zone may touch the object, and
+  // painting it would eat into the silhouette. The fill level is read in the middle of the quiet zone (9/8).
+  std::vector<double> u(4), v(4), ru(4), rv(4);
   for (size_t k = 0; k < 4; ++k) {
     const double du = corners[k].get_u() - cu, dv = corners[k].get_v() - cv, d = std::hypot(du, dv);
-    const double g = d > 0 ? (1.25 * d + margin * std::sqrt(2.0)) / d : 1.0;
+    const double g = d > 0 ? (d + margin * std::sqrt(2.0)) / d : 1.0;
     u[k] = cu + g * du;
     v[k] = cv + g * dv;
+    ru[k] = cu + 1.125 * du;
+    rv[k] = cv + 1.125 * dv;
   }
   auto inside = [&](double pu, double pv) {
     bool in = false;
@@ -121,14 +125,13 @@ void vpMorphTagPoseEstimator::maskTag(vpImage<unsigned char> &I, const std::vect
         in = !in;
     return in;
   };
-  // Fill level: median of the pixels on the grown quadrilateral's outline (the plane around the tag).
+  // Fill level: median of the pixels on the quiet zone's middle line (the tag's white, rendered as the plane).
   std::vector<unsigned char> ring;
   for (size_t k = 0; k < 4; ++k) {
     const size_t l = (k + 1) % 4;
-    const int n = std::max(1, static_cast<int>(std::hypot(u[l] - u[k], v[l] - v[k])));
+    const int n = std::max(1, static_cast<int>(std::hypot(ru[l] - ru[k], rv[l] - rv[k])));
     for (int i = 0; i < n; ++i) {
-      const double pu = u[k] + (u[l] - u[k]) * i / n + (u[k] - cu) * 0.02,
-                   pv = v[k] + (v[l] - v[k]) * i / n + (v[k] - cv) * 0.02;
+      const double pu = ru[k] + (ru[l] - ru[k]) * i / n, pv = rv[k] + (rv[l] - rv[k]) * i / n;
       if (pu >= 0 && pv >= 0 && pu < I.getWidth() - 0.5 && pv < I.getHeight() - 0.5)
         ring.push_back(I[static_cast<unsigned int>(pv + 0.5)][static_cast<unsigned int>(pu + 0.5)]);
     }

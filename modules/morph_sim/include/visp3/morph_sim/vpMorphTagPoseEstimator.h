@@ -45,10 +45,11 @@ public:
                 std::vector<vpImagePoint> *corners = nullptr) const;
 
   /*!
-    Paints the detected tag (its \e corners, grown to the whole texture with its quiet zone, plus \e margin
-    pixels) with the grey level found just around it. Why: an 8 cm tag is a larger dark region than most
-    objects, so an automatic silhouette extraction (largest region) would take the tag; a real bench removes it
-    the same way, from the detector's corners, never from the simulator's truth. Throws vpMorphException
+    Paints the detected tag's black square (its \e corners, grown by \e margin pixels) with the grey level of
+    its white quiet zone, which is left as it is: the quiet zone may touch the object, and painting it would eat
+    into the silhouette (measured: -1.3 % of the area of a hammer 1 cm from the tag). Why: an 8 cm tag is a larger dark
+    region than most objects, so an automatic silhouette extraction (largest region) would take the tag; a real bench
+    removes it the same way, from the detector's corners, never from the simulator's truth. Throws vpMorphException
     unless there are 4 corners.
   */
   static void maskTag(vpImage<unsigned char> &I, const std::vector<vpImagePoint> &corners, double margin = 2.0);
