@@ -231,7 +231,15 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
   const vpMorphCorrespondenceTracker *tr = &m_tracker;
   if (m_law == HOMOGENEOUS_TRANSFORMS) {
     const vpMorphCorrespondence &corr = m_tracker.update(currentN, goalN);
-    T = vpMorphRigidTransform::fitLeastSquares(currentN, goalN, corr, true);
+    const vpMorphRigidTransform Tfit = vpMorphRigidTransform::fitLeastSquares(currentN, goalN, corr, true);
+    // The rotation comes from the correspondence (nothing else can tell it beyond 90 deg), but the translation and
+    // scale of a fit over corresponded vertices are biased when the two polygons place their vertices differently
+    // (a real contour and a stored or morphed one: millimetres on a thin-handled object). The region's area
+    // centroid and area are not: use them.
+    double cx, cy, gx, gy;
+    currentN.centroid(cx, cy);
+    goalN.centroid(gx, gy);
+    T = vpMorphRigidTransform(Tfit.theta(), gx - cx, gy - cy, std::sqrt(goalN.area() / currentN.area()), cx, cy);
   } else {
     m_sd.buildFrom(goalN, m_Zd * std::sqrt(m_targetArea / m_subGoals[m_k].area()));
     m_s.buildFrom(currentN, Z);
@@ -301,15 +309,32 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     const vpMorphContour currentN = current.toNormalized(m_cam);
     const double Z = m_Zd * std::sqrt(m_targetArea / a);
     vpMorphRigidTransform T = fitToSubGoal(currentN, current, Z);
-    if (m_fullMatch && m_margin < m_minMargin)
+    // A distance jump or a low margin alone is not a wrong correspondence: a real contour gains or loses a vertex
+    // from one image to the next, which changes the work and the margin while the fit does not. Unreliable is
+    // either of them together with a jump of the fitted rotation beyond what one step (gain x previous residual)
+    // and noise explain; with no previous fit to the same sub-goal, a low margin alone.
+    bool consistent = false;
+    if (m_haveWork) {
+      const double dth = std::fabs(std::remainder(T.theta() - m_prevT.theta(), 2 * M_PI));
+      consistent = dth <= m_gain * std::fabs(m_prevT.theta()) + m_jumpRotation;
+    }
+    if (m_fullMatch && m_margin < m_minMargin && !consistent) {
       return stop(UNRELIABLE_CORRESPONDENCE);
-    if (m_haveWork && m_work > m_jumpFactor * m_prevWork + m_workFloor)
+    }
+    if (m_haveWork && m_work > m_jumpFactor * m_prevWork + m_workFloor && !consistent) {
       return stop(UNRELIABLE_CORRESPONDENCE);
+    }
 
-    // Online calibration: the image motion since the previous move, both fits being to the same sub-goal.
+    // Online calibration: the image motion since the anchor (a fit to the same sub-goal) against the moves
+    // commanded since then, once it is large enough for the contour noise not to bias the estimate.
     if (m_online && m_haveMove) {
-      const vpMorphRigidTransform Tobs = T.inverse() * m_prevT; // previous contour -> current contour
-      m_estimator.addMove(m_prevCmd, cameraDisplacement(Tobs, m_prevZ, 1.0));
+      m_accCmd = m_accCmd * m_prevCmd;
+      const vpMorphRigidTransform Tobs = T.inverse() * m_anchorT; // anchor contour -> current contour
+      const double px = std::hypot(Tobs.tx() * m_cam.get_px(), Tobs.ty() * m_cam.get_py());
+      if (std::fabs(Tobs.theta()) >= m_calibRotation || px >= m_calibPx) {
+        m_estimator.addMove(m_accCmd, cameraDisplacement(Tobs, m_anchorZ, 1.0));
+        m_haveMove = false; // re-anchored below
+      }
     }
 
     m_status = MOVING;
@@ -317,6 +342,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     while (m_k < last && m_rotRes < m_rotThr && m_transRes < m_pxThr && m_scaleRes < m_pxThr) {
       ++m_k;
       m_haveWork = false;
+      m_haveMove = false; // fits to another sub-goal: re-anchor the calibration
       m_status = SUBGOAL_REACHED;
       T = fitToSubGoal(currentN, current, Z);
     }
@@ -344,8 +370,12 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     m_ve = ve;
     m_vc = vpVelocityTwistMatrix(eMc.inverse()) * ve;
     m_prevCmd = vpExponentialMap::direct(ve, m_dt);
+    if (!m_haveMove) { // new anchor for the calibration
+      m_anchorT = T;
+      m_anchorZ = Z;
+      m_accCmd.eye();
+    }
     m_prevT = T;
-    m_prevZ = Z;
     m_prevWork = m_work;
     m_haveWork = true;
     m_haveMove = true;

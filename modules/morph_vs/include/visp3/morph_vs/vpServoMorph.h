@@ -36,30 +36,38 @@
 
   <b>Control law (Eq. 5-11, HOMOGENEOUS_TRANSFORMS).</b> The correspondence current -> sub-goal (tracked from
   the previous iteration, vpMorphCorrespondenceTracker) gives the image-plane similarity (angle theta about the
-  current centroid c, translation t, scale s: robust least squares, normalised coordinates with the estimated
-  intrinsics). Through the image projection of a plane parallel to the image at the current depth Z (estimated
-  from the area: \f$Z = Z^* \sqrt{a^{*} / a}\f$), the camera displacement that produces it is
-  \f[ {}^cM_{c'} = \left[R_z(-\theta),\ \left(k Z (c - R(-\theta)(c + t)/s),\ Z (1 - 1/s)\right)\right] \f]
-  (the image of a static object moves opposite to the camera; k is the estimated projection scale, see
-  vpMorphHandEyeEstimator); Eq. 11 conjugates it through the hand-eye transform:
-  \f${}^eM_{e'} = {}^eM_c\, {}^cM_{c'}\, {}^eM_c^{-1}\f$. The output is the velocity of a fraction gain() of that
-  step over the sampling time: \f$v_e = \mathrm{gain} \cdot \log({}^eM_{e'}) / \Delta t\f$ (vpExponentialMap),
-  in the end-effector frame; cameraVelocity() gives it in the (estimated) camera frame.
+  current centroid c, translation t, scale s, in normalised coordinates with the estimated intrinsics): theta by
+  robust least squares over the corresponded vertices, c the current area centroid, t the displacement of the area
+  centroid and s the square root of the area ratio (a vertex fit biases t and s by millimetres when the two
+  polygons place their vertices differently, as a real contour and a stored one do). Through the image projection of a
+  plane parallel to the image at the current depth Z (estimated from the area: \f$Z = Z^* \sqrt{a^{*} / a}\f$), the
+  camera displacement that produces it is \f[ {}^cM_{c'} = \left[R_z(-\theta),\ \left(k Z (c - R(-\theta)(c + t)/s),\ Z
+  (1 - 1/s)\right)\right] \f] (the image of a static object moves opposite to the camera; k is the estimated projection
+  scale, see vpMorphHandEyeEstimator); Eq. 11 conjugates it through the hand-eye transform: \f${}^eM_{e'} = {}^eM_c\,
+  {}^cM_{c'}\, {}^eM_c^{-1}\f$. The output is the velocity of a fraction gain() of that step over the sampling time:
+  \f$v_e = \mathrm{gain} \cdot \log({}^eM_{e'}) / \Delta t\f$ (vpExponentialMap), in the end-effector frame;
+  cameraVelocity() gives it in the (estimated) camera frame.
 
   <b>Stock law (STOCK_VPSERVO).</b> Alternatively the same sub-goals are servoed by a stock vpServo
   (EYEINHAND_CAMERA, current L, tilt velocities masked: the task is planar) over vpFeatureMorph, with
   lambda = gain / dt, and the camera velocity is mapped to the end effector with the estimated eMc.
 
   <b>Online calibration.</b> Call computeControlLaw() once per sampling period, after the robot executed the
-  previous velocity for dt. The image motion observed between two calls is \f$T_{now}^{-1} T_{prev}\f$ (both fits
-  are to the same sub-goal, so no extra correspondence is needed); it gives the observed camera move, and with
-  the commanded end-effector move it updates vpMorphHandEyeEstimator (see there: planar hand-eye part and
-  projection scale, least squares with forgetting).
+  previous velocity for dt. The image motion observed since an anchor iteration is \f$T_{now}^{-1} T_{anchor}\f$
+  (both fits are to the same sub-goal, so no extra correspondence is needed); it gives the observed camera move,
+  and with the product of the end-effector moves commanded since the anchor it updates vpMorphHandEyeEstimator
+  (see there: planar hand-eye part and projection scale, least squares with forgetting). An observation is made
+  once the image has moved by 8 px or 0.05 rad, then the anchor moves to the current fit: the per-period motion
+  of a velocity loop is a pixel or less, comparable to the jitter of a contour extracted from a real image, and
+  a least-squares fit on such noisy regressors shrinks the projection scale towards 0 (regression dilution).
 
   <b>Safety.</b> The velocity is zero, never NaN, and status() says why when the target is lost (empty
   contour), the contour degenerates (area below minArea(), non-finite values, a failed morph), or the
   correspondence is unreliable: a distance jump (work above jumpFactor() * previous work + workFloor() to the
-  same sub-goal) or a low margin after a full search (below minMargin(): a symmetric shape, ambiguous rotation).
+  same sub-goal) together with a jump of the fitted rotation (more than gain() x the previous rotation residual +
+  0.1 rad: a contour extracted from an image gains and loses vertices, which changes the work but not the fit),
+  or a low margin after a full search (below minMargin(): a symmetric shape, ambiguous rotation) with the same
+  rotation jump, or before any fit to the current sub-goal to compare with.
 
   Not copyable (it owns a vpServo that points to its own features).
 */
@@ -193,6 +201,8 @@ private:
   double m_gain = 0.5, m_dt = 0.1;
   ControlLaw m_law = HOMOGENEOUS_TRANSFORMS;
   double m_jumpFactor = 2.0, m_workFloor = 0.05, m_minMargin = 0.02, m_minArea = 25.0;
+  double m_jumpRotation = 0.1;                    // rad: fit rotation jump beyond one step that is not noise
+  double m_calibRotation = 0.05, m_calibPx = 8.0; // image motion that makes one calibration observation
   bool m_online = true;
 
   vpMorphHandEyeEstimator m_estimator;
@@ -209,9 +219,13 @@ private:
   bool m_fullMatch = false;
   // For the distance-jump test and the calibration: the previous iteration to the same sub-goal.
   bool m_haveWork = false, m_haveMove = false;
-  double m_prevWork = 0, m_prevZ = 0, m_margin = 1;
+  double m_prevWork = 0, m_margin = 1;
   vpMorphRigidTransform m_prevT;
   vpHomogeneousMatrix m_prevCmd; // eMe' commanded at the previous iteration
+  // Calibration baseline: the fit at the anchor and the moves commanded since then.
+  vpMorphRigidTransform m_anchorT;
+  double m_anchorZ = 0;
+  vpHomogeneousMatrix m_accCmd;
   vpColVector m_ve, m_vc;
   std::vector<Iteration> m_history;
 };
