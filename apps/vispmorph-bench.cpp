@@ -1,0 +1,280 @@
+/*!
+  \file vispmorph-bench.cpp
+  \brief The comparison: VISPMorph and ViSP's stock controllers on identical simulated starts.
+
+  \code
+  vispmorph-bench --set planar|planar-hard|6dof|calib|noise|occlusion|deformable|all[,...]
+                  [--controllers morph,morph-vpservo,ibvs-current,ibvs-desired,ibvs-mean,pbvs,moments]
+                  [--robot camera|viper850|afma6] [--count N] [--seed S] --out DIR
+                  [--threads T] [--max-iterations N] [--lambda L] [--no-curves] [--no-plots]
+  \endcode
+  Generates the scenarios of each set (vpMorphBenchScenario::generate, seeded), runs every controller on every
+  scenario (vpMorphBench, all cores, progress on stderr) and writes in DIR:
+  - scenarios.csv: the starts, to replay any run (set, index, seed, object, start, faults, calibration errors);
+  - runs.csv: one row per run, appended as runs finish (an interrupted bench keeps what it finished);
+  - curves.csv: the truth pose error at every iteration of every run;
+  - summary.json and summary.md: per set, robot and controller (vpMorphBenchReport);
+  - PNG plots made by vispmorph-bench-plots.py (Debian's /usr/bin/python3 with matplotlib) unless --no-plots.
+  Exit status: 0 when the bench ran (whatever the controllers did), 1 on an error, 2 on bad arguments.
+*/
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph_bench/vpMorphBench.h>
+#include <visp3/morph_bench/vpMorphBenchController.h>
+#include <visp3/morph_bench/vpMorphBenchReport.h>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+void usage(std::ostream &os)
+{
+  os << "Usage: vispmorph-bench --set SETS --out DIR [options]\n"
+        "  --set SETS         comma-separated: planar, planar-hard, 6dof, calib, noise, occlusion, deformable, all\n"
+        "  --controllers L    comma-separated (default all): morph, morph-vpservo, ibvs-current, ibvs-desired,\n"
+        "                     ibvs-mean, pbvs, moments\n"
+        "  --robot R          camera (default), viper850 or afma6\n"
+        "  --count N          scenarios per set (default 10)\n"
+        "  --seed S           seed of the scenario sets (default 1)\n"
+        "  --threads T        threads (default: all cores)\n"
+        "  --max-iterations N iteration budget per run (default 600)\n"
+        "  --lambda L         gain of every controller, 1/s (default 2.5)\n"
+        "  --data DIR         the data/ folder (default: the repository's)\n"
+        "  --no-curves        do not write curves.csv\n"
+        "  --no-plots         do not run the plot script\n";
+}
+
+std::vector<std::string> splitList(const std::string &s)
+{
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty())
+      out.push_back(item);
+  return out;
+}
+
+struct BadArgs
+{
+  std::string msg;
+};
+
+unsigned long parseUnsigned(const std::string &opt, const std::string &v, unsigned long min)
+{
+  try {
+    std::size_t pos = 0;
+    const unsigned long x = std::stoul(v, &pos);
+    if (pos == v.size() && x >= min && v.find('-') == std::string::npos)
+      return x;
+  } catch (const std::exception &) {
+  }
+  throw BadArgs{"option " + opt + " needs an integer >= " + std::to_string(min) + ", got '" + v + "'"};
+}
+
+double parsePositive(const std::string &opt, const std::string &v)
+{
+  try {
+    std::size_t pos = 0;
+    const double x = std::stod(v, &pos);
+    if (pos == v.size() && std::isfinite(x) && x > 0)
+      return x;
+  } catch (const std::exception &) {
+  }
+  throw BadArgs{"option " + opt + " needs a finite number > 0, got '" + v + "'"};
+}
+
+std::string scenarioRow(const vpMorphBenchScenario &s)
+{
+  std::ostringstream os;
+  os << std::setprecision(6) << s.set << ',' << s.index << ',' << s.seed << ',' << s.object << ',' << s.startRotationDeg
+     << ',' << s.startTranslationMm << ',' << s.startTiltDeg << ',' << s.startDepthChange << ',' << s.faults.noiseSigma
+     << ',' << s.faults.blurSigma << ',' << s.faults.gain << ',' << s.faults.offset << ',' << s.faults.occludedShare
+     << ',' << s.focalScaleX << ',' << s.focalScaleY << ',' << s.principalShiftU << ',' << s.principalShiftV << ','
+     << 1000 * s.eMcError.getTranslationVector().frobeniusNorm() << ','
+     << vpMath::deg(vpThetaUVector(s.eMcError.getRotationMatrix()).getTheta()) << ",\"" << s.describe() << "\"";
+  return os.str();
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  std::vector<std::string> sets, controllers = vpMorphBenchController::names();
+  std::string out, robotName = "camera", dataDir = VISPMORPH_DATA_DIR;
+  unsigned int count = 10, seed = 1, threads = 0;
+  vpMorphBench::Settings settings;
+  bool curves = true, plots = true;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto value = [&]() -> std::string {
+        if (i + 1 >= argc)
+          throw BadArgs{"option " + a + " needs a value"};
+        return argv[++i];
+      };
+      if (a == "--set") {
+        for (const std::string &s : splitList(value())) {
+          if (s == "all") {
+            for (const std::string &n : vpMorphBenchScenario::setNames())
+              sets.push_back(n);
+            continue;
+          }
+          const auto names = vpMorphBenchScenario::setNames();
+          if (std::find(names.begin(), names.end(), s) == names.end())
+            throw BadArgs{"unknown set '" + s + "'"};
+          sets.push_back(s);
+        }
+      } else if (a == "--controllers") {
+        controllers = splitList(value());
+        const auto names = vpMorphBenchController::names();
+        for (const std::string &c : controllers)
+          if (std::find(names.begin(), names.end(), c) == names.end())
+            throw BadArgs{"unknown controller '" + c + "'"};
+      } else if (a == "--robot") {
+        robotName = value();
+        if (robotName == "camera")
+          settings.robot = vpMorphSimRobot::FREE_CAMERA;
+        else if (robotName == "viper850")
+          settings.robot = vpMorphSimRobot::VIPER850;
+        else if (robotName == "afma6")
+          settings.robot = vpMorphSimRobot::AFMA6;
+        else
+          throw BadArgs{"unknown robot '" + robotName + "' (camera, viper850, afma6)"};
+      } else if (a == "--count")
+        count = static_cast<unsigned int>(parseUnsigned(a, value(), 1));
+      else if (a == "--seed")
+        seed = static_cast<unsigned int>(parseUnsigned(a, value(), 0));
+      else if (a == "--threads")
+        threads = static_cast<unsigned int>(parseUnsigned(a, value(), 1));
+      else if (a == "--max-iterations")
+        settings.maxIterations = static_cast<unsigned int>(parseUnsigned(a, value(), 1));
+      else if (a == "--lambda")
+        settings.lambda = parsePositive(a, value());
+      else if (a == "--out")
+        out = value();
+      else if (a == "--data")
+        dataDir = value();
+      else if (a == "--no-curves")
+        curves = false;
+      else if (a == "--no-plots")
+        plots = false;
+      else if (a == "--help" || a == "-h") {
+        usage(std::cout);
+        return EXIT_SUCCESS;
+      } else
+        throw BadArgs{"unknown option '" + a + "'"};
+    }
+    if (sets.empty())
+      throw BadArgs{"--set is required"};
+    if (out.empty())
+      throw BadArgs{"--out is required"};
+    if (controllers.empty())
+      throw BadArgs{"--controllers is empty"};
+  } catch (const BadArgs &e) {
+    std::cerr << "vispmorph-bench: " << e.msg << "\n";
+    usage(std::cerr);
+    return 2;
+  }
+
+  try {
+    settings.recordCurves = curves;
+    fs::create_directories(out);
+    std::cerr << "vispmorph-bench: teaching the six templates and calibrating recognition..." << std::endl;
+    const vpMorphBench bench(dataDir, settings);
+
+    std::vector<vpMorphBenchScenario> scenarios;
+    for (const std::string &s : sets) {
+      const std::vector<vpMorphBenchScenario> v = vpMorphBenchScenario::generate(s, count, seed, dataDir);
+      scenarios.insert(scenarios.end(), v.begin(), v.end());
+    }
+    {
+      std::ofstream f(out + "/scenarios.csv");
+      f << "set,scenario,seed,object,start_rotation_deg,start_translation_mm,start_tilt_deg,start_depth_change,"
+           "noise_sigma,blur_sigma,gain,offset,occluded_share,focal_scale_x,focal_scale_y,principal_shift_u,"
+           "principal_shift_v,eMc_error_mm,eMc_error_deg,description\n";
+      for (const vpMorphBenchScenario &s : scenarios)
+        f << scenarioRow(s) << "\n";
+    }
+
+    std::ofstream runs(out + "/runs.csv");
+    runs << vpMorphBenchReport::runsHeader() << "\n" << std::flush;
+    std::ofstream curvesFile;
+    if (curves) {
+      curvesFile.open(out + "/curves.csv");
+      curvesFile << vpMorphBenchReport::curvesHeader() << "\n";
+    }
+    const bool tty = isatty(STDERR_FILENO);
+    const auto t0 = std::chrono::steady_clock::now();
+    std::cerr << "vispmorph-bench: " << scenarios.size() << " scenarios x " << controllers.size() << " controllers on "
+              << robotName << ", seed " << seed << std::endl;
+    vpMorphBenchReport report;
+    auto progress = [&](std::size_t done, std::size_t total, const vpMorphBenchResult &r) {
+      // Called under the runner's lock: rows are written as runs finish.
+      runs << vpMorphBenchReport::runsRow(r) << "\n" << std::flush;
+      if (curves)
+        curvesFile << vpMorphBenchReport::curvesRows(r);
+      report.add(r);
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::ostringstream line;
+      line << "[" << std::setw(4) << done << "/" << total << ", " << std::fixed << std::setprecision(0) << s << " s] "
+           << r.scenario.set << "#" << r.scenario.index << " " << r.scenario.object << " " << r.controller << ": "
+           << (r.success ? "success" : r.failure) << " (" << r.iterations << " it)";
+      if (tty)
+        std::cerr << "\r" << std::left << std::setw(100) << line.str() << std::flush;
+      else
+        std::cerr << line.str() << "\n";
+    };
+    bench.runAll(scenarios, controllers, threads, progress);
+    if (tty)
+      std::cerr << "\n";
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    std::map<std::string, std::string> meta;
+    std::ostringstream cmd;
+    for (int i = 0; i < argc; ++i)
+      cmd << (i ? " " : "") << argv[i];
+    meta["command"] = cmd.str();
+    meta["seed"] = std::to_string(seed);
+    meta["robot"] = robotName;
+    meta["lambda_per_s"] = std::to_string(settings.lambda);
+    meta["sampling_time_s"] = std::to_string(settings.samplingTime);
+    meta["max_iterations"] = std::to_string(settings.maxIterations);
+    meta["wall_time_s"] = std::to_string(wall);
+    meta["hardware_threads"] = std::to_string(std::thread::hardware_concurrency());
+    std::ofstream(out + "/summary.json") << report.summaryJson(meta) << "\n";
+    const std::string md = report.summaryMarkdown();
+    std::ofstream(out + "/summary.md") << md;
+    std::cout << md << "wall time " << std::fixed << std::setprecision(1) << wall << " s; results in " << out << "/"
+              << std::endl;
+
+    if (plots) {
+      const std::string script = VISPMORPH_PLOT_SCRIPT;
+      if (!fs::exists(script) || !fs::exists("/usr/bin/python3")) {
+        std::cerr << "vispmorph-bench: plots skipped (" << script << " or /usr/bin/python3 missing)" << std::endl;
+      } else {
+        const std::string c = "MPLBACKEND=Agg /usr/bin/python3 '" + script + "' '" + out + "'";
+        if (std::system(c.c_str()) != 0)
+          std::cerr << "vispmorph-bench: the plot script failed (the CSV files are complete)" << std::endl;
+      }
+    }
+    return EXIT_SUCCESS;
+  } catch (const vpException &e) {
+    std::cerr << "vispmorph-bench: " << e.getStringMessage() << std::endl;
+    return EXIT_FAILURE;
+  } catch (const std::exception &e) {
+    std::cerr << "vispmorph-bench: " << e.what() << std::endl;
+    return EXIT_FAILURE;
+  }
+}

@@ -1,0 +1,86 @@
+/*!
+  \file vpMorphBenchController.h
+  \brief A controller under comparison: features measured from the rendered image, a velocity for the robot.
+*/
+#ifndef VP_MORPH_BENCH_CONTROLLER_H
+#define VP_MORPH_BENCH_CONTROLLER_H
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpMatrix.h>
+#include <visp3/core/vpPoint.h>
+#include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/robot/vpRobot.h>
+
+/*!
+  \class vpMorphBenchController
+  \ingroup group_morph_bench
+  \brief Interface of the controllers compared by the benchmark, and their factory.
+
+  Each controller reads its features from the rendered image only (tag corners and pose from
+  vpDetectorAprilTag, silhouettes from vpMorphContourExtractor after masking the detected tag), never from the
+  simulator's projections, and knows only what a real set-up would know: the estimated intrinsics and hand-eye
+  transform, the geometry of the tag, the desired pose taught for the object (stock controllers) or the
+  template database (VISPMorph, which recognises the object at the first frame).
+
+  Names (create()): "morph" (vpServoMorph: the paper's Eq. 5-11 through 10 sub-goals, online hand-eye
+  estimation), "morph-vpservo" (vpFeatureMorph to the final goal in a stock vpServo, EYEINHAND_L_cVe_eJe,
+  current L), "ibvs-current", "ibvs-desired", "ibvs-mean" (4 tag corners, vpFeaturePoint, depth from the tag
+  pose), "pbvs" (vpFeatureTranslation(cdMc) + vpFeatureThetaU(cdRc) from the tag pose), "moments"
+  (vpFeatureMomentCommon on the silhouette polygon: normalised centre of gravity, area, c-invariants and alpha,
+  as ViSP's servoMomentPolygon example, plane from the tag pose). Every stock one runs
+  EYEINHAND_L_cVe_eJe with cVe from the estimated eMc and eJe from the robot, and the same constant gain.
+*/
+class vpMorphBenchController
+{
+public:
+  //! What a controller is told at the start of a run.
+  struct Context
+  {
+    vpCameraParameters cam;                    //!< estimated intrinsics
+    vpHomogeneousMatrix eMc;                   //!< estimated hand-eye transform
+    vpHomogeneousMatrix cdMo;                  //!< desired object pose (taught with the template)
+    std::vector<vpPoint> tagCorners3D;         //!< tag corners in the object frame, detector order
+    int tagId = 0;                             //!< AprilTag 36h11 id
+    double tagSize = 0.08;                     //!< black-border side, m
+    vpHomogeneousMatrix oMt;                   //!< tag frame in the object frame
+    const vpMorphDatabase *database = nullptr; //!< templates (VISPMorph controllers)
+    std::string expectedObject;                //!< the object truly present (only to score the recognition)
+    double lambda = 2.5;                       //!< gain (1/s): the same for every controller
+    double samplingTime = 0.04;                //!< s
+  };
+  //! One command.
+  struct Command
+  {
+    vpColVector v = vpColVector(6, 0.0); //!< velocity, in \e frame
+    vpRobot::vpControlFrameType frame = vpRobot::JOINT_STATE;
+    bool measured = true;   //!< features were measured in this image (false: zero velocity, hold)
+    bool stop = false;      //!< the controller gave up (see reason); zero velocity
+    bool converged = false; //!< the controller's own convergence test passed
+    std::string reason;     //!< short word when stop (e.g. "recognition", "unreliable-correspondence")
+    double measureMs = 0;   //!< time to measure the features (tag masking for silhouettes excluded)
+    double controlMs = 0;   //!< time of the control law
+  };
+
+  virtual ~vpMorphBenchController() = default;
+  virtual std::string name() const = 0;
+  //! Starts a run (resets every state).
+  virtual void start(const Context &ctx) = 0;
+  //! One iteration on the image \e I with the robot Jacobian \e eJe.
+  virtual Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe) = 0;
+  //! Name of the recognised template (VISPMorph), empty otherwise.
+  virtual std::string recognizedObject() const { return std::string(); }
+
+  //! The names create() accepts, in report order.
+  static std::vector<std::string> names();
+  //! \throw vpMorphException::notFoundError for an unknown name.
+  static std::unique_ptr<vpMorphBenchController> create(const std::string &name);
+};
+
+#endif

@@ -1,0 +1,57 @@
+/*!
+  \file vpMorphBenchResult.h
+  \brief The metrics of one run of one controller on one scenario.
+*/
+#ifndef VP_MORPH_BENCH_RESULT_H
+#define VP_MORPH_BENCH_RESULT_H
+
+#include <string>
+#include <vector>
+
+#include <visp3/morph_bench/vpMorphBenchScenario.h>
+
+/*!
+  \class vpMorphBenchResult
+  \ingroup group_morph_bench
+  \brief Outcome and metrics of one run (value type with public fields: it only carries data).
+
+  Success: the final pose error against the simulator's truth is below the thresholds (1 mm and 0.5 deg by
+  default), the controller's target (the object for silhouette controllers, the tag for tag controllers) never
+  left the view, and the run ended within the iteration budget. Otherwise \e failure says why, the first
+  event that applies in this order: unreachable (start out of the robot's reach), out-of-view, diverged (the
+  camera left 0.15-1.5 m from the plane), feature-lost (features not measured in 10 successive images),
+  recognition (the object was rejected or taken for another), a controller's own stop (its status, e.g.
+  unreliable-correspondence), joint-limit (a joint limit was hit), budget (still moving at the last
+  iteration), final-error (stopped away from the goal).
+*/
+class vpMorphBenchResult
+{
+public:
+  vpMorphBenchScenario scenario;
+  std::string robot;      //!< robot kind name
+  std::string controller; //!< controller name
+  bool success = false;
+  std::string failure = "none";   //!< see the class description
+  unsigned int iterations = 0;    //!< iterations run
+  int convergedIteration = -1;    //!< first iteration after which the truth error stayed below the thresholds
+  double pathLength = 0;          //!< camera centre path, m
+  double straightLine = 0;        //!< distance between start and desired camera centres, m
+  double finalTranslation = 0;    //!< final error (simulator truth), m, measured at the object
+  double finalRotation = 0;       //!< final error (simulator truth), rad
+  bool tagMeasured = false;       //!< the final image showed the tag
+  double finalTagTranslation = 0; //!< final error measured through the AprilTag (true intrinsics), m
+  double finalTagRotation = 0;    //!< rad
+  std::string recognized;         //!< template chosen by recognition (VISPMorph controllers), else empty
+  double measureMs = 0;           //!< mean feature measurement time per iteration
+  double controlMs = 0;           //!< mean control-law time per iteration
+  double maxControlMs = 0;        //!< worst control-law time
+  unsigned int jointLimitHits = 0;
+  std::vector<double> curveTranslation; //!< truth error per iteration, m
+  std::vector<double> curveRotation;    //!< rad
+
+  //! path length / straight line, or NaN when the straight line is shorter than 1 mm (pure rotation).
+  double pathRatio() const;
+  bool recognitionCorrect() const { return recognized.empty() || recognized == scenario.object; }
+};
+
+#endif

@@ -1,0 +1,86 @@
+/*!
+  \file vpMorphBenchScenario.h
+  \brief One start of the benchmark: object, desired pose, start pose, image faults and calibration errors.
+*/
+#ifndef VP_MORPH_BENCH_SCENARIO_H
+#define VP_MORPH_BENCH_SCENARIO_H
+
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/morph_sim/vpMorphPlanarScene.h>
+
+/*!
+  \class vpMorphBenchScenario
+  \ingroup group_morph_bench
+  \brief Everything that makes one run repeatable: every controller of a comparison gets the same scenario.
+
+  Value type with public fields (it only carries data). The start is given relative to the desired camera
+  (cdMc) so that it does not depend on the robot; the robot places the object so that its reference
+  configuration sees it at cdMo (vpMorphSimRobot::setDesiredPose()).
+
+  <b>Sets</b> (generate(); the protocol of DESIGN.md):
+  - planar: in-plane rotation uniform in [-180, 180] deg about the desired optical axis, translation in the
+    image plane of norm uniform in [0, 80] mm, same depth;
+  - planar-hard: the same with |rotation| in [150, 180] deg (the classical IBVS camera retreat);
+  - 6dof: planar, then the camera orbits the point of the object plane on its optical axis by a tilt in
+    [0, 30] deg about a random in-plane axis, and its depth changes by a factor in [0.6, 1.4];
+  - calib: planar, with intrinsics given to the controllers off by up to 20 % (each focal length scaled by
+    [0.8, 1.2], principal point shifted by up to 16 px) and a hand-eye estimate off by up to 20 mm and 10 deg;
+  - noise: planar, with Gaussian noise (sigma in [1, 6] grey levels), blur (sigma in [0, 1.5] px) and an
+    illumination change (gain in [0.7, 1.3], offset in [-25, 25]);
+  - occlusion: planar, with a card hiding a share in [5, 20] % of the object's outline at a random place;
+  - deformable: planar, the object seen is the deformed variant of its template (e.g. pliers opened wider).
+
+  A start is redrawn (from the same seeded stream, at most 1000 times) until the object and the tag are
+  entirely in view, 10 px from the border, at the start pose: a start that shows nothing is no comparison.
+*/
+class vpMorphBenchScenario
+{
+public:
+  std::string set;           //!< name of the scenario set
+  unsigned int index = 0;    //!< index in the set
+  unsigned int seed = 0;     //!< seed of this scenario (set seed and index)
+  std::string object;        //!< object name (its template is data/objects/<object>.png)
+  std::string objectImage;   //!< image rendered in the scene (the deformed variant for "deformable")
+  std::string templateImage; //!< image of the taught object
+  vpHomogeneousMatrix cdMo;  //!< desired pose of the object in the camera frame
+  vpHomogeneousMatrix cdMc;  //!< start camera pose in the desired camera frame
+
+  double startRotationDeg = 0;       //!< in-plane rotation of the start (deg, signed)
+  double startTranslationMm = 0;     //!< in-plane translation of the start (mm)
+  double startTiltDeg = 0;           //!< tilt of the start (deg)
+  double startDepthChange = 0;       //!< relative depth change of the start (Z / Zd - 1)
+  vpMorphPlanarScene::Faults faults; //!< image faults of the scene
+
+  double focalScaleX = 1, focalScaleY = 1;         //!< intrinsics given to the controllers: px, py times these
+  double principalShiftU = 0, principalShiftV = 0; //!< and u0, v0 shifted by these (px)
+  vpHomogeneousMatrix eMcError;                    //!< hand-eye estimate given to the controllers: eMcTrue * eMcError
+
+  //! The intrinsics the controllers are told, from the true ones.
+  vpCameraParameters estimatedCamera(const vpCameraParameters &trueCam) const;
+  //! One line describing the start, for logs and CSV files.
+  std::string describe() const;
+
+  //! The scenario set names, in the order of the protocol.
+  static std::vector<std::string> setNames();
+  //! The six objects of data/objects, in a fixed order.
+  static std::vector<std::string> objectNames();
+  /*!
+    Desired pose of an object: optical axis normal to the plane at 0.5 m, with an in-plane offset and a
+    rotation that differ per object (the taught view of each object is different).
+    \throw vpMorphException::notFoundError for an unknown object.
+  */
+  static vpHomogeneousMatrix desiredPose(const std::string &object);
+  /*!
+    \e count scenarios of set \e set, seeded by \e seed, objects taken in turn from objectNames(), images
+    read from \e dataDir (the repository's data/ folder). The same arguments give the same scenarios.
+    \throw vpMorphException::badParameterError for an unknown set or count 0; notFoundError for missing images.
+  */
+  static std::vector<vpMorphBenchScenario> generate(const std::string &set, unsigned int count, unsigned int seed,
+                                                    const std::string &dataDir);
+};
+
+#endif

@@ -1,0 +1,270 @@
+#include <visp3/morph_bench/vpMorphBench.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph_bench/vpMorphBenchController.h>
+#include <visp3/morph_sim/vpMorphPlanarScene.h>
+#include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
+
+namespace
+{
+const unsigned int kLostFrames = 10;            // successive images without features before giving up
+const unsigned int kStillFrames = 10;           // successive iterations with a negligible command before stopping
+const double kStillTranslation = 1e-3;          // m/s: with lambda = 2.5/s, an error of 0.4 mm
+const double kStillRotation = vpMath::rad(0.1); // rad/s: 0.04 deg
+const double kMinDepth = 0.15, kMaxDepth = 1.5; // m: outside, the camera has diverged
+
+void badParameter(const std::string &msg) { throw vpMorphException(vpMorphException::badParameterError, msg); }
+
+//! The taught view of an object: rendered at its desired pose, tag masked, silhouette extracted.
+vpMorphTemplate teach(const std::string &name, const std::string &image)
+{
+  vpMorphPlanarScene scene(image);
+  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose(name);
+  vpImage<unsigned char> I;
+  scene.render(cdMo, I);
+  vpHomogeneousMatrix cMo;
+  std::vector<vpImagePoint> corners;
+  if (!scene.tagPoseEstimator().estimate(I, cMo, &corners))
+    throw vpMorphException(vpMorphException::badImageError,
+                           "vpMorphBench: tag not found in the taught view of " + name);
+  vpMorphTagPoseEstimator::maskTag(I, corners);
+  vpMorphTemplate t(name, vpMorphContourExtractor().extract(I), image, cdMo);
+  t.setMetadata("source", "rendered at the desired pose, tag masked");
+  return t;
+}
+
+//! Speed of a command in its frame: translation (m/s) and rotation (rad/s) norms; joint commands of the free
+//! camera are end-effector twists, those of the arms are mapped through eJe.
+void commandSpeed(const vpColVector &v, vpRobot::vpControlFrameType frame, const vpMatrix &eJe, double &vt, double &vr)
+{
+  vpColVector tw = v;
+  if (frame == vpRobot::JOINT_STATE)
+    tw = eJe * v;
+  vt = std::sqrt(tw[0] * tw[0] + tw[1] * tw[1] + tw[2] * tw[2]);
+  vr = std::sqrt(tw[3] * tw[3] + tw[4] * tw[4] + tw[5] * tw[5]);
+}
+} // namespace
+
+vpMorphBench::vpMorphBench(const std::string &dataDir, const Settings &settings)
+  : m_dataDir(dataDir), m_settings(settings)
+{
+  if (!(settings.lambda > 0) || !std::isfinite(settings.lambda))
+    badParameter("vpMorphBench: lambda must be finite and > 0");
+  if (!(settings.samplingTime > 0) || !std::isfinite(settings.samplingTime))
+    badParameter("vpMorphBench: sampling time must be finite and > 0");
+  if (settings.maxIterations == 0)
+    badParameter("vpMorphBench: the iteration budget must be > 0");
+  if (!(settings.successTranslation > 0) || !(settings.successRotationDeg > 0))
+    badParameter("vpMorphBench: success thresholds must be > 0");
+  for (const std::string &name : vpMorphBenchScenario::objectNames())
+    m_db.add(teach(name, dataDir + "/objects/" + name + ".png"));
+  m_db.calibrate(1);
+}
+
+vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::string &controllerName) const
+{
+  std::unique_ptr<vpMorphBenchController> controller = vpMorphBenchController::create(controllerName);
+  vpMorphBenchResult res;
+  res.scenario = sc;
+  res.controller = controllerName;
+  res.robot = vpMorphSimRobot::kindName(m_settings.robot);
+  res.straightLine = sc.cdMc.getTranslationVector().frobeniusNorm();
+
+  vpMorphPlanarScene scene(sc.objectImage);
+  scene.setFaults(sc.faults);
+  const vpCameraParameters camTrue = scene.camera();
+  const vpMorphTagPoseEstimator truthTag = scene.tagPoseEstimator();
+
+  vpMorphSimRobot robot(m_settings.robot, m_settings.samplingTime);
+  robot.setDesiredPose(sc.cdMo);
+  if (!robot.initialiseCameraRelativeToDesired(sc.cdMc)) {
+    res.failure = "unreachable";
+    return res;
+  }
+
+  vpMorphBenchController::Context ctx;
+  ctx.cam = sc.estimatedCamera(camTrue);
+  ctx.eMc = robot.eMcTrue() * sc.eMcError;
+  ctx.cdMo = sc.cdMo;
+  ctx.tagCorners3D = scene.tagCorners3D();
+  ctx.tagId = scene.tagId();
+  ctx.tagSize = scene.tagSize();
+  ctx.oMt = scene.oMt();
+  ctx.database = &m_db;
+  ctx.expectedObject = sc.object;
+  ctx.lambda = m_settings.lambda;
+  ctx.samplingTime = m_settings.samplingTime;
+  controller->start(ctx);
+
+  const bool tagController = controllerName.find("ibvs") == 0 || controllerName == "pbvs";
+  const double rotThr = vpMath::rad(m_settings.successRotationDeg);
+  std::string failure;
+  bool still = false, stopped = false;
+  unsigned int lost = 0, stillCount = 0, measuredIterations = 0;
+  double sumMeasure = 0, sumControl = 0;
+  vpImage<unsigned char> I;
+
+  for (unsigned int it = 0; it < m_settings.maxIterations; ++it) {
+    const vpHomogeneousMatrix cMo = robot.get_cMo();
+    double et, er;
+    vpMorphTagPoseEstimator::poseDifference(sc.cdMo, cMo, et, er);
+    if (m_settings.recordCurves) {
+      res.curveTranslation.push_back(et);
+      res.curveRotation.push_back(er);
+    }
+    res.iterations = it + 1;
+    const double Z = cMo[2][3];
+    if (!(Z > kMinDepth && Z < kMaxDepth)) {
+      failure = "diverged";
+      break;
+    }
+    if (tagController ? !scene.tagInView(cMo) : !scene.objectInView(cMo)) {
+      failure = "out-of-view";
+      break;
+    }
+    scene.render(cMo, I, it);
+    const vpMatrix eJe = robot.get_eJe();
+    vpMorphBenchController::Command cmd;
+    try {
+      cmd = controller->step(I, eJe);
+    } catch (const vpException &e) {
+      cmd = vpMorphBenchController::Command();
+      cmd.stop = true;
+      cmd.reason = "controller-error";
+    }
+    if (cmd.stop) {
+      failure = cmd.reason;
+      stopped = true;
+      break;
+    }
+    if (!cmd.measured) {
+      if (++lost >= kLostFrames) {
+        failure = "feature-lost";
+        break;
+      }
+      continue; // hold: no command this period
+    }
+    lost = 0;
+    ++measuredIterations;
+    sumMeasure += cmd.measureMs;
+    sumControl += cmd.controlMs;
+    res.maxControlMs = std::max(res.maxControlMs, cmd.controlMs);
+    if (cmd.converged) {
+      still = true;
+      break;
+    }
+    double vt, vr;
+    commandSpeed(cmd.v, cmd.frame, eJe, vt, vr);
+    stillCount = (vt < kStillTranslation && vr < kStillRotation) ? stillCount + 1 : 0;
+    if (stillCount >= kStillFrames) {
+      still = true;
+      break;
+    }
+    robot.setVelocity(cmd.frame, cmd.v);
+  }
+
+  // Final state, truth and tag.
+  const vpHomogeneousMatrix cMo = robot.get_cMo();
+  vpMorphTagPoseEstimator::poseDifference(sc.cdMo, cMo, res.finalTranslation, res.finalRotation);
+  if (res.curveTranslation.empty() || res.iterations > res.curveTranslation.size()) {
+    res.curveTranslation.push_back(res.finalTranslation);
+    res.curveRotation.push_back(res.finalRotation);
+  }
+  if (scene.tagInView(cMo)) {
+    scene.render(cMo, I, res.iterations);
+    vpHomogeneousMatrix cMo_tag;
+    if (truthTag.estimate(I, cMo_tag)) {
+      res.tagMeasured = true;
+      vpMorphTagPoseEstimator::poseDifference(sc.cdMo, cMo_tag, res.finalTagTranslation, res.finalTagRotation);
+    }
+  }
+  res.pathLength = robot.cameraPathLength();
+  res.recognized = controller->recognizedObject();
+  res.jointLimitHits = robot.jointLimitHits();
+  if (measuredIterations > 0) {
+    res.measureMs = sumMeasure / measuredIterations;
+    res.controlMs = sumControl / measuredIterations;
+  }
+  const bool accurate = res.finalTranslation < m_settings.successTranslation && res.finalRotation < rotThr;
+  // The settling iteration, from the truth curve (recorded or not, the final error decides).
+  if (accurate) {
+    res.convergedIteration = static_cast<int>(res.curveTranslation.size()) - 1;
+    for (int k = static_cast<int>(res.curveTranslation.size()) - 1; k >= 0; --k) {
+      if (res.curveTranslation[k] < m_settings.successTranslation && res.curveRotation[k] < rotThr)
+        res.convergedIteration = k;
+      else
+        break;
+    }
+  }
+  const bool fatal = failure == "diverged" || failure == "out-of-view" || failure == "feature-lost";
+  res.success = accurate && !fatal;
+  if (res.success)
+    res.failure = "none";
+  else if (!failure.empty())
+    res.failure = (!res.recognitionCorrect() && !fatal) ? "recognition" : failure;
+  else if (!res.recognitionCorrect())
+    res.failure = "recognition";
+  else if (robot.jointLimitHits() > 0)
+    res.failure = "joint-limit";
+  else
+    res.failure = (still || stopped) ? "final-error" : "budget";
+  if (!m_settings.recordCurves) {
+    res.curveTranslation.clear();
+    res.curveRotation.clear();
+  }
+  return res;
+}
+
+std::vector<vpMorphBenchResult> vpMorphBench::runAll(const std::vector<vpMorphBenchScenario> &scenarios,
+                                                     const std::vector<std::string> &controllers, unsigned int threads,
+                                                     const Progress &progress) const
+{
+  for (const std::string &c : controllers)
+    vpMorphBenchController::create(c); // unknown names fail before any work
+  const std::size_t total = scenarios.size() * controllers.size();
+  std::vector<vpMorphBenchResult> results(total);
+  if (threads == 0)
+    threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = static_cast<unsigned int>(std::min<std::size_t>(threads, std::max<std::size_t>(total, 1)));
+  std::atomic<std::size_t> next(0);
+  std::size_t done = 0;
+  std::mutex mutex;
+  std::exception_ptr error;
+  auto worker = [&]() {
+    for (std::size_t k = next++; k < total; k = next++) {
+      vpMorphBenchResult r;
+      try {
+        r = run(scenarios[k / controllers.size()], controllers[k % controllers.size()]);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!error)
+          error = std::current_exception();
+        next = total; // stop the other workers too
+        return;
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      results[k] = std::move(r);
+      ++done;
+      if (progress)
+        progress(done, total, results[k]);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned int t = 1; t < threads; ++t)
+    pool.emplace_back(worker);
+  worker();
+  for (std::thread &t : pool)
+    t.join();
+  if (error)
+    std::rethrow_exception(error);
+  return results;
+}

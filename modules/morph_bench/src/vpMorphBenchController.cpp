@@ -1,0 +1,494 @@
+#include <visp3/morph_bench/vpMorphBenchController.h>
+
+#include <chrono>
+#include <cmath>
+
+#include <visp3/core/vpMomentCommon.h>
+#include <visp3/core/vpMomentObject.h>
+#include <visp3/core/vpPlane.h>
+#include <visp3/core/vpVelocityTwistMatrix.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
+#include <visp3/morph_vs/vpFeatureMorph.h>
+#include <visp3/morph_vs/vpServoMorph.h>
+#include <visp3/visual_features/vpFeatureBuilder.h>
+#include <visp3/visual_features/vpFeatureMomentCommon.h>
+#include <visp3/visual_features/vpFeaturePoint.h>
+#include <visp3/visual_features/vpFeatureThetaU.h>
+#include <visp3/visual_features/vpFeatureTranslation.h>
+#include <visp3/vs/vpServo.h>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+//! The tag seen in an image: its pose (from the estimated intrinsics) and its corners.
+struct TagView
+{
+  bool found = false;
+  vpHomogeneousMatrix cMo;
+  std::vector<vpImagePoint> corners;
+};
+
+TagView detectTag(const vpMorphTagPoseEstimator &est, const vpImage<unsigned char> &I)
+{
+  TagView t;
+  t.found = est.estimate(I, t.cMo, &t.corners);
+  return t;
+}
+
+/*!
+  The object's silhouette polygon in pixels: the detected tag is masked first (it is a larger dark region than
+  most objects), then vpMorphContourExtractor takes the largest object. Empty when nothing is found. The time
+  reported is the extraction's only: masking the tag is an artefact of the benchmark scene.
+*/
+vpMorphContour extractSilhouette(const vpImage<unsigned char> &I, const TagView &tag, double &ms)
+{
+  vpImage<unsigned char> J = I;
+  if (tag.found && tag.corners.size() == 4)
+    vpMorphTagPoseEstimator::maskTag(J, tag.corners);
+  const Clock::time_point t0 = Clock::now();
+  vpMorphContour c;
+  try {
+    c = vpMorphContourExtractor().extract(J);
+  } catch (const vpException &) {
+    c = vpMorphContour(); // no object in the image: the caller holds
+  }
+  ms = msSince(t0);
+  return c;
+}
+
+//! Plane 1/Z = A x + B y + C of the object plane (z = 0 of the object frame) seen from cMo.
+void planeOf(const vpHomogeneousMatrix &cMo, double &A, double &B, double &C)
+{
+  vpPlane pl(0, 0, 1, 0);
+  pl.changeFrame(cMo);
+  if (std::fabs(pl.getD()) < 1e-12) {
+    A = B = 0;
+    C = 1;
+    return;
+  }
+  A = -pl.getA() / pl.getD();
+  B = -pl.getB() / pl.getD();
+  C = -pl.getC() / pl.getD();
+}
+
+bool finite(const vpColVector &v)
+{
+  for (unsigned int i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]))
+      return false;
+  return true;
+}
+
+//! Common part of every adapter: the context and the tag estimator built with the estimated intrinsics.
+class Base : public vpMorphBenchController
+{
+public:
+  void start(const Context &ctx) override
+  {
+    m_ctx = ctx;
+    m_tag.reset(new vpMorphTagPoseEstimator(ctx.tagId, ctx.tagSize, ctx.oMt, ctx.cam));
+    reset();
+  }
+
+protected:
+  virtual void reset() = 0;
+  //! A stock vpServo set up as ViSP's examples do for a robot arm: eye-in-hand, L cVe eJe, constant gain.
+  void setupStockTask(vpServo &task, vpServo::vpServoIteractionMatrixType L) const
+  {
+    task.setServo(vpServo::EYEINHAND_L_cVe_eJe);
+    task.setInteractionMatrixType(L, vpServo::PSEUDO_INVERSE);
+    task.set_cVe(vpVelocityTwistMatrix(m_ctx.eMc.inverse()));
+    task.setLambda(m_ctx.lambda);
+  }
+  static Command holdCommand(double measureMs)
+  {
+    Command c;
+    c.measured = false;
+    c.measureMs = measureMs;
+    return c;
+  }
+  static Command stopCommand(const std::string &reason)
+  {
+    Command c;
+    c.stop = true;
+    c.reason = reason;
+    return c;
+  }
+
+  Context m_ctx;
+  std::unique_ptr<vpMorphTagPoseEstimator> m_tag;
+};
+
+//! Recognition at the first frame, shared by the two VISPMorph adapters.
+class MorphBase : public Base
+{
+public:
+  std::string recognizedObject() const override { return m_object; }
+
+protected:
+  //! Recognises the object on the first contour; returns false (and sets \e reason) if it is rejected.
+  bool recognize(const vpMorphContour &c, std::string &reason)
+  {
+    if (m_template)
+      return true;
+    if (!m_ctx.database || m_ctx.database->empty())
+      throw vpMorphException(vpMorphException::badParameterError, "morph controller: no template database");
+    const vpMorphRecognition r = m_ctx.database->recognize(c);
+    if (r.index == vpMorphRecognition::npos || !r.accepted) {
+      reason = "recognition";
+      return false;
+    }
+    m_template = &(*m_ctx.database)[r.index];
+    m_object = m_template->name();
+    return true;
+  }
+  void reset() override
+  {
+    m_template = nullptr;
+    m_object.clear();
+  }
+
+  const vpMorphTemplate *m_template = nullptr;
+  std::string m_object;
+};
+
+//! VISPMorph's controller: vpServoMorph through 10 sub-goals, Eq. 5-11, online hand-eye estimation.
+class MorphController : public MorphBase
+{
+public:
+  std::string name() const override { return "morph"; }
+  Command step(const vpImage<unsigned char> &I, const vpMatrix &) override
+  {
+    double ms = 0;
+    const TagView tag = detectTag(*m_tag, I);
+    const vpMorphContour c = extractSilhouette(I, tag, ms);
+    if (c.empty())
+      return holdCommand(ms);
+    std::string reason;
+    if (!recognize(c, reason))
+      return stopCommand(reason);
+    if (!m_targetSet) {
+      m_servo->setTarget(*m_template);
+      m_targetSet = true;
+    }
+    Command cmd;
+    cmd.measureMs = ms;
+    const Clock::time_point t0 = Clock::now();
+    cmd.v = m_servo->computeControlLaw(c);
+    cmd.controlMs = msSince(t0);
+    cmd.frame = vpRobot::END_EFFECTOR_FRAME;
+    const vpServoMorph::Status s = m_servo->status();
+    cmd.converged = s == vpServoMorph::CONVERGED;
+    if (s == vpServoMorph::TARGET_LOST || s == vpServoMorph::DEGENERATE_CONTOUR ||
+        s == vpServoMorph::UNRELIABLE_CORRESPONDENCE) {
+      cmd.stop = true;
+      cmd.reason = vpServoMorph::statusName(s);
+    }
+    return cmd;
+  }
+
+private:
+  void reset() override
+  {
+    MorphBase::reset();
+    m_servo.reset(new vpServoMorph);
+    m_servo->setCameraParameters(m_ctx.cam);
+    m_servo->set_eMc(m_ctx.eMc);
+    m_servo->setSubGoalCount(10);
+    m_servo->setSamplingTime(m_ctx.samplingTime);
+    m_servo->setGain(std::min(1.0, m_ctx.lambda * m_ctx.samplingTime)); // same exponential rate as lambda
+    // Extracted contours are digitised: the final residual settles at a few tenths of a pixel.
+    m_servo->setFinalThresholds(0.002, 0.2);
+    m_targetSet = false;
+  }
+
+  std::unique_ptr<vpServoMorph> m_servo;
+  bool m_targetSet = false;
+};
+
+/*!
+  vpFeatureMorph in a stock vpServo, to the final goal (no sub-goals): EYEINHAND_CAMERA with the tilt rotations
+  disabled (setCameraDoF: the feature has 4 components for a planar task), current L, then the camera velocity
+  is mapped to the end-effector with the estimated eMc. The depth comes from the area ratio to the template.
+*/
+class MorphVpServoController : public MorphBase
+{
+public:
+  std::string name() const override { return "morph-vpservo"; }
+  Command step(const vpImage<unsigned char> &I, const vpMatrix &) override
+  {
+    double ms = 0;
+    const TagView tag = detectTag(*m_tag, I);
+    const vpMorphContour c = extractSilhouette(I, tag, ms);
+    if (c.empty())
+      return holdCommand(ms);
+    std::string reason;
+    if (!recognize(c, reason))
+      return stopCommand(reason);
+    Command cmd;
+    cmd.measureMs = ms;
+    const Clock::time_point t0 = Clock::now();
+    const double Zd = m_template->cdMo()[2][3];
+    try {
+      if (!m_built) {
+        m_sd.buildFrom(m_template->contour(), m_ctx.cam, Zd);
+        m_areaD = m_template->contour().area();
+      }
+      const double a = c.area();
+      if (!(a > 25.0))
+        return stopCommand("degenerate-contour");
+      m_s.buildFrom(c, m_ctx.cam, Zd * std::sqrt(m_areaD / a));
+      if (!m_built) {
+        m_task.reset(new vpServo);
+        m_task->setServo(vpServo::EYEINHAND_CAMERA);
+        m_task->setInteractionMatrixType(vpServo::CURRENT, vpServo::PSEUDO_INVERSE);
+        m_task->setLambda(m_ctx.lambda);
+        vpColVector dof(6, 1.0);
+        dof[3] = dof[4] = 0;
+        m_task->setCameraDoF(dof);
+        m_task->addFeature(m_s, m_sd);
+        m_built = true;
+      }
+      const vpColVector vc = m_task->computeControlLaw();
+      cmd.v = vpVelocityTwistMatrix(m_ctx.eMc) * vc;
+    } catch (const vpException &e) {
+      return stopCommand("feature-error");
+    }
+    cmd.controlMs = msSince(t0);
+    cmd.frame = vpRobot::END_EFFECTOR_FRAME;
+    if (!finite(cmd.v))
+      return stopCommand("nan");
+    return cmd;
+  }
+
+private:
+  void reset() override
+  {
+    MorphBase::reset();
+    m_task.reset();
+    m_s = vpFeatureMorph();
+    m_sd = vpFeatureMorph();
+    m_built = false;
+  }
+  vpFeatureMorph m_s, m_sd;
+  std::unique_ptr<vpServo> m_task;
+  double m_areaD = 0;
+  bool m_built = false;
+};
+
+//! IBVS on the 4 tag corners (ViSP's tutorial-ibvs-4pts set-up), depth of each corner from the tag pose.
+class IbvsController : public Base
+{
+public:
+  IbvsController(vpServo::vpServoIteractionMatrixType L, const char *name) : m_L(L), m_name(name) {}
+  std::string name() const override { return m_name; }
+  Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe) override
+  {
+    const Clock::time_point t0 = Clock::now();
+    const TagView tag = detectTag(*m_tag, I);
+    if (!tag.found || tag.corners.size() != 4)
+      return holdCommand(msSince(t0));
+    for (unsigned int i = 0; i < 4; ++i) {
+      vpFeatureBuilder::create(m_p[i], m_ctx.cam, tag.corners[i]);
+      vpPoint P = m_ctx.tagCorners3D[i];
+      P.track(tag.cMo);
+      m_p[i].set_Z(P.get_Z());
+    }
+    Command cmd;
+    cmd.measureMs = msSince(t0);
+    const Clock::time_point t1 = Clock::now();
+    m_task->set_eJe(eJe);
+    cmd.v = m_task->computeControlLaw();
+    cmd.controlMs = msSince(t1);
+    cmd.frame = vpRobot::JOINT_STATE;
+    if (!finite(cmd.v))
+      return stopCommand("nan");
+    return cmd;
+  }
+
+private:
+  void reset() override
+  {
+    m_task.reset(new vpServo);
+    setupStockTask(*m_task, m_L);
+    for (unsigned int i = 0; i < 4; ++i) {
+      vpPoint P = m_ctx.tagCorners3D[i];
+      P.track(m_ctx.cdMo);
+      m_pd[i].buildFrom(P.get_x(), P.get_y(), P.get_Z());
+      m_p[i] = m_pd[i]; // replaced at the first measurement; needed for DESIRED and MEAN L before it
+      m_task->addFeature(m_p[i], m_pd[i]);
+    }
+  }
+  vpServo::vpServoIteractionMatrixType m_L;
+  std::string m_name;
+  vpFeaturePoint m_p[4], m_pd[4];
+  std::unique_ptr<vpServo> m_task;
+};
+
+//! PBVS on the tag pose (ViSP's tutorial-pbvs set-up: t = cdMc translation, theta-u of cdRc, both to zero).
+class PbvsController : public Base
+{
+public:
+  std::string name() const override { return "pbvs"; }
+  Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe) override
+  {
+    const Clock::time_point t0 = Clock::now();
+    const TagView tag = detectTag(*m_tag, I);
+    if (!tag.found)
+      return holdCommand(msSince(t0));
+    Command cmd;
+    cmd.measureMs = msSince(t0);
+    const Clock::time_point t1 = Clock::now();
+    const vpHomogeneousMatrix cdMc = m_ctx.cdMo * tag.cMo.inverse();
+    m_t.buildFrom(cdMc);
+    m_tu.buildFrom(cdMc);
+    m_task->set_eJe(eJe);
+    cmd.v = m_task->computeControlLaw();
+    cmd.controlMs = msSince(t1);
+    cmd.frame = vpRobot::JOINT_STATE;
+    if (!finite(cmd.v))
+      return stopCommand("nan");
+    return cmd;
+  }
+
+private:
+  void reset() override
+  {
+    m_task.reset(new vpServo);
+    setupStockTask(*m_task, vpServo::CURRENT);
+    m_t = vpFeatureTranslation(vpFeatureTranslation::cdMc);
+    m_tu = vpFeatureThetaU(vpFeatureThetaU::cdRc);
+    m_td = vpFeatureTranslation(vpFeatureTranslation::cdMc);
+    m_tud = vpFeatureThetaU(vpFeatureThetaU::cdRc);
+    m_td.buildFrom(vpHomogeneousMatrix());
+    m_tud.buildFrom(vpHomogeneousMatrix());
+    m_task->addFeature(m_t, m_td);
+    m_task->addFeature(m_tu, m_tud);
+  }
+  vpFeatureTranslation m_t, m_td;
+  vpFeatureThetaU m_tu, m_tud;
+  std::unique_ptr<vpServo> m_task;
+};
+
+/*!
+  Moment-based servoing on the silhouette polygon (ViSP's servoMomentPolygon set-up: vpMomentCommon with the
+  desired surface, mu3 and alpha references, features xn, yn, an, c-invariants (2 of them) and alpha, current
+  L), the desired moments from the taught template, the plane of the interaction matrix from the tag pose.
+*/
+class MomentsController : public Base
+{
+public:
+  std::string name() const override { return "moments"; }
+  Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe) override
+  {
+    const TagView tag = detectTag(*m_tag, I);
+    double ms = 0;
+    const vpMorphContour c = extractSilhouette(I, tag, ms);
+    if (c.empty())
+      return holdCommand(ms);
+    const Clock::time_point t0 = Clock::now();
+    Command cmd;
+    try {
+      fill(m_obj, c.toNormalized(m_ctx.cam));
+      cmd.measureMs = ms + msSince(t0);
+      const Clock::time_point t1 = Clock::now();
+      double A = 0, B = 0, C = 1.0 / m_ctx.cdMo[2][3];
+      if (tag.found)
+        planeOf(tag.cMo, A, B, C);
+      m_moments->updateAll(m_obj);
+      m_features->updateAll(A, B, C);
+      m_task->set_eJe(eJe);
+      cmd.v = m_task->computeControlLaw();
+      cmd.controlMs = msSince(t1);
+    } catch (const vpException &) {
+      return stopCommand("feature-error");
+    }
+    cmd.frame = vpRobot::JOINT_STATE;
+    if (!finite(cmd.v))
+      return stopCommand("nan");
+    return cmd;
+  }
+
+private:
+  //! A closed polygon for vpMomentObject, counter-clockwise in the moment sense (positive m00).
+  static void fill(vpMomentObject &obj, const vpMorphContour &normalized)
+  {
+    std::vector<vpPoint> pts;
+    for (std::size_t i = 0; i <= normalized.size(); ++i) {
+      vpPoint p;
+      p.set_x(normalized.x(i % normalized.size()));
+      p.set_y(normalized.y(i % normalized.size()));
+      pts.push_back(p);
+    }
+    obj.fromVector(pts);
+    if (obj.get(0, 0) < 0) {
+      std::reverse(pts.begin(), pts.end());
+      obj.fromVector(pts);
+    }
+  }
+  void reset() override
+  {
+    if (!m_ctx.database)
+      throw vpMorphException(vpMorphException::badParameterError, "moments controller: no template database");
+    // The desired silhouette: the taught view of the object present (moments do no recognition).
+    const vpMorphTemplate &t = (*m_ctx.database)[m_ctx.expectedObject];
+    m_objD.setType(vpMomentObject::DENSE_POLYGON);
+    m_obj.setType(vpMomentObject::DENSE_POLYGON);
+    fill(m_objD, t.contour().toNormalized(m_ctx.cam));
+    const double Zd = m_ctx.cdMo[2][3];
+    m_task.reset();
+    m_features.reset();
+    m_featuresD.reset();
+    m_moments.reset(new vpMomentCommon(vpMomentCommon::getSurface(m_objD), vpMomentCommon::getMu3(m_objD),
+                                       vpMomentCommon::getAlpha(m_objD), Zd));
+    m_momentsD.reset(new vpMomentCommon(vpMomentCommon::getSurface(m_objD), vpMomentCommon::getMu3(m_objD),
+                                        vpMomentCommon::getAlpha(m_objD), Zd));
+    m_features.reset(new vpFeatureMomentCommon(*m_moments));
+    m_featuresD.reset(new vpFeatureMomentCommon(*m_momentsD));
+    m_moments->updateAll(m_objD); // until the first measurement
+    m_momentsD->updateAll(m_objD);
+    m_features->updateAll(0, 0, 1.0 / Zd);
+    m_featuresD->updateAll(0, 0, 1.0 / Zd);
+    m_task.reset(new vpServo);
+    setupStockTask(*m_task, vpServo::CURRENT);
+    m_task->addFeature(m_features->getFeatureGravityNormalized(), m_featuresD->getFeatureGravityNormalized());
+    m_task->addFeature(m_features->getFeatureAn(), m_featuresD->getFeatureAn());
+    m_task->addFeature(m_features->getFeatureCInvariant(), m_featuresD->getFeatureCInvariant(), (1 << 10) | (1 << 11));
+    m_task->addFeature(m_features->getFeatureAlpha(), m_featuresD->getFeatureAlpha());
+  }
+  vpMomentObject m_obj{6}, m_objD{6};
+  std::unique_ptr<vpMomentCommon> m_moments, m_momentsD;
+  std::unique_ptr<vpFeatureMomentCommon> m_features, m_featuresD;
+  std::unique_ptr<vpServo> m_task;
+};
+} // namespace
+
+std::vector<std::string> vpMorphBenchController::names()
+{
+  return {"morph", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments"};
+}
+
+std::unique_ptr<vpMorphBenchController> vpMorphBenchController::create(const std::string &name)
+{
+  if (name == "morph")
+    return std::unique_ptr<vpMorphBenchController>(new MorphController);
+  if (name == "morph-vpservo")
+    return std::unique_ptr<vpMorphBenchController>(new MorphVpServoController);
+  if (name == "ibvs-current")
+    return std::unique_ptr<vpMorphBenchController>(new IbvsController(vpServo::CURRENT, "ibvs-current"));
+  if (name == "ibvs-desired")
+    return std::unique_ptr<vpMorphBenchController>(new IbvsController(vpServo::DESIRED, "ibvs-desired"));
+  if (name == "ibvs-mean")
+    return std::unique_ptr<vpMorphBenchController>(new IbvsController(vpServo::MEAN, "ibvs-mean"));
+  if (name == "pbvs")
+    return std::unique_ptr<vpMorphBenchController>(new PbvsController);
+  if (name == "moments")
+    return std::unique_ptr<vpMorphBenchController>(new MomentsController);
+  throw vpMorphException(vpMorphException::notFoundError,
+                         "vpMorphBenchController: unknown controller '" + name +
+                             "' (morph, morph-vpservo, ibvs-current, ibvs-desired, ibvs-mean, pbvs, moments)");
+}
