@@ -235,7 +235,9 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
   } else {
     m_sd.buildFrom(goalN, m_Zd * std::sqrt(m_targetArea / m_subGoals[m_k].area()));
     m_s.buildFrom(currentN, Z);
-    m_s.error(m_sd);
+    // vpServo calls m_s.error(m_sd) once: that is this iteration's correspondence and fit, no second search.
+    m_task.setLambda(m_gain / m_dt);
+    m_stockVc = m_task.computeControlLaw();
     T = m_s.lastFit();
     tr = &m_s.tracker();
   }
@@ -333,8 +335,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       const vpHomogeneousMatrix eMe = eMc * cameraDisplacement(T, Z, k) * eMc.inverse(); // Eq. 11
       ve = m_gain * vpExponentialMap::inverse(eMe, m_dt);
     } else {
-      m_task.setLambda(m_gain / m_dt);
-      vpColVector vc = m_task.computeControlLaw();
+      vpColVector vc = m_stockVc; // computed with the fit to the current sub-goal
       vc[0] *= k;
       vc[1] *= k;
       ve = vpVelocityTwistMatrix(eMc) * vc;

@@ -44,6 +44,7 @@ struct Result
   double eMcT = 0, eMcR = 0;     // and at the end
   double scale = 1;              // final projection scale estimate
   std::size_t lastSubGoal = 0;
+  unsigned int searches = 0; // correspondence searches (full + tracked) of the law in use
   vpServoMorph::Status status = vpServoMorph::NOT_STARTED;
 };
 
@@ -110,6 +111,7 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
   }
   r.status = servo.status();
   r.lastSubGoal = servo.subGoalIndex();
+  r.searches = servo.tracker().fullMatchCount() + servo.tracker().trackedMatchCount();
   poseError(robot.getPosition().inverse() * wMo, cdMo, r.tErr, r.rDeg);
   handEyeError(servo.get_eMc(), st.eMcTrue, r.eMcT, r.eMcR);
   r.scale = servo.handEyeEstimator().translationScale();
@@ -208,10 +210,14 @@ TEST_CASE("vpServoMorph: Eq. 5-11 law and stock vpServo over vpFeatureMorph comp
   st.law = vpServoMorph::STOCK_VPSERVO;
   const Result s = run(cMo0, cdMo, st);
   std::printf("[compare] Eq. 5-11: %d iterations, path %.1f mm; stock vpServo: %d iterations, path %.1f mm "
-              "(straight %.1f mm)\n",
-              h.iterations, h.path * 1000, s.iterations, s.path * 1000, h.straight * 1000);
+              "(straight %.1f mm); correspondence searches %u and %u\n",
+              h.iterations, h.path * 1000, s.iterations, s.path * 1000, h.straight * 1000, h.searches, s.searches);
   CHECK(h.converged);
   CHECK(s.converged);
+  // One correspondence per iteration (iterations + 1 calls) plus one per sub-goal switch, with either law: the
+  // stock law must not search again inside vpServo::computeControlLaw(), and tracker() is the one in use.
+  CHECK(h.searches == h.iterations + 1 + h.lastSubGoal);
+  CHECK(s.searches == s.iterations + 1 + s.lastSubGoal);
   CHECK(s.tErr < 1e-3);
   CHECK(s.rDeg < 0.5);
 }

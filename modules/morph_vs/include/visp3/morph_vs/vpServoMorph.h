@@ -169,7 +169,8 @@ public:
   //! Last commanded velocity in the estimated camera frame.
   const vpColVector &cameraVelocity() const { return m_vc; }
   const std::vector<Iteration> &history() const { return m_history; }
-  const vpMorphCorrespondenceTracker &tracker() const { return m_tracker; }
+  //! The correspondence tracker of the control law in use (with STOCK_VPSERVO, the one of vpFeatureMorph).
+  const vpMorphCorrespondenceTracker &tracker() const { return m_law == STOCK_VPSERVO ? m_s.tracker() : m_tracker; }
 
   //! Draws the current sub-goal and the final target (vpDisplay: no-op without a display attached to I).
   void display(const vpImage<unsigned char> &I, const vpColor &subGoalColor = vpColor::orange,
@@ -213,6 +214,7 @@ private:
   vpMorphRigidTransform m_prevT;
   vpHomogeneousMatrix m_prevCmd; // eMe' commanded at the previous iteration
   vpColVector m_ve, m_vc;
+  vpColVector m_stockVc; // STOCK_VPSERVO: camera velocity of vpServo, computed with the fit
   std::vector<Iteration> m_history;
 };
 
