@@ -142,7 +142,7 @@ struct StockResult
   bool converged = false;
   int iterations = 0;
   double tErr = 0, rDeg = 0;
-  unsigned int fullMatches = 0;
+  unsigned int fullMatches = 0, searches = 0;
 };
 
 // Runs a stock vpServo over vpFeatureMorph on a free-flying camera. With useEJe, the task is
@@ -207,6 +207,7 @@ StockResult runStock(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix 
     robot.setVelocity(vpRobot::CAMERA_FRAME, v);
   }
   r.fullMatches = s.tracker().fullMatchCount();
+  r.searches = r.fullMatches + s.tracker().trackedMatchCount();
   poseError(robot.getPosition().inverse() * wMo, cdMo, r.tErr, r.rDeg);
   task.kill();
   return r;
@@ -232,6 +233,8 @@ TEST_CASE("vpFeatureMorph converges in a stock vpServo with current, desired and
         CHECK(r.tErr < 1e-3);
         CHECK(r.rDeg < 0.5);
         CHECK(r.fullMatches <= 3); // tracked from iteration to iteration
+        // One correspondence per vpServo::computeControlLaw() call (iterations + 1 calls up to convergence).
+        CHECK(r.searches == static_cast<unsigned int>(r.iterations + 1));
       }
     }
   }

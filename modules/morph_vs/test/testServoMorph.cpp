@@ -270,6 +270,26 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
   CHECK_THROWS_AS(servo.computeControlLaw(projectNormalized(cdMo)), vpMorphException);
 }
 
+TEST_CASE("vpServoMorph sub-goal switching thresholds are configurable", "[servo]")
+{
+  const vpMorphContour start = projectPixels(planarPose(20 + 170, 0.06, -0.03));
+  vpServoMorph servo;
+  servo.setTarget(projectPixels(cdMo), depth(cdMo));
+  // Defaults (0.10 rad, 5 px): the first rigid frame is about 0.6 rad away, so the servo stays on it.
+  CHECK(servo.computeControlLaw(start).frobeniusNorm() > 0);
+  CHECK(servo.status() == vpServoMorph::MOVING);
+  CHECK(servo.subGoalIndex() == 0);
+  CHECK(servo.rotationResidual() > 0.10);
+  // Thresholds above any residual: every intermediate sub-goal counts as reached at once, only the goal is left.
+  servo.setSubGoalThresholds(4.0, 1000.0);
+  servo.restart();
+  servo.computeControlLaw(start);
+  CHECK(servo.status() == vpServoMorph::SUBGOAL_REACHED);
+  CHECK(servo.subGoalIndex() == 9);
+  CHECK_THROWS_AS(servo.setSubGoalThresholds(0, 5), vpMorphException);
+  CHECK_THROWS_AS(servo.setFinalThresholds(0.001, -1), vpMorphException);
+}
+
 TEST_CASE("vpServoMorph with image noise (0.3 px) and calibration errors", "[servo][noise]")
 {
   Setup st;
