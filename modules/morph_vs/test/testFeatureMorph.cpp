@@ -12,7 +12,9 @@
 #include <visp3/morph_vs/vpFeatureMorph.h>
 #include <visp3/robot/vpSimulatorCamera.h>
 #include <visp3/vs/vpServo.h>
+#include <visp3/vs/vpServoDisplay.h>
 
+#include "testMorphVsRecordingDisplay.h"
 #include "testMorphVsScene.h"
 
 using namespace vpMorphVsTest;
@@ -205,6 +207,16 @@ StockResult runStock(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix 
     if (useEJe)
       v = vpVelocityTwistMatrix(eMc.inverse()) * (planarRobotJacobian() * v); // joints -> camera velocity
     robot.setVelocity(vpRobot::CAMERA_FRAME, v);
+  }
+  {
+    // vpServoDisplay draws the current contour and its goal (the desired feature) through display().
+    vpImage<unsigned char> I(480, 640, 0);
+    RecordingDisplay rec;
+    rec.attach(I);
+    vpServoDisplay::display(task, cam, I, vpColor::green, vpColor::red);
+    RecordingDisplay::detach(I);
+    CHECK(rec.count(vpColor::green) == 9);
+    CHECK(rec.count(vpColor::red) == 9);
   }
   r.fullMatches = s.tracker().fullMatchCount();
   r.searches = r.fullMatches + s.tracker().trackedMatchCount();

@@ -16,6 +16,7 @@
 #include <visp3/visual_features/vpFeaturePoint.h>
 #include <visp3/vs/vpServo.h>
 
+#include "testMorphVsRecordingDisplay.h"
 #include "testMorphVsScene.h"
 
 using namespace vpMorphVsTest;
@@ -242,6 +243,16 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
   REQUIRE(servo.converged());
   vpImage<vpRGBa> I(480, 640);
   CHECK_NOTHROW(servo.display(I)); // headless: no display attached, nothing drawn
+  {
+    // Converged: the contour (9 edges, red) and the target (9 edges, green); the sub-goal is the target.
+    RecordingDisplay rec;
+    rec.attach(I);
+    servo.display(I);
+    RecordingDisplay::detach(I);
+    CHECK(rec.count(vpColor::red) == 9);
+    CHECK(rec.count(vpColor::green) == 9);
+    CHECK(rec.lines.size() == 18);
+  }
   CHECK(servo.subGoals().size() == 6);
   CHECK(servo.subGoalIndex() == 5);
   const auto &h = servo.history();
@@ -280,6 +291,20 @@ TEST_CASE("vpServoMorph sub-goal switching thresholds are configurable", "[servo
   CHECK(servo.status() == vpServoMorph::MOVING);
   CHECK(servo.subGoalIndex() == 0);
   CHECK(servo.rotationResidual() > 0.10);
+  {
+    // Moving: the contour, the current sub-goal and the target, each a 9-edge polygon in its colour.
+    vpImage<unsigned char> I(480, 640, 0);
+    RecordingDisplay rec;
+    rec.attach(I);
+    servo.display(I, vpColor::blue, vpColor::orange, vpColor::green);
+    RecordingDisplay::detach(I);
+    CHECK(rec.count(vpColor::blue) == 9);
+    CHECK(rec.count(vpColor::orange) == 9);
+    CHECK(rec.count(vpColor::green) == 9);
+    // The drawn contour is the one given, in pixels.
+    CHECK(rec.lines[0].a.get_u() == Approx(start.x(0)));
+    CHECK(rec.lines[0].a.get_v() == Approx(start.y(0)));
+  }
   // Thresholds above any residual: every intermediate sub-goal counts as reached at once, only the goal is left.
   servo.setSubGoalThresholds(4.0, 1000.0);
   servo.restart();
