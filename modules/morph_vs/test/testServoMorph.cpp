@@ -202,6 +202,29 @@ TEST_CASE("vpServoMorph online calibration: wrong eMc (15 deg, 30 mm) and intrin
   CHECK(r2.scale == Approx(640.0 / 800.0).epsilon(0.02));
 }
 
+TEST_CASE("vpServoMorph online calibration: principal point and anisotropic focal errors, the planar model's limits",
+          "[servo][calibration]")
+{
+  // The estimator models the intrinsics error as one scale k. The task still converges when the principal point
+  // or only one focal length is off by 20 %, but the eMc estimate absorbs what k cannot express.
+  Setup st;
+  st.eMcTrue = eMcTrue;
+  st.eMcEstimate = eMcTrue * vpHomogeneousMatrix(0.024, -0.018, 0, 0, 0, vpMath::rad(15)).inverse();
+  const double cams[][4] = {{960, 960, 384, 288}, {960, 800, 320, 240}};
+  for (const auto &c : cams) {
+    st.camEstimate = vpCameraParameters(c[0], c[1], c[2], c[3]);
+    const Result r = run(planarPose(20 + 170, 0.06, -0.03), cdMo, st);
+    std::printf("[calibration] px %g py %g u0 %g v0 %g (true 800 800 320 240): %s after %d iterations, pose error "
+                "%.4f mm %.4f deg; eMc error %.1f mm %.2f deg -> %.2f mm %.3f deg; projection scale %.4f\n",
+                c[0], c[1], c[2], c[3], vpServoMorph::statusName(r.status), r.iterations, r.tErr * 1000, r.rDeg,
+                r.eMcT0 * 1000, r.eMcR0, r.eMcT * 1000, r.eMcR, r.scale);
+    CHECK(r.converged);
+    CHECK(r.tErr < 1e-3);
+    CHECK(r.rDeg < 0.5);
+    CHECK(r.eMcR < 0.5 * r.eMcR0); // the rotation about the optical axis is still corrected
+  }
+}
+
 TEST_CASE("vpServoMorph: Eq. 5-11 law and stock vpServo over vpFeatureMorph compared", "[servo]")
 {
   Setup st;
