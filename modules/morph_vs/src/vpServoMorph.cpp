@@ -41,10 +41,12 @@ double rmsRadius(const vpMorphContour &c)
 namespace
 {
 template <typename T>
-void drawGoals(const vpImage<T> &I, const std::vector<vpMorphContour> &subGoals, std::size_t k,
-               const vpMorphContour &target, const vpColor &subGoalColor, const vpColor &targetColor,
-               unsigned int thickness)
+void drawGoals(const vpImage<T> &I, const vpMorphContour &current, const std::vector<vpMorphContour> &subGoals,
+               std::size_t k, const vpMorphContour &target, const vpColor &currentColor, const vpColor &subGoalColor,
+               const vpColor &targetColor, unsigned int thickness)
 {
+  if (!current.empty())
+    vpDisplay::displayPolygon(I, current.points(), currentColor, thickness);
   if (!target.empty())
     vpDisplay::displayPolygon(I, target.points(), targetColor, thickness);
   if (k < subGoals.size() && k + 1 < subGoals.size())
@@ -52,16 +54,16 @@ void drawGoals(const vpImage<T> &I, const std::vector<vpMorphContour> &subGoals,
 }
 } // namespace
 
-void vpServoMorph::display(const vpImage<unsigned char> &I, const vpColor &subGoalColor, const vpColor &targetColor,
-                           unsigned int thickness) const
+void vpServoMorph::display(const vpImage<unsigned char> &I, const vpColor &currentColor, const vpColor &subGoalColor,
+                           const vpColor &targetColor, unsigned int thickness) const
 {
-  drawGoals(I, m_subGoals, m_k, m_target, subGoalColor, targetColor, thickness);
+  drawGoals(I, m_current, m_subGoals, m_k, m_target, currentColor, subGoalColor, targetColor, thickness);
 }
 
-void vpServoMorph::display(const vpImage<vpRGBa> &I, const vpColor &subGoalColor, const vpColor &targetColor,
-                           unsigned int thickness) const
+void vpServoMorph::display(const vpImage<vpRGBa> &I, const vpColor &currentColor, const vpColor &subGoalColor,
+                           const vpColor &targetColor, unsigned int thickness) const
 {
-  drawGoals(I, m_subGoals, m_k, m_target, subGoalColor, targetColor, thickness);
+  drawGoals(I, m_current, m_subGoals, m_k, m_target, currentColor, subGoalColor, targetColor, thickness);
 }
 
 vpServoMorph::vpServoMorph() : m_cam(800, 800, 320, 240), m_ve(6, 0.0), m_vc(6, 0.0)
@@ -188,6 +190,7 @@ void vpServoMorph::setMinArea(double px2)
 void vpServoMorph::restart()
 {
   m_started = false;
+  m_current = vpMorphContour();
   m_subGoals.clear();
   m_k = 0;
   m_status = NOT_STARTED;
@@ -243,7 +246,9 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
   } else {
     m_sd.buildFrom(goalN, m_Zd * std::sqrt(m_targetArea / m_subGoals[m_k].area()));
     m_s.buildFrom(currentN, Z);
-    m_s.error(m_sd);
+    // vpServo calls m_s.error(m_sd) once: that is this iteration's correspondence and fit, no second search.
+    m_task.setLambda(m_gain / m_dt);
+    m_stockVc = m_task.computeControlLaw();
     T = m_s.lastFit();
     tr = &m_s.tracker();
   }
@@ -295,11 +300,13 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpServoMorph::computeControlLaw: no target; call setTarget() first");
   ++m_iter;
+  m_current = vpMorphContour();
   if (current.empty())
     return stop(TARGET_LOST);
   if (current.units() != vpMorphContour::PIXEL)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpServoMorph::computeControlLaw: the current contour must be in pixels");
+  m_current = current;
   const double a = current.area();
   if (!std::isfinite(a) || a < m_minArea)
     return stop(DEGENERATE_CONTOUR);
@@ -359,8 +366,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       const vpHomogeneousMatrix eMe = eMc * cameraDisplacement(T, Z, k) * eMc.inverse(); // Eq. 11
       ve = m_gain * vpExponentialMap::inverse(eMe, m_dt);
     } else {
-      m_task.setLambda(m_gain / m_dt);
-      vpColVector vc = m_task.computeControlLaw();
+      vpColVector vc = m_stockVc; // computed with the fit to the current sub-goal
       vc[0] *= k;
       vc[1] *= k;
       ve = vpVelocityTwistMatrix(eMc) * vc;

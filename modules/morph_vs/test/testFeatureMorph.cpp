@@ -12,7 +12,9 @@
 #include <visp3/morph_vs/vpFeatureMorph.h>
 #include <visp3/robot/vpSimulatorCamera.h>
 #include <visp3/vs/vpServo.h>
+#include <visp3/vs/vpServoDisplay.h>
 
+#include "testMorphVsRecordingDisplay.h"
 #include "testMorphVsScene.h"
 
 using namespace vpMorphVsTest;
@@ -142,7 +144,7 @@ struct StockResult
   bool converged = false;
   int iterations = 0;
   double tErr = 0, rDeg = 0;
-  unsigned int fullMatches = 0;
+  unsigned int fullMatches = 0, searches = 0;
 };
 
 // Runs a stock vpServo over vpFeatureMorph on a free-flying camera. With useEJe, the task is
@@ -206,7 +208,18 @@ StockResult runStock(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix 
       v = vpVelocityTwistMatrix(eMc.inverse()) * (planarRobotJacobian() * v); // joints -> camera velocity
     robot.setVelocity(vpRobot::CAMERA_FRAME, v);
   }
+  {
+    // vpServoDisplay draws the current contour and its goal (the desired feature) through display().
+    vpImage<unsigned char> I(480, 640, 0);
+    RecordingDisplay rec;
+    rec.attach(I);
+    vpServoDisplay::display(task, cam, I, vpColor::green, vpColor::red);
+    RecordingDisplay::detach(I);
+    CHECK(rec.count(vpColor::green) == 9);
+    CHECK(rec.count(vpColor::red) == 9);
+  }
   r.fullMatches = s.tracker().fullMatchCount();
+  r.searches = r.fullMatches + s.tracker().trackedMatchCount();
   poseError(robot.getPosition().inverse() * wMo, cdMo, r.tErr, r.rDeg);
   task.kill();
   return r;
@@ -232,6 +245,8 @@ TEST_CASE("vpFeatureMorph converges in a stock vpServo with current, desired and
         CHECK(r.tErr < 1e-3);
         CHECK(r.rDeg < 0.5);
         CHECK(r.fullMatches <= 3); // tracked from iteration to iteration
+        // One correspondence per vpServo::computeControlLaw() call (iterations + 1 calls up to convergence).
+        CHECK(r.searches == static_cast<unsigned int>(r.iterations + 1));
       }
     }
   }

@@ -16,6 +16,7 @@
 #include <visp3/visual_features/vpFeaturePoint.h>
 #include <visp3/vs/vpServo.h>
 
+#include "testMorphVsRecordingDisplay.h"
 #include "testMorphVsScene.h"
 
 using namespace vpMorphVsTest;
@@ -44,6 +45,7 @@ struct Result
   double eMcT = 0, eMcR = 0;     // and at the end
   double scale = 1;              // final projection scale estimate
   std::size_t lastSubGoal = 0;
+  unsigned int searches = 0; // correspondence searches (full + tracked) of the law in use
   vpServoMorph::Status status = vpServoMorph::NOT_STARTED;
 };
 
@@ -110,6 +112,7 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
   }
   r.status = servo.status();
   r.lastSubGoal = servo.subGoalIndex();
+  r.searches = servo.tracker().fullMatchCount() + servo.tracker().trackedMatchCount();
   poseError(robot.getPosition().inverse() * wMo, cdMo, r.tErr, r.rDeg);
   handEyeError(servo.get_eMc(), st.eMcTrue, r.eMcT, r.eMcR);
   r.scale = servo.handEyeEstimator().translationScale();
@@ -199,6 +202,29 @@ TEST_CASE("vpServoMorph online calibration: wrong eMc (15 deg, 30 mm) and intrin
   CHECK(r2.scale == Approx(640.0 / 800.0).epsilon(0.02));
 }
 
+TEST_CASE("vpServoMorph online calibration: principal point and anisotropic focal errors, the planar model's limits",
+          "[servo][calibration]")
+{
+  // The estimator models the intrinsics error as one scale k. The task still converges when the principal point
+  // or only one focal length is off by 20 %, but the eMc estimate absorbs what k cannot express.
+  Setup st;
+  st.eMcTrue = eMcTrue;
+  st.eMcEstimate = eMcTrue * vpHomogeneousMatrix(0.024, -0.018, 0, 0, 0, vpMath::rad(15)).inverse();
+  const double cams[][4] = {{960, 960, 384, 288}, {960, 800, 320, 240}};
+  for (const auto &c : cams) {
+    st.camEstimate = vpCameraParameters(c[0], c[1], c[2], c[3]);
+    const Result r = run(planarPose(20 + 170, 0.06, -0.03), cdMo, st);
+    std::printf("[calibration] px %g py %g u0 %g v0 %g (true 800 800 320 240): %s after %d iterations, pose error "
+                "%.4f mm %.4f deg; eMc error %.1f mm %.2f deg -> %.2f mm %.3f deg; projection scale %.4f\n",
+                c[0], c[1], c[2], c[3], vpServoMorph::statusName(r.status), r.iterations, r.tErr * 1000, r.rDeg,
+                r.eMcT0 * 1000, r.eMcR0, r.eMcT * 1000, r.eMcR, r.scale);
+    CHECK(r.converged);
+    CHECK(r.tErr < 1e-3);
+    CHECK(r.rDeg < 0.5);
+    CHECK(r.eMcR < 0.5 * r.eMcR0); // the rotation about the optical axis is still corrected
+  }
+}
+
 TEST_CASE("vpServoMorph: Eq. 5-11 law and stock vpServo over vpFeatureMorph compared", "[servo]")
 {
   Setup st;
@@ -208,10 +234,14 @@ TEST_CASE("vpServoMorph: Eq. 5-11 law and stock vpServo over vpFeatureMorph comp
   st.law = vpServoMorph::STOCK_VPSERVO;
   const Result s = run(cMo0, cdMo, st);
   std::printf("[compare] Eq. 5-11: %d iterations, path %.1f mm; stock vpServo: %d iterations, path %.1f mm "
-              "(straight %.1f mm)\n",
-              h.iterations, h.path * 1000, s.iterations, s.path * 1000, h.straight * 1000);
+              "(straight %.1f mm); correspondence searches %u and %u\n",
+              h.iterations, h.path * 1000, s.iterations, s.path * 1000, h.straight * 1000, h.searches, s.searches);
   CHECK(h.converged);
   CHECK(s.converged);
+  // One correspondence per iteration (iterations + 1 calls) plus one per sub-goal switch, with either law: the
+  // stock law must not search again inside vpServo::computeControlLaw(), and tracker() is the one in use.
+  CHECK(h.searches == h.iterations + 1 + h.lastSubGoal);
+  CHECK(s.searches == s.iterations + 1 + s.lastSubGoal);
   CHECK(s.tErr < 1e-3);
   CHECK(s.rDeg < 0.5);
 }
@@ -236,6 +266,16 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
   REQUIRE(servo.converged());
   vpImage<vpRGBa> I(480, 640);
   CHECK_NOTHROW(servo.display(I)); // headless: no display attached, nothing drawn
+  {
+    // Converged: the contour (9 edges, red) and the target (9 edges, green); the sub-goal is the target.
+    RecordingDisplay rec;
+    rec.attach(I);
+    servo.display(I);
+    RecordingDisplay::detach(I);
+    CHECK(rec.count(vpColor::red) == 9);
+    CHECK(rec.count(vpColor::green) == 9);
+    CHECK(rec.lines.size() == 18);
+  }
   CHECK(servo.subGoals().size() == 6);
   CHECK(servo.subGoalIndex() == 5);
   const auto &h = servo.history();
@@ -262,6 +302,40 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
   CHECK_THROWS_AS(servo.setTarget(projectPixels(cdMo), 0), vpMorphException);
   CHECK_THROWS_AS(servo.setTarget(projectNormalized(cdMo), 0.5), vpMorphException);
   CHECK_THROWS_AS(servo.computeControlLaw(projectNormalized(cdMo)), vpMorphException);
+}
+
+TEST_CASE("vpServoMorph sub-goal switching thresholds are configurable", "[servo]")
+{
+  const vpMorphContour start = projectPixels(planarPose(20 + 170, 0.06, -0.03));
+  vpServoMorph servo;
+  servo.setTarget(projectPixels(cdMo), depth(cdMo));
+  // Defaults (0.10 rad, 5 px): the first rigid frame is about 0.6 rad away, so the servo stays on it.
+  CHECK(servo.computeControlLaw(start).frobeniusNorm() > 0);
+  CHECK(servo.status() == vpServoMorph::MOVING);
+  CHECK(servo.subGoalIndex() == 0);
+  CHECK(servo.rotationResidual() > 0.10);
+  {
+    // Moving: the contour, the current sub-goal and the target, each a 9-edge polygon in its colour.
+    vpImage<unsigned char> I(480, 640, 0);
+    RecordingDisplay rec;
+    rec.attach(I);
+    servo.display(I, vpColor::blue, vpColor::orange, vpColor::green);
+    RecordingDisplay::detach(I);
+    CHECK(rec.count(vpColor::blue) == 9);
+    CHECK(rec.count(vpColor::orange) == 9);
+    CHECK(rec.count(vpColor::green) == 9);
+    // The drawn contour is the one given, in pixels.
+    CHECK(rec.lines[0].a.get_u() == Approx(start.x(0)));
+    CHECK(rec.lines[0].a.get_v() == Approx(start.y(0)));
+  }
+  // Thresholds above any residual: every intermediate sub-goal counts as reached at once, only the goal is left.
+  servo.setSubGoalThresholds(4.0, 1000.0);
+  servo.restart();
+  servo.computeControlLaw(start);
+  CHECK(servo.status() == vpServoMorph::SUBGOAL_REACHED);
+  CHECK(servo.subGoalIndex() == 9);
+  CHECK_THROWS_AS(servo.setSubGoalThresholds(0, 5), vpMorphException);
+  CHECK_THROWS_AS(servo.setFinalThresholds(0.001, -1), vpMorphException);
 }
 
 TEST_CASE("vpServoMorph with image noise (0.3 px) and calibration errors", "[servo][noise]")

@@ -177,13 +177,19 @@ public:
   //! Last commanded velocity in the estimated camera frame.
   const vpColVector &cameraVelocity() const { return m_vc; }
   const std::vector<Iteration> &history() const { return m_history; }
-  const vpMorphCorrespondenceTracker &tracker() const { return m_tracker; }
+  //! The correspondence tracker of the control law in use (with STOCK_VPSERVO, the one of vpFeatureMorph).
+  const vpMorphCorrespondenceTracker &tracker() const { return m_law == STOCK_VPSERVO ? m_s.tracker() : m_tracker; }
 
-  //! Draws the current sub-goal and the final target (vpDisplay: no-op without a display attached to I).
-  void display(const vpImage<unsigned char> &I, const vpColor &subGoalColor = vpColor::orange,
-               const vpColor &targetColor = vpColor::green, unsigned int thickness = 1) const;
-  void display(const vpImage<vpRGBa> &I, const vpColor &subGoalColor = vpColor::orange,
-               const vpColor &targetColor = vpColor::green, unsigned int thickness = 1) const;
+  /*!
+    Draws the last contour given to computeControlLaw(), the current sub-goal (when it is not the target) and the
+    final target, in pixels (vpDisplay: no-op without a display attached to I).
+  */
+  void display(const vpImage<unsigned char> &I, const vpColor &currentColor = vpColor::red,
+               const vpColor &subGoalColor = vpColor::orange, const vpColor &targetColor = vpColor::green,
+               unsigned int thickness = 1) const;
+  void display(const vpImage<vpRGBa> &I, const vpColor &currentColor = vpColor::red,
+               const vpColor &subGoalColor = vpColor::orange, const vpColor &targetColor = vpColor::green,
+               unsigned int thickness = 1) const;
 
 private:
   void start(const vpMorphContour &current);
@@ -195,6 +201,7 @@ private:
 
   vpCameraParameters m_cam;
   vpMorphContour m_target;
+  vpMorphContour m_current; // last contour given (pixels), for display()
   double m_Zd = 0.5, m_targetArea = 0;
   std::size_t m_nSub = 10;
   double m_rotThr = 0.10, m_pxThr = 5.0, m_rotFine = 0.001, m_pxFine = 0.1;
@@ -227,6 +234,7 @@ private:
   double m_anchorZ = 0;
   vpHomogeneousMatrix m_accCmd;
   vpColVector m_ve, m_vc;
+  vpColVector m_stockVc; // STOCK_VPSERVO: camera velocity of vpServo, computed with the fit
   std::vector<Iteration> m_history;
 };
 
