@@ -323,11 +323,14 @@ vpMorphRigidTransform vpMorphRigidTransform::fitElongation(const vpMorphContour 
 
 vpMorphRigidTransform vpMorphRigidTransform::fitLeastSquares(const vpMorphContour &input, const vpMorphContour &target,
                                                              const vpMorphCorrespondence &corr, bool withScale,
-                                                             RobustLoss loss, unsigned int maxIterations)
+                                                             RobustLoss loss, unsigned int maxIterations,
+                                                             double minSigma)
 {
   checkCorrespondence(input, target, corr, "vpMorphRigidTransform::fitLeastSquares");
   if (maxIterations < 1)
     badParameter("vpMorphRigidTransform::fitLeastSquares: maxIterations must be >= 1");
+  if (!std::isfinite(minSigma) || minSigma < 0.0)
+    badParameter("vpMorphRigidTransform::fitLeastSquares: minSigma must be finite and >= 0");
   const PairSet s = buildPairs(input, target, corr);
   Similarity T = procrustes(s, s.w, withScale);
   if (loss == NO_ROBUST)
@@ -339,7 +342,8 @@ vpMorphRigidTransform vpMorphRigidTransform::fitLeastSquares(const vpMorphContou
   double spread = 0.0;
   for (const Eigen::Vector2d &q : s.Q)
     spread = std::max(spread, (q - muQ).norm());
-  const double sigmaMin = 1e-9 * std::max(spread, 1e-300);
+  // and the caller's resolution of the coordinates (see minSigma).
+  const double sigmaMin = std::max(1e-9 * std::max(spread, 1e-300), minSigma);
 
   const int stages = loss == TUKEY ? 2 : 1;
   std::vector<double> w(s.w.size());

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphMatcher.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 
 #include "testMorphShapes.h"
@@ -320,4 +321,38 @@ TEST_CASE("vpMorphRigidTransform: bad input is rejected with vpMorphException", 
     CHECK(e.getCode() == vpMorphException::badParameterError);
     CHECK(e.getStringMessage().find("units") != std::string::npos);
   }
+}
+
+TEST_CASE("vpMorphRigidTransform: minSigma keeps quantised contours from locking onto coinciding vertices",
+          "[morph][rigid]")
+{
+  // Two contours extracted (vertices on the pixel grid) from rendered views of the pliers: the goal view, and a
+  // view 0.17 deg and 2 mm away in which 12 of the 19 vertices coincide exactly with goal vertices.
+  const std::vector<double> ax = {351, 360, 369, 424, 450, 451, 442, 451, 451, 424,
+                                  370, 358, 342, 219, 211, 215, 211, 219, 344};
+  const std::vector<double> ay = {226, 224, 228, 233, 232, 236, 240, 244, 247, 246,
+                                  252, 256, 248, 255, 248, 240, 232, 226, 232};
+  const std::vector<double> bx = {342, 358, 375, 424, 451, 451, 442, 451, 451,
+                                  424, 371, 358, 342, 219, 211, 215, 211, 219};
+  const std::vector<double> by = {232, 224, 229, 233, 232, 236, 240, 244, 247,
+                                  246, 252, 256, 248, 255, 248, 240, 232, 226};
+  const vpMorphContour A(ax, ay), B(bx, by);
+  const vpMorphCorrespondence c = vpMorphMatcher().match(A, B);
+  const vpMorphRigidTransform ls =
+      vpMorphRigidTransform::fitLeastSquares(A, B, c, true, vpMorphRigidTransform::NO_ROBUST);
+  const vpMorphRigidTransform collapsed = vpMorphRigidTransform::fitLeastSquares(A, B, c);
+  const vpMorphRigidTransform floored =
+      vpMorphRigidTransform::fitLeastSquares(A, B, c, true, vpMorphRigidTransform::TUKEY, 30, 0.5);
+  INFO("LS theta " << ls.theta() << " t " << ls.tx() << " " << ls.ty() << " s " << ls.scale());
+  INFO("no floor theta " << collapsed.theta() << " t " << collapsed.tx() << " " << collapsed.ty());
+  INFO("floor theta " << floored.theta() << " t " << floored.tx() << " " << floored.ty() << " s " << floored.scale());
+  // Without a floor the MAD is 0 and the fit is the identity although the contours differ.
+  CHECK(std::hypot(collapsed.tx(), collapsed.ty()) < 1e-6);
+  CHECK(std::fabs(collapsed.theta()) < 1e-9);
+  // With the half-pixel resolution as floor, the fit sees the difference (here mostly scale: 2 mm of depth), as
+  // plain least squares does (s = 1.0014).
+  CHECK(std::fabs(collapsed.scale() - 1.0) < 1e-9);
+  CHECK(floored.scale() > 1.0003);
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitLeastSquares(A, B, c, true, vpMorphRigidTransform::TUKEY, 30, -1.0),
+                  vpMorphException);
 }

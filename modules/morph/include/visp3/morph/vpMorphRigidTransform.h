@@ -126,11 +126,18 @@ public:
     from a converged Huber fit, because the biweight needs a good start. Occluded or deformed parts of a
     contour then stop dragging the rigid part, and stay for Eq. 1 to morph.
     \param maxIterations IRLS iterations per stage (Huber, then Tukey), >= 1.
-    \throw vpMorphException on empty contours, different units, or a correspondence that does not fit them.
+    \param minSigma floor of the robust scale sigma, in the contours' units (>= 0; 0: only a rounding floor).
+    Give the resolution of the coordinates, e.g. 0.5 px for contours extracted from images: their vertices lie
+    on the pixel grid, so near a goal most of them can coincide exactly with their partners; the MAD is then 0,
+    the IRLS weights keep only those vertices and the fit is exactly the identity even when the contours differ
+    by a pixel or two elsewhere (a false "goal reached").
+    \throw vpMorphException on empty contours, different units, a correspondence that does not fit them, or a
+    negative or non-finite minSigma.
   */
   static vpMorphRigidTransform fitLeastSquares(const vpMorphContour &input, const vpMorphContour &target,
                                                const vpMorphCorrespondence &correspondence, bool withScale = true,
-                                               RobustLoss loss = TUKEY, unsigned int maxIterations = 30);
+                                               RobustLoss loss = TUKEY, unsigned int maxIterations = 30,
+                                               double minSigma = 0.0);
 
   /*!
     Checks that \e correspondence fits the two contours (non-empty contours, same units, sizes equal to the
