@@ -1,0 +1,214 @@
+// Tests of the benchmark loop (vpMorphBench) and its reports: real runs on rendered images, the outcomes the
+// protocol predicts (VISPMorph from 170 deg where 4-point IBVS fails), determinism across threads, unreachable
+// starts, and the CSV / JSON / markdown formats.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph_bench/vpMorphBench.h>
+#include <visp3/morph_bench/vpMorphBenchController.h>
+#include <visp3/morph_bench/vpMorphBenchReport.h>
+
+namespace
+{
+const std::string kData = VISPMORPH_DATA_DIR;
+
+//! One bench shared by the tests (teaching and calibrating the six templates takes a few seconds).
+const vpMorphBench &bench()
+{
+  static const vpMorphBench b(kData, vpMorphBench::Settings());
+  return b;
+}
+
+//! A planar scenario with a chosen start (the generator's other fields).
+vpMorphBenchScenario planarStart(const std::string &object, double rotDeg, double tx, double ty)
+{
+  vpMorphBenchScenario s = vpMorphBenchScenario::generate("planar", 1, 1, kData)[0];
+  s.object = object;
+  s.objectImage = s.templateImage = kData + "/objects/" + object + ".png";
+  s.cdMo = vpMorphBenchScenario::desiredPose(object);
+  s.cdMc = vpHomogeneousMatrix(tx, ty, 0, 0, 0, vpMath::rad(rotDeg));
+  s.startRotationDeg = rotDeg;
+  s.startTranslationMm = 1000 * std::hypot(tx, ty);
+  return s;
+}
+
+std::size_t fields(const std::string &row)
+{
+  return static_cast<std::size_t>(std::count(row.begin(), row.end(), ',')) + 1;
+}
+} // namespace
+
+TEST_CASE("bench controllers: every name is created, unknown names are rejected", "[bench]")
+{
+  for (const std::string &n : vpMorphBenchController::names())
+    CHECK(vpMorphBenchController::create(n)->name() == n);
+  CHECK_THROWS_AS(vpMorphBenchController::create("visual-magic"), vpMorphException);
+  CHECK_THROWS_AS(bench().runAll({planarStart("wedge", 10, 0, 0)}, {"morph", "bogus"}), vpMorphException);
+}
+
+TEST_CASE("bench settings are checked", "[bench]")
+{
+  vpMorphBench::Settings s;
+  s.lambda = -1;
+  CHECK_THROWS_AS(vpMorphBench(kData, s), vpMorphException);
+  s = vpMorphBench::Settings();
+  s.samplingTime = std::nan("");
+  CHECK_THROWS_AS(vpMorphBench(kData, s), vpMorphException);
+  s = vpMorphBench::Settings();
+  s.maxIterations = 0;
+  CHECK_THROWS_AS(vpMorphBench(kData, s), vpMorphException);
+  CHECK_THROWS_AS(vpMorphBench("/nonexistent", vpMorphBench::Settings()), vpMorphException);
+}
+
+TEST_CASE("bench templates are the rendered taught views, recognised among themselves", "[bench]")
+{
+  const vpMorphDatabase &db = bench().database();
+  REQUIRE(db.size() == 6);
+  CHECK(db.isCalibrated());
+  for (std::size_t k = 0; k < db.size(); ++k) {
+    const vpMorphRecognition r = db.recognize(db[k].contour());
+    CHECK(r.index == k);
+    CHECK(r.accepted);
+  }
+}
+
+TEST_CASE("bench: VISPMorph aligns from 170 deg where 4-point IBVS with the current L fails", "[bench]")
+{
+  const vpMorphBenchScenario s = planarStart("wedge", 170, 0.03, -0.02);
+  const vpMorphBenchResult morph = bench().run(s, "morph");
+  INFO("morph: " << morph.failure << ", " << 1000 * morph.finalTranslation << " mm, "
+                 << vpMath::deg(morph.finalRotation) << " deg, " << morph.iterations << " it");
+  CHECK(morph.success);
+  CHECK(morph.recognized == "wedge");
+  CHECK(morph.recognitionCorrect());
+  CHECK(morph.convergedIteration > 0);
+  CHECK(morph.pathLength > morph.straightLine);
+  CHECK(morph.curveTranslation.size() == morph.iterations);
+  CHECK(morph.tagMeasured);
+  CHECK(morph.finalTagTranslation < 0.005);
+
+  const vpMorphBenchResult ibvs = bench().run(s, "ibvs-current");
+  INFO("ibvs-current: " << ibvs.failure << " after " << ibvs.iterations << " it");
+  CHECK_FALSE(ibvs.success);
+  CHECK(ibvs.failure != "none");
+  CHECK(ibvs.recognized.empty());
+}
+
+TEST_CASE("bench: stock controllers converge on an easy start", "[bench]")
+{
+  const vpMorphBenchScenario s = planarStart("screwdriver", 15, 0.02, 0.01);
+  for (const std::string c : {"pbvs", "ibvs-mean", "morph-vpservo"}) {
+    const vpMorphBenchResult r = bench().run(s, c);
+    INFO(c << ": " << r.failure << ", " << 1000 * r.finalTranslation << " mm, " << vpMath::deg(r.finalRotation)
+           << " deg, " << r.iterations << " it");
+    CHECK(r.success);
+    CHECK(r.measureMs > 0);
+    CHECK(std::isfinite(r.pathRatio()));
+  }
+}
+
+TEST_CASE("bench: unreachable starts are failures of every controller alike, never a crash", "[bench]")
+{
+  vpMorphBench::Settings st;
+  st.robot = vpMorphSimRobot::AFMA6; // joint 6 cannot turn by 180 deg
+  st.maxIterations = 20;
+  const vpMorphBench afma6(kData, st);
+  const vpMorphBenchScenario s = planarStart("key", 179, 0, 0);
+  for (const std::string c : {"morph", "pbvs"}) {
+    const vpMorphBenchResult r = afma6.run(s, c);
+    CHECK_FALSE(r.success);
+    CHECK((r.failure == "unreachable" || r.failure == "joint-limit"));
+  }
+}
+
+TEST_CASE("bench: runAll is the same on one and two threads, in (scenario, controller) order", "[bench]")
+{
+  vpMorphBench::Settings st;
+  st.maxIterations = 40;
+  const vpMorphBench b(kData, st);
+  const std::vector<vpMorphBenchScenario> scs = {planarStart("pliers", 60, 0.02, 0), planarStart("key", -30, 0, 0.03)};
+  const std::vector<std::string> ctrls = {"morph", "ibvs-mean"};
+  std::size_t calls = 0;
+  const auto one = b.runAll(scs, ctrls, 1, [&](std::size_t done, std::size_t total, const vpMorphBenchResult &) {
+    ++calls;
+    CHECK(done <= total);
+  });
+  const auto two = b.runAll(scs, ctrls, 2);
+  CHECK(calls == 4);
+  REQUIRE(one.size() == 4);
+  REQUIRE(two.size() == 4);
+  for (std::size_t k = 0; k < 4; ++k) {
+    CHECK(one[k].controller == ctrls[k % 2]);
+    CHECK(one[k].scenario.object == scs[k / 2].object);
+    CHECK(one[k].iterations == two[k].iterations);
+    CHECK(one[k].finalTranslation == two[k].finalTranslation);
+    CHECK(one[k].curveRotation == two[k].curveRotation);
+  }
+}
+
+TEST_CASE("bench report: CSV rows match the header, summaries count and aggregate", "[bench]")
+{
+  vpMorphBenchReport rep;
+  vpMorphBenchResult a;
+  a.scenario = planarStart("wedge", 30, 0.01, 0);
+  a.robot = "camera";
+  a.controller = "morph";
+  a.success = true;
+  a.convergedIteration = 40;
+  a.pathLength = 0.02;
+  a.straightLine = 0.01;
+  a.finalTranslation = 0.0002;
+  a.finalRotation = vpMath::rad(0.1);
+  a.curveTranslation = {0.01, 0.001, 0.0002};
+  a.curveRotation = {0.5, 0.01, 0.002};
+  vpMorphBenchResult b = a;
+  b.success = false;
+  b.failure = "out-of-view";
+  b.tagMeasured = false;
+  b.straightLine = 0; // pure rotation: no ratio
+  vpMorphBenchResult c = a;
+  c.controller = "pbvs";
+  rep.add(a);
+  rep.add(b);
+  rep.add(c);
+
+  const std::size_t n = fields(vpMorphBenchReport::runsHeader());
+  CHECK(n == 25);
+  CHECK(fields(vpMorphBenchReport::runsRow(a)) == n);
+  CHECK(fields(vpMorphBenchReport::runsRow(b)) == n);
+  std::istringstream curves(vpMorphBenchReport::curvesRows(a));
+  std::string line;
+  unsigned int lines = 0;
+  while (std::getline(curves, line)) {
+    CHECK(fields(line) == fields(vpMorphBenchReport::curvesHeader()));
+    ++lines;
+  }
+  CHECK(lines == 3);
+
+  const auto sums = rep.summarize();
+  REQUIRE(sums.size() == 2);
+  CHECK(sums[0].controller == "morph"); // names() order: morph before pbvs
+  CHECK(sums[0].runs == 2);
+  CHECK(sums[0].successes == 1);
+  CHECK(sums[0].successRate() == Approx(0.5));
+  CHECK(sums[0].failures.at("out-of-view") == 1);
+  CHECK(sums[0].medianPathRatio == Approx(2.0));
+  CHECK(sums[1].controller == "pbvs");
+
+  const nlohmann::json j = nlohmann::json::parse(rep.summaryJson({{"seed", "1"}}));
+  CHECK(j["version"] == 1);
+  CHECK(j["meta"]["seed"] == "1");
+  CHECK(j["summaries"].size() == 2);
+  CHECK(j["summaries"][0]["success_rate"] == Approx(0.5));
+  const std::string md = rep.summaryMarkdown();
+  CHECK(md.find("| planar | camera | morph | 1/2 (50 %)") != std::string::npos);
+  CHECK(md.find("out-of-view 1") != std::string::npos);
+}
