@@ -130,6 +130,28 @@ public:
   std::string recognizedObject() const override { return m_object; }
 
 protected:
+  /*!
+    The silhouette of image \e I and, on the first one, the recognition. False when the caller must return
+    \e cmd as it is (hold: no silhouette; stop: rejected); true with cmd.measureMs set.
+  */
+  bool observe(const vpImage<unsigned char> &I, vpMorphContour &c, Command &cmd)
+  {
+    double ms = 0;
+    const TagView tag = detectTag(*m_tag, I);
+    c = extractSilhouette(I, tag, ms);
+    if (c.empty()) {
+      cmd = holdCommand(ms);
+      return false;
+    }
+    std::string reason;
+    if (!recognize(c, reason)) {
+      cmd = stopCommand(reason);
+      return false;
+    }
+    cmd = Command();
+    cmd.measureMs = ms;
+    return true;
+  }
   //! Recognises the object on the first contour; returns false (and sets \e reason) if it is rejected.
   bool recognize(const vpMorphContour &c, std::string &reason)
   {
@@ -163,20 +185,14 @@ public:
   std::string name() const override { return "morph"; }
   Command step(const vpImage<unsigned char> &I, const vpMatrix &) override
   {
-    double ms = 0;
-    const TagView tag = detectTag(*m_tag, I);
-    const vpMorphContour c = extractSilhouette(I, tag, ms);
-    if (c.empty())
-      return holdCommand(ms);
-    std::string reason;
-    if (!recognize(c, reason))
-      return stopCommand(reason);
+    vpMorphContour c;
+    Command cmd;
+    if (!observe(I, c, cmd))
+      return cmd;
     if (!m_targetSet) {
       m_servo->setTarget(*m_template);
       m_targetSet = true;
     }
-    Command cmd;
-    cmd.measureMs = ms;
     const Clock::time_point t0 = Clock::now();
     cmd.v = m_servo->computeControlLaw(c);
     cmd.controlMs = msSince(t0);
@@ -221,16 +237,10 @@ public:
   std::string name() const override { return "morph-vpservo"; }
   Command step(const vpImage<unsigned char> &I, const vpMatrix &) override
   {
-    double ms = 0;
-    const TagView tag = detectTag(*m_tag, I);
-    const vpMorphContour c = extractSilhouette(I, tag, ms);
-    if (c.empty())
-      return holdCommand(ms);
-    std::string reason;
-    if (!recognize(c, reason))
-      return stopCommand(reason);
+    vpMorphContour c;
     Command cmd;
-    cmd.measureMs = ms;
+    if (!observe(I, c, cmd))
+      return cmd;
     const Clock::time_point t0 = Clock::now();
     const double Zd = m_template->cdMo()[2][3];
     try {
