@@ -104,6 +104,23 @@ protected:
     task.set_cVe(vpVelocityTwistMatrix(m_ctx.eMc.inverse()));
     task.setLambda(m_ctx.lambda);
   }
+  /*!
+    The stock task's joint velocity for the features just measured (in \e measureMs), with the time of the law;
+    a stop instead of a non-finite command.
+  */
+  static Command stockLaw(vpServo &task, const vpMatrix &eJe, double measureMs)
+  {
+    Command cmd;
+    cmd.measureMs = measureMs;
+    const Clock::time_point t0 = Clock::now();
+    task.set_eJe(eJe);
+    cmd.v = task.computeControlLaw();
+    cmd.controlMs = msSince(t0);
+    cmd.frame = vpRobot::JOINT_STATE;
+    if (!finite(cmd.v))
+      return stopCommand("nan");
+    return cmd;
+  }
   static Command holdCommand(double measureMs)
   {
     Command c;
@@ -308,16 +325,7 @@ public:
       P.track(tag.cMo);
       m_p[i].set_Z(P.get_Z());
     }
-    Command cmd;
-    cmd.measureMs = msSince(t0);
-    const Clock::time_point t1 = Clock::now();
-    m_task->set_eJe(eJe);
-    cmd.v = m_task->computeControlLaw();
-    cmd.controlMs = msSince(t1);
-    cmd.frame = vpRobot::JOINT_STATE;
-    if (!finite(cmd.v))
-      return stopCommand("nan");
-    return cmd;
+    return stockLaw(*m_task, eJe, msSince(t0));
   }
 
 private:
@@ -350,19 +358,10 @@ public:
     const TagView tag = detectTag(*m_tag, I);
     if (!tag.found)
       return holdCommand(msSince(t0));
-    Command cmd;
-    cmd.measureMs = msSince(t0);
-    const Clock::time_point t1 = Clock::now();
     const vpHomogeneousMatrix cdMc = m_ctx.cdMo * tag.cMo.inverse();
     m_t.buildFrom(cdMc);
     m_tu.buildFrom(cdMc);
-    m_task->set_eJe(eJe);
-    cmd.v = m_task->computeControlLaw();
-    cmd.controlMs = msSince(t1);
-    cmd.frame = vpRobot::JOINT_STATE;
-    if (!finite(cmd.v))
-      return stopCommand("nan");
-    return cmd;
+    return stockLaw(*m_task, eJe, msSince(t0));
   }
 
 private:
