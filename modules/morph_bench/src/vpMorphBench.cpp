@@ -117,10 +117,9 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
     const vpHomogeneousMatrix cMo = robot.get_cMo();
     double et, er;
     vpMorphTagPoseEstimator::poseDifference(sc.cdMo, cMo, et, er);
-    if (m_settings.recordCurves) {
-      res.curveTranslation.push_back(et);
-      res.curveRotation.push_back(er);
-    }
+    // Always kept: the settling iteration is read from it; dropped at the end unless recordCurves.
+    res.curveTranslation.push_back(et);
+    res.curveRotation.push_back(er);
     res.iterations = it + 1;
     const double Z = cMo[2][3];
     if (!(Z > kMinDepth && Z < kMaxDepth)) {
@@ -175,10 +174,6 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   // Final state, truth and tag.
   const vpHomogeneousMatrix cMo = robot.get_cMo();
   vpMorphTagPoseEstimator::poseDifference(sc.cdMo, cMo, res.finalTranslation, res.finalRotation);
-  if (res.curveTranslation.empty() || res.iterations > res.curveTranslation.size()) {
-    res.curveTranslation.push_back(res.finalTranslation);
-    res.curveRotation.push_back(res.finalRotation);
-  }
   if (scene.tagInView(cMo)) {
     scene.render(cMo, I, res.iterations);
     vpHomogeneousMatrix cMo_tag;
@@ -195,7 +190,7 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
     res.controlMs = sumControl / measuredIterations;
   }
   const bool accurate = res.finalTranslation < m_settings.successTranslation && res.finalRotation < rotThr;
-  // The settling iteration, from the truth curve (recorded or not, the final error decides).
+  // The settling iteration, from the truth curve (success itself is decided by the final error).
   if (accurate) {
     res.convergedIteration = static_cast<int>(res.curveTranslation.size()) - 1;
     for (int k = static_cast<int>(res.curveTranslation.size()) - 1; k >= 0; --k) {

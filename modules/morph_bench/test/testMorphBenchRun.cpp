@@ -212,3 +212,18 @@ TEST_CASE("bench report: CSV rows match the header, summaries count and aggregat
   CHECK(md.find("| planar | camera | morph | 1/2 (50 %)") != std::string::npos);
   CHECK(md.find("out-of-view 1") != std::string::npos);
 }
+
+TEST_CASE("bench: the settling iteration does not depend on recording the curves", "[bench]")
+{
+  vpMorphBench::Settings st;
+  st.recordCurves = false;
+  const vpMorphBench quiet(kData, st);
+  const vpMorphBenchScenario s = planarStart("screwdriver", 15, 0.02, 0.01);
+  const vpMorphBenchResult a = bench().run(s, "pbvs");
+  const vpMorphBenchResult b = quiet.run(s, "pbvs");
+  REQUIRE(a.success);
+  CHECK(a.convergedIteration > 0);
+  CHECK(b.convergedIteration == a.convergedIteration);
+  CHECK(b.curveTranslation.empty());
+  CHECK(a.curveTranslation.size() == a.iterations);
+}
