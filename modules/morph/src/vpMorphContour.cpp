@@ -195,6 +195,38 @@ bool vpMorphContour::isSimple() const
   return true;
 }
 
+void vpMorphContour::setRegion(double area, double cx, double cy)
+{
+  if (!std::isfinite(area) || !(area > 0.0) || !std::isfinite(cx) || !std::isfinite(cy)) {
+    std::ostringstream os;
+    os << "vpMorphContour::setRegion: the region needs a finite positive area and a finite centroid (area " << area
+       << ", centroid (" << cx << ", " << cy << "))";
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  m_regionArea = area;
+  m_regionCx = cx;
+  m_regionCy = cy;
+}
+
+void vpMorphContour::regionCentroid(double &cx, double &cy) const
+{
+  if (!hasRegion()) {
+    centroid(cx, cy);
+    return;
+  }
+  cx = m_regionCx;
+  cy = m_regionCy;
+}
+
+void vpMorphContour::mapRegion(double a, double b, double c, double d)
+{
+  if (!hasRegion())
+    return;
+  m_regionArea *= std::fabs(a * c);
+  m_regionCx = a * m_regionCx + b;
+  m_regionCy = c * m_regionCy + d;
+}
+
 vpMorphContour vpMorphContour::rotatedStart(std::size_t k) const
 {
   vpMorphContour c(*this);
@@ -223,6 +255,7 @@ vpMorphContour vpMorphContour::mirrored() const
   vpMorphContour c(*this);
   for (double &x : c.m_x)
     x = 2.0 * cx - x;
+  c.mapRegion(-1.0, 2.0 * cx, 1.0, 0.0);
   return c.reversed();
 }
 
@@ -245,6 +278,12 @@ vpMorphContour vpMorphContour::transformed(double theta, double tx, double ty, d
     out.m_x[k] = cx + c * x - sn * y + tx;
     out.m_y[k] = cy + sn * x + c * y + ty;
   }
+  if (hasRegion()) {
+    const double x = m_regionCx - cx, y = m_regionCy - cy;
+    out.m_regionArea = m_regionArea * s * s;
+    out.m_regionCx = cx + c * x - sn * y + tx;
+    out.m_regionCy = cy + sn * x + c * y + ty;
+  }
   out.validate();
   return out;
 }
@@ -259,6 +298,7 @@ vpMorphContour vpMorphContour::normalized() const
     out.m_x[k] = (m_x[k] - cx) * s;
     out.m_y[k] = (m_y[k] - cy) * s;
   }
+  out.mapRegion(s, -cx * s, s, -cy * s);
   return out;
 }
 
@@ -289,7 +329,10 @@ vpMorphContour vpMorphContour::resampled(std::size_t n) const
     x.push_back(m_x[k] + t * (m_x[k1] - m_x[k]));
     y.push_back(m_y[k] + t * (m_y[k1] - m_y[k]));
   }
-  return vpMorphContour(x, y, m_units);
+  vpMorphContour out(x, y, m_units);
+  if (hasRegion())
+    out.setRegion(m_regionArea, m_regionCx, m_regionCy); // the same region, approximated by other vertices
+  return out;
 }
 
 vpMorphContour vpMorphContour::toNormalized(const vpCameraParameters &cam) const
@@ -302,6 +345,7 @@ vpMorphContour vpMorphContour::toNormalized(const vpCameraParameters &cam) const
     out.m_x[k] = (m_x[k] - cam.get_u0()) / cam.get_px();
     out.m_y[k] = (m_y[k] - cam.get_v0()) / cam.get_py();
   }
+  out.mapRegion(1.0 / cam.get_px(), -cam.get_u0() / cam.get_px(), 1.0 / cam.get_py(), -cam.get_v0() / cam.get_py());
   out.m_units = NORMALIZED;
   return out;
 }
@@ -316,6 +360,7 @@ vpMorphContour vpMorphContour::toPixels(const vpCameraParameters &cam) const
     out.m_x[k] = cam.get_u0() + m_x[k] * cam.get_px();
     out.m_y[k] = cam.get_v0() + m_y[k] * cam.get_py();
   }
+  out.mapRegion(cam.get_px(), cam.get_u0(), cam.get_py(), cam.get_v0());
   out.m_units = PIXEL;
   return out;
 }

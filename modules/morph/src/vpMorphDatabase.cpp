@@ -448,6 +448,11 @@ std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
     o["units"] = t.contour().units() == vpMorphContour::PIXEL ? "pixel" : "normalized";
     o["x"] = t.contour().xs();
     o["y"] = t.contour().ys();
+    if (t.contour().hasRegion()) {
+      double cx, cy;
+      t.contour().regionCentroid(cx, cy);
+      o["region"] = {{"area", t.contour().regionArea()}, {"cx", cx}, {"cy", cy}};
+    }
     o["cdMo"] = poseToJson(t.cdMo());
     o["metadata"] = t.metadata();
     ts.push_back(o);
@@ -552,6 +557,19 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
       c = vpMorphContour(x, y, units == "pixel" ? vpMorphContour::PIXEL : vpMorphContour::NORMALIZED);
     } catch (const vpException &e) {
       throw ioError("vpMorphDatabase: " + where.str() + ": invalid contour: " + e.getStringMessage());
+    }
+    if (o.contains("region")) { // optional: the region measured on the template image
+      const json &r = o["region"];
+      if (!r.is_object())
+        throw ioError("vpMorphDatabase: " + where.str() + ": \"region\" must be an object {area, cx, cy}");
+      const std::string w = where.str() + " \"region\"";
+      try {
+        c.setRegion(field<double>(r, "area", w), field<double>(r, "cx", w), field<double>(r, "cy", w));
+      } catch (const vpMorphException &e) {
+        if (e.getCode() == vpMorphException::ioError)
+          throw;
+        throw ioError("vpMorphDatabase: " + w + ": " + e.getStringMessage());
+      }
     }
     const std::vector<double> m = field<std::vector<double>>(o, "cdMo", where.str());
     if (m.size() != 16)

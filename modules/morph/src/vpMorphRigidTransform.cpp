@@ -205,7 +205,14 @@ vpMorphContour vpMorphRigidTransform::apply(const vpMorphContour &contour) const
   std::vector<double> x(contour.size()), y(contour.size());
   for (std::size_t k = 0; k < contour.size(); ++k)
     apply(contour.x(k), contour.y(k), x[k], y[k]);
-  return vpMorphContour(x, y, contour.units());
+  vpMorphContour out(x, y, contour.units());
+  if (contour.hasRegion()) { // the measured region moves with its polygon
+    double cx, cy, rx, ry;
+    contour.regionCentroid(cx, cy);
+    apply(cx, cy, rx, ry);
+    out.setRegion(contour.regionArea() * m_scale * m_scale, rx, ry);
+  }
+  return out;
 }
 
 vpMorphRigidTransform vpMorphRigidTransform::interpolated(double alpha) const

@@ -29,6 +29,28 @@ bool allFinite(const vpColVector &v)
   return true;
 }
 
+// Area ratio goal / current and the two centroids, from the regions measured on the images when both contours
+// carry one (sub-pixel, steady from one image to the next), else from the polygons (which can only be compared
+// with polygons: a region's area is not a polygon's).
+double areaRatio(const vpMorphContour &goal, const vpMorphContour &current)
+{
+  if (goal.hasRegion() && current.hasRegion())
+    return goal.regionArea() / current.regionArea();
+  return goal.area() / current.area();
+}
+
+void centroids(const vpMorphContour &goal, const vpMorphContour &current, double &gx, double &gy, double &cx,
+               double &cy)
+{
+  if (goal.hasRegion() && current.hasRegion()) {
+    goal.regionCentroid(gx, gy);
+    current.regionCentroid(cx, cy);
+  } else {
+    goal.centroid(gx, gy);
+    current.centroid(cx, cy);
+  }
+}
+
 double rmsRadius(const vpMorphContour &c)
 {
   double cx, cy, s = 0;
@@ -106,7 +128,6 @@ void vpServoMorph::setTarget(const vpMorphContour &target, double Zd)
   checkPositive(Zd, "the desired depth Zd");
   m_target = target;
   m_Zd = Zd;
-  m_targetArea = target.area();
   restart();
 }
 
@@ -245,12 +266,12 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
     // scale of a fit over corresponded vertices are biased when the two polygons place their vertices differently
     // (a real contour and a stored or morphed one: millimetres on a thin-handled object). The region's area
     // centroid and area are not: use them.
+    // When both contours carry the region measured on their image, its sub-pixel area and centroid are used.
     double cx, cy, gx, gy;
-    currentN.centroid(cx, cy);
-    goalN.centroid(gx, gy);
-    T = vpMorphRigidTransform(Tfit.theta(), gx - cx, gy - cy, std::sqrt(goalN.area() / currentN.area()), cx, cy);
+    centroids(goalN, currentN, gx, gy, cx, cy);
+    T = vpMorphRigidTransform(Tfit.theta(), gx - cx, gy - cy, std::sqrt(areaRatio(goalN, currentN)), cx, cy);
   } else {
-    m_sd.buildFrom(goalN, m_Zd * std::sqrt(m_targetArea / m_subGoals[m_k].area()));
+    m_sd.buildFrom(goalN, m_Zd * std::sqrt(areaRatio(m_target, m_subGoals[m_k])));
     m_s.buildFrom(currentN, Z);
     // vpServo calls m_s.error(m_sd) once: that is this iteration's correspondence and fit, no second search.
     m_task.setLambda(m_gain / m_dt);
@@ -320,7 +341,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     if (!m_started)
       start(current);
     const vpMorphContour currentN = current.toNormalized(m_cam);
-    const double Z = m_Zd * std::sqrt(m_targetArea / a);
+    const double Z = m_Zd * std::sqrt(areaRatio(m_target, current));
     vpMorphRigidTransform T = fitToSubGoal(currentN, current, Z);
     // A distance jump or a low margin alone is not a wrong correspondence: a real contour gains or loses a vertex
     // from one image to the next, which changes the work and the margin while the fit does not. Unreliable is

@@ -57,6 +57,21 @@ public:
   double perimeter() const;
   //! Area centroid (x, y) of the polygon.
   void centroid(double &cx, double &cy) const;
+
+  /*!
+    Area and centroid of the image region this polygon approximates, when they were measured on the image (by
+    vpMorphContourExtractor, to a fraction of a pixel). Why: the polygon's own area and centroid move by a
+    percent when a vertex appears or shifts from one image to the next, which is millimetres of depth for a
+    servo; the region's grey-level area does not. Geometric operations carry the region along (similarities,
+    unit changes, re-ordering, resampling); constructors leave it unset.
+  */
+  bool hasRegion() const { return m_regionArea > 0.0; }
+  //! Sets the measured region (area > 0, finite centroid, in this contour's units); throws otherwise.
+  void setRegion(double area, double cx, double cy);
+  //! The measured region's area, or the polygon's area() when none was measured.
+  double regionArea() const { return hasRegion() ? m_regionArea : area(); }
+  //! The measured region's centroid, or the polygon's centroid() when none was measured.
+  void regionCentroid(double &cx, double &cy) const;
   /*!
     Orientation of the principal (elongation) axis of the polygon region, in radians in (-pi/2, pi/2],
     from its second-order central moments; meaningless for a shape with isotropic moments (a disc, a square).
@@ -94,8 +109,12 @@ public:
 private:
   void validate() const;
 
+  //! Applies x -> a x + b, y -> c y + d (and the matching area factor) to the measured region.
+  void mapRegion(double a, double b, double c, double d);
+
   std::vector<double> m_x, m_y;
   Units m_units = PIXEL;
+  double m_regionArea = 0.0, m_regionCx = 0.0, m_regionCy = 0.0; // area 0: not measured
 };
 
 #endif

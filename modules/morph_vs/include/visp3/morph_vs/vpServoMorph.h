@@ -202,7 +202,7 @@ private:
   vpCameraParameters m_cam;
   vpMorphContour m_target;
   vpMorphContour m_current; // last contour given (pixels), for display()
-  double m_Zd = 0.5, m_targetArea = 0;
+  double m_Zd = 0.5;
   std::size_t m_nSub = 10;
   double m_rotThr = 0.10, m_pxThr = 5.0, m_rotFine = 0.001, m_pxFine = 0.1;
   double m_gain = 0.5, m_dt = 0.1;
