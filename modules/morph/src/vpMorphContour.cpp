@@ -195,17 +195,26 @@ bool vpMorphContour::isSimple() const
   return true;
 }
 
-void vpMorphContour::setRegion(double area, double cx, double cy)
+void vpMorphContour::setRegion(double area, double cx, double cy, double mu20, double mu11, double mu02)
 {
-  if (!std::isfinite(area) || !(area > 0.0) || !std::isfinite(cx) || !std::isfinite(cy)) {
+  const bool finite = std::isfinite(area) && std::isfinite(cx) && std::isfinite(cy) && std::isfinite(mu20) &&
+                      std::isfinite(mu11) && std::isfinite(mu02);
+  // Positive semi-definite up to rounding: mu20, mu02 >= 0 and mu11^2 <= mu20 mu02.
+  const double tol = 1e-9 * (std::fabs(mu20) + std::fabs(mu02));
+  if (!finite || !(area > 0.0) || mu20 < -tol || mu02 < -tol || mu11 * mu11 > mu20 * mu02 + tol * tol + tol) {
     std::ostringstream os;
-    os << "vpMorphContour::setRegion: the region needs a finite positive area and a finite centroid (area " << area
-       << ", centroid (" << cx << ", " << cy << "))";
+    os << "vpMorphContour::setRegion: the region needs a finite positive area, a finite centroid and finite "
+          "positive semi-definite moments (area "
+       << area << ", centroid (" << cx << ", " << cy << "), moments (" << mu20 << ", " << mu11 << ", " << mu02
+       << "))";
     throw vpMorphException(vpMorphException::badParameterError, os.str());
   }
   m_regionArea = area;
   m_regionCx = cx;
   m_regionCy = cy;
+  m_regionMu20 = mu20;
+  m_regionMu11 = mu11;
+  m_regionMu02 = mu02;
 }
 
 void vpMorphContour::regionCentroid(double &cx, double &cy) const
@@ -218,13 +227,28 @@ void vpMorphContour::regionCentroid(double &cx, double &cy) const
   cy = m_regionCy;
 }
 
-void vpMorphContour::mapRegion(double a, double b, double c, double d)
+void vpMorphContour::regionMoments(double &mu20, double &mu11, double &mu02) const
+{
+  mu20 = m_regionMu20;
+  mu11 = m_regionMu11;
+  mu02 = m_regionMu02;
+}
+
+void vpMorphContour::mapRegion(double a11, double a12, double a21, double a22, double b1, double b2)
 {
   if (!hasRegion())
     return;
-  m_regionArea *= std::fabs(a * c);
-  m_regionCx = a * m_regionCx + b;
-  m_regionCy = c * m_regionCy + d;
+  const double x = m_regionCx, y = m_regionCy;
+  m_regionArea *= std::fabs(a11 * a22 - a12 * a21);
+  m_regionCx = a11 * x + a12 * y + b1;
+  m_regionCy = a21 * x + a22 * y + b2;
+  // M' = A M A^T
+  const double m20 = m_regionMu20, m11 = m_regionMu11, m02 = m_regionMu02;
+  const double p11 = a11 * m20 + a12 * m11, p12 = a11 * m11 + a12 * m02; // first row of A M
+  const double p21 = a21 * m20 + a22 * m11, p22 = a21 * m11 + a22 * m02; // second row of A M
+  m_regionMu20 = p11 * a11 + p12 * a12;
+  m_regionMu11 = p11 * a21 + p12 * a22;
+  m_regionMu02 = p21 * a21 + p22 * a22;
 }
 
 vpMorphContour vpMorphContour::rotatedStart(std::size_t k) const
@@ -255,7 +279,7 @@ vpMorphContour vpMorphContour::mirrored() const
   vpMorphContour c(*this);
   for (double &x : c.m_x)
     x = 2.0 * cx - x;
-  c.mapRegion(-1.0, 2.0 * cx, 1.0, 0.0);
+  c.mapRegion(-1.0, 0.0, 0.0, 1.0, 2.0 * cx, 0.0);
   return c.reversed();
 }
 
@@ -278,12 +302,7 @@ vpMorphContour vpMorphContour::transformed(double theta, double tx, double ty, d
     out.m_x[k] = cx + c * x - sn * y + tx;
     out.m_y[k] = cy + sn * x + c * y + ty;
   }
-  if (hasRegion()) {
-    const double x = m_regionCx - cx, y = m_regionCy - cy;
-    out.m_regionArea = m_regionArea * s * s;
-    out.m_regionCx = cx + c * x - sn * y + tx;
-    out.m_regionCy = cy + sn * x + c * y + ty;
-  }
+  out.mapRegion(c, -sn, sn, c, cx - c * cx + sn * cy + tx, cy - sn * cx - c * cy + ty);
   out.validate();
   return out;
 }
@@ -298,7 +317,7 @@ vpMorphContour vpMorphContour::normalized() const
     out.m_x[k] = (m_x[k] - cx) * s;
     out.m_y[k] = (m_y[k] - cy) * s;
   }
-  out.mapRegion(s, -cx * s, s, -cy * s);
+  out.mapRegion(s, 0.0, 0.0, s, -cx * s, -cy * s);
   return out;
 }
 
@@ -331,7 +350,7 @@ vpMorphContour vpMorphContour::resampled(std::size_t n) const
   }
   vpMorphContour out(x, y, m_units);
   if (hasRegion())
-    out.setRegion(m_regionArea, m_regionCx, m_regionCy); // the same region, approximated by other vertices
+    out.setRegion(m_regionArea, m_regionCx, m_regionCy, m_regionMu20, m_regionMu11, m_regionMu02); // same region
   return out;
 }
 
@@ -345,7 +364,8 @@ vpMorphContour vpMorphContour::toNormalized(const vpCameraParameters &cam) const
     out.m_x[k] = (m_x[k] - cam.get_u0()) / cam.get_px();
     out.m_y[k] = (m_y[k] - cam.get_v0()) / cam.get_py();
   }
-  out.mapRegion(1.0 / cam.get_px(), -cam.get_u0() / cam.get_px(), 1.0 / cam.get_py(), -cam.get_v0() / cam.get_py());
+  out.mapRegion(1.0 / cam.get_px(), 0.0, 0.0, 1.0 / cam.get_py(), -cam.get_u0() / cam.get_px(),
+                -cam.get_v0() / cam.get_py());
   out.m_units = NORMALIZED;
   return out;
 }
@@ -360,7 +380,7 @@ vpMorphContour vpMorphContour::toPixels(const vpCameraParameters &cam) const
     out.m_x[k] = cam.get_u0() + m_x[k] * cam.get_px();
     out.m_y[k] = cam.get_v0() + m_y[k] * cam.get_py();
   }
-  out.mapRegion(cam.get_px(), cam.get_u0(), cam.get_py(), cam.get_v0());
+  out.mapRegion(cam.get_px(), 0.0, 0.0, cam.get_py(), cam.get_u0(), cam.get_v0());
   out.m_units = PIXEL;
   return out;
 }

@@ -77,7 +77,8 @@ struct Region {
   std::vector<cv::Point> chain;
   double area;
   cv::Point first; // top-most, then left-most pixel: deterministic tie break
-  double subArea = 0.0, cx = 0.0, cy = 0.0; // grey-level (sub-pixel) area and centroid, pixel-centre coordinates
+  // Grey-level (sub-pixel) area, centroid and central moments / area, in pixel-centre coordinates.
+  double subArea = 0.0, cx = 0.0, cy = 0.0, mu20 = 0.0, mu11 = 0.0, mu02 = 0.0;
 };
 
 // Median of the grey levels under a mask, or -1 when the mask is empty.
@@ -109,7 +110,8 @@ double medianUnder(const cv::Mat &grey, const cv::Mat &m)
   their fraction of the way from the background level to the object level (both measured locally, as medians,
   so illumination and contrast do not matter). Unlike the pixel count or the boundary polygon, this moves
   continuously with the object and is unbiased by zero-mean noise (the weights are not clipped). The band is
-  3 px wide on each side, enough for the edge blur of a camera; other regions' pixels are left out of it.
+  3 px wide on each side, enough for the edge blur of a camera; other regions' pixels are left out of it. The
+  second-order moments come with it (the region's orientation, steadier than a fit over polygon vertices).
   Falls back to the binary region when the object and background levels cannot be told apart.
 */
 void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg)
@@ -137,7 +139,8 @@ void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg)
   ring = outerMore & ~outer & ~others;
   const double fg = medianUnder(g, inner.empty() || cv::countNonZero(inner) == 0 ? region : inner);
   const double bg = medianUnder(g, ring);
-  double m00 = 0.0, m10 = 0.0, m01 = 0.0;
+  // Raw moments about the box corner (well conditioned), centred at the end.
+  double m00 = 0.0, m10 = 0.0, m01 = 0.0, m20 = 0.0, m11 = 0.0, m02 = 0.0;
   const bool grades = fg >= 0.0 && bg >= 0.0 && std::fabs(fg - bg) >= 8.0;
   const cv::Mat &full = grades ? inner : region;
   for (int r = 0; r < box.height; ++r) {
@@ -151,16 +154,23 @@ void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg)
         w = (pg[c] - bg) / (fg - bg);
       if (w != 0.0) {
         m00 += w;
-        m10 += w * (box.x + c);
-        m01 += w * (box.y + r);
+        m10 += w * c;
+        m01 += w * r;
+        m20 += w * c * c;
+        m11 += w * c * r;
+        m02 += w * r * r;
       }
     }
   }
   if (!(m00 > 0.0))
     return; // left unmeasured: the contour falls back to its polygon
+  const double xc = m10 / m00, yc = m01 / m00;
   reg.subArea = m00;
-  reg.cx = m10 / m00;
-  reg.cy = m01 / m00;
+  reg.cx = box.x + xc;
+  reg.cy = box.y + yc;
+  reg.mu20 = m20 / m00 - xc * xc;
+  reg.mu11 = m11 / m00 - xc * yc;
+  reg.mu02 = m02 / m00 - yc * yc;
 }
 
 // The first \e measured regions (largest first) also get their grey-level area and centroid.
@@ -216,8 +226,13 @@ std::vector<vpImagePoint> toVisp(const std::vector<cv::Point> &c)
 vpMorphContour polygon(const Region &r)
 {
   vpMorphContour c = vpMorphPolygonApproximation::approximate(toVisp(r.chain));
-  if (r.subArea > 0.0)
-    c.setRegion(r.subArea, r.cx, r.cy);
+  if (r.subArea > 0.0) {
+    try {
+      c.setRegion(r.subArea, r.cx, r.cy, r.mu20, r.mu11, r.mu02);
+    } catch (const vpMorphException &) {
+      // Not a valid region (grey levels inconsistent with the mask): the contour keeps its polygon measures.
+    }
+  }
   return c;
 }
 

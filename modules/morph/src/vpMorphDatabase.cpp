@@ -449,9 +449,11 @@ std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
     o["x"] = t.contour().xs();
     o["y"] = t.contour().ys();
     if (t.contour().hasRegion()) {
-      double cx, cy;
+      double cx, cy, mu20, mu11, mu02;
       t.contour().regionCentroid(cx, cy);
-      o["region"] = {{"area", t.contour().regionArea()}, {"cx", cx}, {"cy", cy}};
+      t.contour().regionMoments(mu20, mu11, mu02);
+      o["region"] = {{"area", t.contour().regionArea()}, {"cx", cx}, {"cy", cy},
+                     {"mu20", mu20},                   {"mu11", mu11}, {"mu02", mu02}};
     }
     o["cdMo"] = poseToJson(t.cdMo());
     o["metadata"] = t.metadata();
@@ -561,10 +563,11 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
     if (o.contains("region")) { // optional: the region measured on the template image
       const json &r = o["region"];
       if (!r.is_object())
-        throw ioError("vpMorphDatabase: " + where.str() + ": \"region\" must be an object {area, cx, cy}");
+        throw ioError("vpMorphDatabase: " + where.str() + ": \"region\" must be an object {area, cx, cy, mu20, mu11, mu02}");
       const std::string w = where.str() + " \"region\"";
       try {
-        c.setRegion(field<double>(r, "area", w), field<double>(r, "cx", w), field<double>(r, "cy", w));
+        c.setRegion(field<double>(r, "area", w), field<double>(r, "cx", w), field<double>(r, "cy", w),
+                    field<double>(r, "mu20", w), field<double>(r, "mu11", w), field<double>(r, "mu02", w));
       } catch (const vpMorphException &e) {
         if (e.getCode() == vpMorphException::ioError)
           throw;

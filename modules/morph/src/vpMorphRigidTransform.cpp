@@ -206,11 +206,13 @@ vpMorphContour vpMorphRigidTransform::apply(const vpMorphContour &contour) const
   for (std::size_t k = 0; k < contour.size(); ++k)
     apply(contour.x(k), contour.y(k), x[k], y[k]);
   vpMorphContour out(x, y, contour.units());
-  if (contour.hasRegion()) { // the measured region moves with its polygon
-    double cx, cy, rx, ry;
+  if (contour.hasRegion()) { // the measured region moves with its polygon: x' = s R (x - c) + c + t
+    double cx, cy, mu20, mu11, mu02;
     contour.regionCentroid(cx, cy);
-    apply(cx, cy, rx, ry);
-    out.setRegion(contour.regionArea() * m_scale * m_scale, rx, ry);
+    contour.regionMoments(mu20, mu11, mu02);
+    out.setRegion(contour.regionArea(), cx, cy, mu20, mu11, mu02);
+    const double a = m_scale * std::cos(m_theta), b = m_scale * std::sin(m_theta);
+    out.mapRegion(a, -b, b, a, m_cx + m_tx - a * m_cx + b * m_cy, m_cy + m_ty - b * m_cx - a * m_cy);
   }
   return out;
 }

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphException.h>
@@ -129,4 +130,72 @@ TEST_CASE("contour unit conversions with the camera intrinsics", "[contour]")
   CHECK(p.point(2).get_v() == Approx(320));
   const vpMorphContour fromPoints(p.points());
   CHECK(fromPoints.x(1) == Approx(400));
+}
+
+TEST_CASE("contour region: unset by construction, carried through similarities, unit changes and re-ordering",
+          "[contour][region]")
+{
+  // A 40 x 20 rectangle: area 800, centroid (20, 10), central moments / area: w^2/12, 0, h^2/12.
+  vpMorphContour r = rectangle(0, 0, 40, 20);
+  CHECK_FALSE(r.hasRegion());
+  CHECK(r.regionArea() == Approx(800)); // falls back to the polygon
+  double cx, cy, m20, m11, m02;
+  r.regionCentroid(cx, cy);
+  CHECK(cx == Approx(20));
+  // A measured region slightly off the polygon (as an image gives it), to tell region from polygon below.
+  r.setRegion(810, 20.5, 10.25, 1600.0 / 12, 0.0, 400.0 / 12);
+  REQUIRE(r.hasRegion());
+  CHECK(r.regionArea() == Approx(810));
+
+  // Similarity about the polygon's centroid: the region moves with the vertices; its axis turns with them.
+  const double th = 0.7, s = 1.5;
+  const vpMorphContour t = r.transformed(th, 3.0, -4.0, s);
+  REQUIRE(t.hasRegion());
+  CHECK(t.regionArea() == Approx(810 * s * s));
+  t.regionCentroid(cx, cy);
+  CHECK(cx == Approx(20 + s * (std::cos(th) * 0.5 - std::sin(th) * 0.25) + 3.0));
+  CHECK(cy == Approx(10 + s * (std::sin(th) * 0.5 + std::cos(th) * 0.25) - 4.0));
+  t.regionMoments(m20, m11, m02);
+  CHECK(0.5 * std::atan2(2 * m11, m20 - m02) == Approx(th));
+  CHECK(m20 + m02 == Approx(s * s * 2000.0 / 12)); // the trace is rotation invariant
+
+  // Mirror: the axis orientation changes sign, the area stays.
+  const vpMorphContour m = t.mirrored();
+  double mm20, mm11, mm02;
+  m.regionMoments(mm20, mm11, mm02);
+  CHECK(m.regionArea() == Approx(t.regionArea()));
+  CHECK(mm11 == Approx(-m11));
+
+  // Re-ordering and resampling keep the same region; construction from vertices does not.
+  CHECK(t.reversed().regionArea() == Approx(t.regionArea()));
+  CHECK(t.rotatedStart(2).regionArea() == Approx(t.regionArea()));
+  CHECK(t.resampled(12).regionArea() == Approx(t.regionArea()));
+  CHECK_FALSE(vpMorphContour(t.xs(), t.ys()).hasRegion());
+
+  // Pixels <-> normalised: area / (px py), centroid as a vertex, and back.
+  const vpCameraParameters cam(800, 700, 320, 240);
+  const vpMorphContour n = r.toNormalized(cam);
+  CHECK(n.regionArea() == Approx(810.0 / (800 * 700)));
+  n.regionCentroid(cx, cy);
+  CHECK(cx == Approx((20.5 - 320) / 800));
+  CHECK(cy == Approx((10.25 - 240) / 700));
+  n.regionMoments(m20, m11, m02);
+  CHECK(m02 == Approx(400.0 / 12 / (700.0 * 700.0)));
+  const vpMorphContour back = n.toPixels(cam);
+  CHECK(back.regionArea() == Approx(810));
+  back.regionCentroid(cx, cy);
+  CHECK(cx == Approx(20.5));
+}
+
+TEST_CASE("contour region: bad values throw", "[contour][region][bad]")
+{
+  vpMorphContour r = rectangle(0, 0, 4, 2);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  REQUIRE_THROWS_AS(r.setRegion(0.0, 1, 1, 1, 0, 1), vpMorphException);
+  REQUIRE_THROWS_AS(r.setRegion(-2.0, 1, 1, 1, 0, 1), vpMorphException);
+  REQUIRE_THROWS_AS(r.setRegion(8.0, nan, 1, 1, 0, 1), vpMorphException);
+  REQUIRE_THROWS_AS(r.setRegion(8.0, 1, 1, -1, 0, 1), vpMorphException);
+  REQUIRE_THROWS_AS(r.setRegion(8.0, 1, 1, 1, 2, 1), vpMorphException); // not positive semi-definite
+  REQUIRE_THROWS_AS(r.setRegion(8.0, 1, 1, std::numeric_limits<double>::infinity(), 0, 1), vpMorphException);
+  CHECK_FALSE(r.hasRegion());
 }

@@ -119,8 +119,21 @@ TEST_CASE("database: JSON round trip keeps every field", "[database]")
       CHECK(fs::equivalent(back[k].imagePath(), db[k].imagePath()));
     CHECK(back[k].contour().xs() == db[k].contour().xs());
     CHECK(back[k].contour().ys() == db[k].contour().ys());
+    // The region measured on the template image (templates built from images) travels with the contour.
+    REQUIRE(back[k].contour().hasRegion() == db[k].contour().hasRegion());
+    if (db[k].contour().hasRegion()) {
+      double a20, a11, a02, b20, b11, b02;
+      db[k].contour().regionMoments(a20, a11, a02);
+      back[k].contour().regionMoments(b20, b11, b02);
+      CHECK(back[k].contour().regionArea() == db[k].contour().regionArea());
+      CHECK(b20 == a20);
+      CHECK(b11 == a11);
+      CHECK(b02 == a02);
+    }
     CHECK(back[k].metadata() == db[k].metadata());
   }
+  CHECK(db["pliers"].contour().hasRegion());
+  CHECK_FALSE(back["square"].contour().hasRegion());
   const vpMorphTemplate &s = back["square"];
   CHECK(s.metadata("grasp") == "centre");
   CHECK(s.metadata("absent", "none") == "none");
@@ -176,6 +189,13 @@ TEST_CASE("database: bad files give clear errors", "[database]")
   std::string badX = text;
   badX.replace(badX.find("\"x\": ["), 6, "\"x\": [\"a\",");
   expectIo(loadText(badX), "wrong type");
+  REQUIRE(text.find("\"region\": {") != std::string::npos);
+  std::string badRegion = text;
+  badRegion.replace(badRegion.find("\"region\": {"), 11, "\"region\": 3, \"was\": {");
+  expectIo(loadText(badRegion), "\"region\" must be an object");
+  std::string negArea = text;
+  negArea.replace(negArea.find("\"area\": "), 8, "\"area\": -");
+  expectIo(loadText(negArea), "finite positive area");
   expectIo(errorOf([&] { vpMorphDatabase::load((dir / "absent.json").string()); }), "cannot open");
 
   // A template whose image disappeared.

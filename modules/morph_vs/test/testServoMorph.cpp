@@ -29,6 +29,7 @@ struct Setup
   vpCameraParameters camEstimate = camera();
   std::size_t subGoals = 10;
   vpServoMorph::ControlLaw law = vpServoMorph::HOMOGENEOUS_TRANSFORMS;
+  vpServoMorph::RigidPath rigidPath = vpServoMorph::CAMERA_STRAIGHT_LINE;
   bool online = true;
   int maxIterations = 400;
   double noisePx = 0; // Gaussian noise on the vertices (seeded)
@@ -65,6 +66,7 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
   servo.setOnlineCalibration(st.online);
   servo.setSubGoalCount(st.subGoals);
   servo.setControlLaw(st.law);
+  servo.setRigidPath(st.rigidPath);
   servo.setSamplingTime(0.1);
   servo.setGain(0.5);
   servo.setTarget(projectPixels(cdMo), depth(cdMo));
@@ -154,6 +156,30 @@ TEST_CASE("vpServoMorph camera path is straight on a pure translation", "[servo]
               r.path * 1000, r.straight * 1000, ratio, r.iterations);
   CHECK(r.converged);
   CHECK(ratio <= 1.1);
+}
+
+TEST_CASE("vpServoMorph rigid sub-goals on the straight camera path: short paths at 150 and 180 deg, the paper's "
+          "arc about the object for comparison",
+          "[servo]")
+{
+  Setup st;
+  st.eMcTrue = st.eMcEstimate = eMcTrue;
+  const double starts[][3] = {{150, 0.05, -0.03}, {180, -0.04, 0.02}, {-100, 0.06, 0.04}};
+  for (const auto &s : starts) {
+    st.rigidPath = vpServoMorph::CAMERA_STRAIGHT_LINE;
+    const Result straight = run(planarPose(20 + s[0], s[1], s[2]), cdMo, st);
+    st.rigidPath = vpServoMorph::ABOUT_OBJECT_CENTROID;
+    const Result arc = run(planarPose(20 + s[0], s[1], s[2]), cdMo, st);
+    std::printf("[servo] start %6.1f deg: path ratio %.3f on the straight camera path, %.3f about the object\n", s[0],
+                straight.path / straight.straight, arc.path / arc.straight);
+    INFO("start " << s[0] << " deg");
+    CHECK(straight.converged);
+    CHECK(arc.converged);
+    CHECK(straight.tErr < 1e-3);
+    CHECK(straight.rDeg < 0.5);
+    CHECK(straight.path / straight.straight <= 1.1);
+    CHECK(arc.path / arc.straight > 1.2); // the rotation about the object's centroid bends the path
+  }
 }
 
 TEST_CASE("vpServoMorph online calibration: wrong eMc (15 deg, 30 mm) and intrinsics (20 %) still converge",

@@ -59,19 +59,31 @@ public:
   void centroid(double &cx, double &cy) const;
 
   /*!
-    Area and centroid of the image region this polygon approximates, when they were measured on the image (by
-    vpMorphContourExtractor, to a fraction of a pixel). Why: the polygon's own area and centroid move by a
-    percent when a vertex appears or shifts from one image to the next, which is millimetres of depth for a
-    servo; the region's grey-level area does not. Geometric operations carry the region along (similarities,
-    unit changes, re-ordering, resampling); constructors leave it unset.
+    Area, centroid and second-order central moments of the image region this polygon approximates, when they were
+    measured on the image (by vpMorphContourExtractor, to a fraction of a pixel). Why: the polygon's own area,
+    centroid and vertex-fitted angle move by a percent (or a few tenths of a degree) when a vertex appears or
+    shifts from one image to the next, which is millimetres of depth for a servo; the region's grey-level moments
+    do not. Geometric operations carry the region along (similarities, unit changes, mirroring, re-ordering,
+    resampling); constructors leave it unset.
   */
   bool hasRegion() const { return m_regionArea > 0.0; }
-  //! Sets the measured region (area > 0, finite centroid, in this contour's units); throws otherwise.
-  void setRegion(double area, double cx, double cy);
+  /*!
+    Sets the measured region: area > 0, finite centroid and finite central moments mu20, mu11, mu02 divided by
+    the area (a positive semi-definite matrix), in this contour's units; throws vpMorphException otherwise.
+  */
+  void setRegion(double area, double cx, double cy, double mu20, double mu11, double mu02);
   //! The measured region's area, or the polygon's area() when none was measured.
   double regionArea() const { return hasRegion() ? m_regionArea : area(); }
   //! The measured region's centroid, or the polygon's centroid() when none was measured.
   void regionCentroid(double &cx, double &cy) const;
+  //! The measured region's central moments mu20, mu11, mu02 divided by its area (zeros when none was measured).
+  void regionMoments(double &mu20, double &mu11, double &mu02) const;
+  /*!
+    Moves the measured region (if any) by the affine map x' = A x + b, A = [a11 a12; a21 a22]: for geometric
+    operations on the vertices defined outside this class (vpMorphRigidTransform::apply), so that the region
+    follows its polygon.
+  */
+  void mapRegion(double a11, double a12, double a21, double a22, double b1, double b2);
   /*!
     Orientation of the principal (elongation) axis of the polygon region, in radians in (-pi/2, pi/2],
     from its second-order central moments; meaningless for a shape with isotropic moments (a disc, a square).
@@ -109,12 +121,11 @@ public:
 private:
   void validate() const;
 
-  //! Applies x -> a x + b, y -> c y + d (and the matching area factor) to the measured region.
-  void mapRegion(double a, double b, double c, double d);
 
   std::vector<double> m_x, m_y;
   Units m_units = PIXEL;
   double m_regionArea = 0.0, m_regionCx = 0.0, m_regionCy = 0.0; // area 0: not measured
+  double m_regionMu20 = 0.0, m_regionMu11 = 0.0, m_regionMu02 = 0.0;
 };
 
 #endif

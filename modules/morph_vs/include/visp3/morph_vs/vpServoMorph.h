@@ -89,6 +89,25 @@ public:
     HOMOGENEOUS_TRANSFORMS, //!< The paper's Eq. 5-11 (default).
     STOCK_VPSERVO           //!< A stock vpServo over vpFeatureMorph.
   };
+  /*!
+    The camera path through the rigid sub-goals (the first vpMorph::rigidFrameCount() of the sequence).
+  */
+  enum RigidPath {
+    /*!
+      The images seen from evenly spaced poses on the straight line from the current camera pose to the rigidly
+      rectified one (rotation about the optical axis shared evenly): the shortest camera path. The object's image
+      turns about the principal point and its centroid stays within the larger of its start and goal distances
+      to it (default).
+    */
+    CAMERA_STRAIGHT_LINE,
+    /*!
+      The paper's image-space interpolation of the rigid transform, turning about the contour's centroid: the
+      object turns in place in the image, the camera travels on an arc about the object (path ratio up to pi/2
+      and more at 180 deg).
+    */
+    ABOUT_OBJECT_CENTROID
+  };
+
   //! One iteration, for plots (Fig. 2 of the paper: residual per move).
   struct Iteration
   {
@@ -133,6 +152,9 @@ public:
   void setSubGoalCount(std::size_t n);
   //! The parameter of setSubGoalCount() (subGoals().size() is max(1, it) once started).
   std::size_t subGoalCount() const { return m_nSub; }
+  //! The camera path through the rigid sub-goals. Restarts the sequence.
+  void setRigidPath(RigidPath p);
+  RigidPath rigidPath() const { return m_rigidPath; }
   //! Residual below which a sub-goal is reached (default: the paper's 0.10 rad and 5 px; translation and scale).
   void setSubGoalThresholds(double rotationRad, double translationPx);
   //! Residual below which the final goal is reached (default 0.001 rad and 0.1 px: noise-free images; with
@@ -204,6 +226,7 @@ private:
   vpMorphContour m_current; // last contour given (pixels), for display()
   double m_Zd = 0.5;
   std::size_t m_nSub = 10;
+  RigidPath m_rigidPath = CAMERA_STRAIGHT_LINE;
   double m_rotThr = 0.10, m_pxThr = 5.0, m_rotFine = 0.001, m_pxFine = 0.1;
   double m_gain = 0.5, m_dt = 0.1;
   ControlLaw m_law = HOMOGENEOUS_TRANSFORMS;
