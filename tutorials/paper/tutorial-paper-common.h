@@ -18,7 +18,6 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/morph/vpMorph.h>
-#include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphDrawing.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
@@ -62,14 +61,8 @@ inline vpMorphContour observe(const vpMorphPlanarScene &scene, const vpMorphTagP
   scene.render(cMo, I);
   vpHomogeneousMatrix cMo_tag;
   std::vector<vpImagePoint> corners;
-  vpImage<unsigned char> masked = I;
-  if (tag.estimate(I, cMo_tag, &corners))
-    vpMorphTagPoseEstimator::maskTag(masked, corners);
-  try {
-    return vpMorphContourExtractor().extract(masked);
-  } catch (const vpMorphException &) {
-    return vpMorphContour(); // no object in view: the controller reports TARGET_LOST
-  }
+  tag.estimate(I, cMo_tag, &corners); // not found: nothing to mask
+  return vpMorphTagPoseEstimator::silhouette(I, corners); // empty when no object: the servo reports TARGET_LOST
 }
 
 //! Rotation residual (rad, signed) and translation residual (px) of a real contour to a (virtual) goal contour,

@@ -8,7 +8,6 @@
 #include <thread>
 
 #include <visp3/core/vpMath.h>
-#include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_bench/vpMorphBenchController.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
@@ -36,8 +35,11 @@ vpMorphTemplate teach(const std::string &name, const std::string &image)
   if (!scene.tagPoseEstimator().estimate(I, cMo, &corners))
     throw vpMorphException(vpMorphException::badImageError,
                            "vpMorphBench: tag not found in the taught view of " + name);
-  vpMorphTagPoseEstimator::maskTag(I, corners);
-  vpMorphTemplate t(name, vpMorphContourExtractor().extract(I), image, cdMo);
+  const vpMorphContour c = vpMorphTagPoseEstimator::silhouette(I, corners);
+  if (c.empty())
+    throw vpMorphException(vpMorphException::badImageError,
+                           "vpMorphBench: no object silhouette in the taught view of " + name);
+  vpMorphTemplate t(name, c, image, cdMo);
   t.setMetadata("source", "rendered at the desired pose, tag masked");
   return t;
 }

@@ -7,7 +7,6 @@
 #include <visp3/core/vpMomentObject.h>
 #include <visp3/core/vpPlane.h>
 #include <visp3/core/vpVelocityTwistMatrix.h>
-#include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 #include <visp3/morph_vs/vpFeatureMorph.h>
@@ -37,27 +36,6 @@ TagView detectTag(const vpMorphTagPoseEstimator &est, const vpImage<unsigned cha
   TagView t;
   t.found = est.estimate(I, t.cMo, &t.corners);
   return t;
-}
-
-/*!
-  The object's silhouette polygon in pixels: the detected tag is masked first (it is a larger dark region than
-  most objects), then vpMorphContourExtractor takes the largest object. Empty when nothing is found. The time
-  reported is the extraction's only: masking the tag is an artefact of the benchmark scene.
-*/
-vpMorphContour extractSilhouette(const vpImage<unsigned char> &I, const TagView &tag, double &ms)
-{
-  vpImage<unsigned char> J = I;
-  if (tag.found && tag.corners.size() == 4)
-    vpMorphTagPoseEstimator::maskTag(J, tag.corners);
-  const Clock::time_point t0 = Clock::now();
-  vpMorphContour c;
-  try {
-    c = vpMorphContourExtractor().extract(J);
-  } catch (const vpException &) {
-    c = vpMorphContour(); // no object in the image: the caller holds
-  }
-  ms = msSince(t0);
-  return c;
 }
 
 //! Plane 1/Z = A x + B y + C of the object plane (z = 0 of the object frame) seen from cMo.
@@ -155,7 +133,7 @@ protected:
   {
     double ms = 0;
     const TagView tag = detectTag(*m_tag, I);
-    c = extractSilhouette(I, tag, ms);
+    c = vpMorphTagPoseEstimator::silhouette(I, tag.corners, &ms);
     if (c.empty()) {
       cmd = holdCommand(ms);
       return false;
@@ -396,7 +374,7 @@ public:
   {
     const TagView tag = detectTag(*m_tag, I);
     double ms = 0;
-    const vpMorphContour c = extractSilhouette(I, tag, ms);
+    const vpMorphContour c = vpMorphTagPoseEstimator::silhouette(I, tag.corners, &ms);
     if (c.empty())
       return holdCommand(ms);
     const Clock::time_point t0 = Clock::now();

@@ -1,6 +1,7 @@
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <mutex>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include <visp3/core/vpPixelMeterConversion.h>
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/detection/vpDetectorAprilTag.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/vision/vpPose.h>
 
@@ -93,6 +95,26 @@ void vpMorphTagPoseEstimator::poseDifference(const vpHomogeneousMatrix &aMo, con
   translation = (aMo.getTranslationVector() - bMo.getTranslationVector()).frobeniusNorm();
   const vpThetaUVector tu(aMo.getRotationMatrix() * bMo.getRotationMatrix().inverse());
   rotation = std::sqrt(tu[0] * tu[0] + tu[1] * tu[1] + tu[2] * tu[2]);
+}
+
+vpMorphContour vpMorphTagPoseEstimator::silhouette(const vpImage<unsigned char> &I,
+                                                   const std::vector<vpImagePoint> &corners, double *extractionMs)
+{
+  vpImage<unsigned char> J = I;
+  if (corners.size() == 4)
+    maskTag(J, corners);
+  const auto t0 = std::chrono::steady_clock::now();
+  vpMorphContour c;
+  try {
+    c = vpMorphContourExtractor().extract(J);
+  } catch (const vpMorphException &e) {
+    if (e.getCode() != vpMorphException::badImageError)
+      throw;
+    c = vpMorphContour(); // no object in the image
+  }
+  if (extractionMs)
+    *extractionMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return c;
 }
 
 void vpMorphTagPoseEstimator::maskTag(vpImage<unsigned char> &I, const std::vector<vpImagePoint> &corners,

@@ -252,6 +252,17 @@ TEST_CASE("masking the detected tag leaves the object as the largest region", "[
   vpHomogeneousMatrix cMo_tag;
   std::vector<vpImagePoint> corners;
   REQUIRE(scene.tagPoseEstimator().estimate(I, cMo_tag, &corners));
+  // The pipeline every controller uses: mask, extract; the polygon comes with its measured region.
+  double ms = -1;
+  const vpMorphContour s = vpMorphTagPoseEstimator::silhouette(I, corners, &ms);
+  contourError(s, truth, m, mx);
+  CHECK(m < 0.8);
+  CHECK(ms >= 0);
+  CHECK(s.hasRegion());
+  // Without corners nothing is masked (the tag wins); an image without object gives an empty silhouette.
+  contourError(vpMorphTagPoseEstimator::silhouette(I, {}), truth, m, mx);
+  CHECK(m > 10);
+  CHECK(vpMorphTagPoseEstimator::silhouette(vpImage<unsigned char>(48, 64, 128), {}).empty());
   vpMorphTagPoseEstimator::maskTag(I, corners);
   contourError(vpMorphContourExtractor().extract(I), truth, m, mx);
   INFO("contour error after masking the tag: mean " << m << " px, max " << mx << " px");

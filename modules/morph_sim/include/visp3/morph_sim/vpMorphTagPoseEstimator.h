@@ -12,6 +12,7 @@
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
+#include <visp3/morph/vpMorphContour.h>
 
 /*!
   \class vpMorphTagPoseEstimator
@@ -53,6 +54,15 @@ public:
     unless there are 4 corners.
   */
   static void maskTag(vpImage<unsigned char> &I, const std::vector<vpImagePoint> &corners, double margin = 2.0);
+  /*!
+    The object's silhouette in a scene image, as every controller of a scene gets it: the tag masked with
+    maskTag() when its 4 detected \e corners are given (none: nothing is masked), then the largest object's
+    polygon by vpMorphContourExtractor (with its measured region). Empty when the image shows no object (the
+    extractor's bad-image errors), so that a control loop can hold or stop instead of unwinding. \e extractionMs,
+    when given, receives the time of the extraction alone: masking the tag is an artefact of the scene.
+  */
+  static vpMorphContour silhouette(const vpImage<unsigned char> &I, const std::vector<vpImagePoint> &corners,
+                                   double *extractionMs = nullptr);
 
   /*!
     Difference between two poses of the object seen from a camera: distance between the object origins (metres,
