@@ -329,8 +329,15 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
     // When both contours carry the region measured on their image, its sub-pixel area and centroid are used.
     double cx, cy, gx, gy;
     centroids(goalN, currentN, gx, gy, cx, cy);
-    T = vpMorphRigidTransform(refinedRotation(goalN, currentN, Tfit.theta()), gx - cx, gy - cy,
-                              std::sqrt(areaRatio(goalN, currentN)), cx, cy);
+    const double s = std::sqrt(areaRatio(goalN, currentN));
+    if (std::fabs(s / Tfit.scale() - 1.0) > m_regionMismatch) {
+      // The regions are not one shape seen twice (part of the object is hidden, or it is deformed): their areas
+      // and centroids would carry the missing part into the pose, the robust fit over corresponded vertices
+      // (outliers down-weighted) does not.
+      T = Tfit;
+    } else {
+      T = vpMorphRigidTransform(refinedRotation(goalN, currentN, Tfit.theta()), gx - cx, gy - cy, s, cx, cy);
+    }
   } else {
     m_sd.buildFrom(goalN, m_Zd * std::sqrt(areaRatio(m_target, m_subGoals[m_k])));
     m_s.buildFrom(currentN, Z);
