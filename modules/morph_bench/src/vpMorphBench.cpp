@@ -81,8 +81,7 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   res.robot = vpMorphSimRobot::kindName(m_settings.robot);
   res.straightLine = sc.cdMc.getTranslationVector().frobeniusNorm();
 
-  vpMorphPlanarScene scene(sc.objectImage);
-  scene.setFaults(sc.faults);
+  const vpMorphPlanarScene scene = sc.scene();
   const vpCameraParameters camTrue = scene.camera();
   const vpMorphTagPoseEstimator truthTag = scene.tagPoseEstimator();
 

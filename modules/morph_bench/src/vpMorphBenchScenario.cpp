@@ -44,6 +44,15 @@ vpHomogeneousMatrix startPose(double rotDeg, double tx, double ty, double tiltDe
 }
 } // namespace
 
+vpMorphPlanarScene vpMorphBenchScenario::scene() const
+{
+  vpMorphPlanarScene scene(objectImage);
+  if (objectImage != templateImage)
+    scene.setReferenceImage(templateImage);
+  scene.setFaults(faults);
+  return scene;
+}
+
 vpCameraParameters vpMorphBenchScenario::estimatedCamera(const vpCameraParameters &trueCam) const
 {
   return vpCameraParameters(trueCam.get_px() * focalScaleX, trueCam.get_py() * focalScaleY,
@@ -101,16 +110,21 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
 
   // One scene per object (and per deformed variant), only to check that a start shows object and tag.
   std::map<std::string, std::unique_ptr<vpMorphPlanarScene>> scenes;
-  auto sceneOf = [&](const std::string &image) -> const vpMorphPlanarScene & {
-    auto &s = scenes[image];
+  auto sceneOf = [&](const vpMorphBenchScenario &sc) -> const vpMorphPlanarScene & {
+    auto &s = scenes[sc.objectImage];
     if (!s) {
-      if (!fileExists(image))
-        throw vpMorphException(vpMorphException::notFoundError,
-                               "vpMorphBenchScenario::generate: missing object image " + image);
-      s.reset(new vpMorphPlanarScene(image));
+      for (const std::string &image : {sc.objectImage, sc.templateImage})
+        if (!fileExists(image))
+          throw vpMorphException(vpMorphException::notFoundError,
+                                 "vpMorphBenchScenario::generate: missing object image " + image);
+      vpMorphBenchScenario plain; // the geometry only: faults do not move the object or the tag
+      plain.objectImage = sc.objectImage;
+      plain.templateImage = sc.templateImage;
+      s.reset(new vpMorphPlanarScene(plain.scene()));
     }
     return *s;
   };
+
 
   const unsigned int setIndex = static_cast<unsigned int>(std::find(sets.begin(), sets.end(), set) - sets.begin());
   const std::vector<std::string> objects = objectNames();
@@ -157,7 +171,7 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
       sc.faults.occluderPosition = uni(0, 1);
     }
 
-    const vpMorphPlanarScene &scene = sceneOf(sc.objectImage);
+    const vpMorphPlanarScene &scene = sceneOf(sc);
     bool ok = false;
     for (int attempt = 0; attempt < 1000 && !ok; ++attempt) {
       double rot = set == "planar-hard" ? (uni(0, 1) < 0.5 ? -1 : 1) * uni(150, 180) : uni(-180, 180);

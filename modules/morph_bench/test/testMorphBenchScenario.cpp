@@ -56,7 +56,7 @@ TEST_CASE("bench scenario sets follow the protocol's ranges and show object and 
       CHECK(std::fabs(s.startRotationDeg) <= 180.0);
       CHECK(s.startTranslationMm <= 80.0 + 1e-9);
       // The start shows the object and the tag (the object seen is the deformed one for "deformable").
-      vpMorphPlanarScene scene(s.objectImage);
+      const vpMorphPlanarScene scene = s.scene();
       const vpHomogeneousMatrix cMo = s.cdMc.inverse() * s.cdMo;
       CHECK(scene.objectInView(cMo, 10));
       CHECK(scene.tagInView(cMo, 10));

@@ -160,10 +160,36 @@ vpMorphPlanarScene::vpMorphPlanarScene(const std::string &objectImage, double ob
   const vpMorphContour c = vpMorphContourExtractor().extract(m_texture); // throws badImageError without object
   m_texX = c.xs();
   m_texY = c.ys();
-  c.centroid(m_texCx, m_texCy);
-  const auto [xmin, xmax] = std::minmax_element(m_texX.begin(), m_texX.end());
-  const auto [ymin, ymax] = std::minmax_element(m_texY.begin(), m_texY.end());
-  m_metresPerTexel = objectSize / std::max(*xmax - *xmin, *ymax - *ymin);
+  textureFrame(c, m_objectSize, m_texCx, m_texCy, m_metresPerTexel);
+  updateLayout();
+}
+
+void vpMorphPlanarScene::textureFrame(const vpMorphContour &c, double objectSize, double &cx, double &cy,
+                                      double &metresPerTexel)
+{
+  c.centroid(cx, cy);
+  const auto [xmin, xmax] = std::minmax_element(c.xs().begin(), c.xs().end());
+  const auto [ymin, ymax] = std::minmax_element(c.ys().begin(), c.ys().end());
+  metresPerTexel = objectSize / std::max(*xmax - *xmin, *ymax - *ymin);
+}
+
+void vpMorphPlanarScene::setReferenceImage(const std::string &referenceImage)
+{
+  vpImage<unsigned char> ref;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(referenceImage, ec))
+    throw vpMorphException(vpMorphException::notFoundError,
+                           "vpMorphPlanarScene::setReferenceImage: image not found: '" + referenceImage + "'");
+  try {
+    vpImageIo::read(ref, referenceImage);
+  } catch (const vpException &e) {
+    throw vpMorphException(vpMorphException::ioError, "vpMorphPlanarScene::setReferenceImage: cannot read '" +
+                                                          referenceImage + "': " + e.getStringMessage());
+  }
+  if (ref.getWidth() != m_texture.getWidth() || ref.getHeight() != m_texture.getHeight())
+    badParameter("vpMorphPlanarScene::setReferenceImage: '" + referenceImage +
+                 "' is not of the object image's size: the two must share one texture frame");
+  textureFrame(vpMorphContourExtractor().extract(ref), m_objectSize, m_texCx, m_texCy, m_metresPerTexel);
   updateLayout();
 }
 

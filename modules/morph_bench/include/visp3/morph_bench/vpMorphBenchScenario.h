@@ -59,6 +59,12 @@ public:
   double principalShiftU = 0, principalShiftV = 0; //!< and u0, v0 shifted by these (px)
   vpHomogeneousMatrix eMcError;                    //!< hand-eye estimate given to the controllers: eMcTrue * eMcError
 
+  /*!
+    The scene of this scenario: objectImage with the faults, in the object frame of templateImage when the two
+    differ (vpMorphPlanarScene::setReferenceImage()): a deformed object is then aligned when its undeformed part
+    is where the template's is, and the truth error is measured to that pose.
+  */
+  vpMorphPlanarScene scene() const;
   //! The intrinsics the controllers are told, from the true ones.
   vpCameraParameters estimatedCamera(const vpCameraParameters &trueCam) const;
   //! One line describing the start, for logs and CSV files.

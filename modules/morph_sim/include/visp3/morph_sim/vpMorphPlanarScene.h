@@ -71,7 +71,18 @@ public:
   explicit vpMorphPlanarScene(const std::string &objectImage, double objectSize = 0.15, int tagId = 0,
                               double tagSize = 0.08);
 
-  //! Places the object's centroid at (x, y) of the object frame, turned by theta (rad) about z.
+  /*!
+    Takes the object frame (origin at the outline centroid, axes of the image) and the scale (objectSize over the
+    longest side) from another image of the same size, instead of from the object image itself. Why: a deformed
+    variant drawn in its template's texture frame (the undeformed part where the template has it, as
+    vispmorph-make-data draws them) then sits in the object frame exactly where the template's undeformed part
+    does, so the pose that aligns the two is the template's pose; measured from its own centroid and size, a
+    bent object's frame would move with the bend and the benchmark's truth with it.
+    \throw vpMorphException notFoundError or ioError for a missing or unreadable image, badImageError for an image
+    without object, badParameterError for an image of another size.
+  */
+  void setReferenceImage(const std::string &referenceImage);
+  //! Places the object frame origin (the outline centroid, of the reference image if set) at (x, y), turned by theta (rad) about z.
   void setObjectPlacement(double x, double y, double theta);
   /*!
     Places the tag centre at (x, y) of the object frame (tag axes = object axes). By default it sits on the
@@ -136,6 +147,8 @@ private:
     int kind;                     // 0 object, 1 tag, 2 occluder, 3 distractor
   };
   void updateLayout();
+  static void textureFrame(const vpMorphContour &c, double objectSize, double &cx, double &cy,
+                           double &metresPerTexel);
   std::vector<Patch> patches() const;
   template <typename T> void renderT(const vpHomogeneousMatrix &cMo, vpImage<T> &I, unsigned int frame) const;
 
