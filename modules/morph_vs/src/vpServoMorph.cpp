@@ -263,11 +263,19 @@ void vpServoMorph::setRigidPath(RigidPath p)
 
 void vpServoMorph::start(const vpMorphContour &current)
 {
+  m_regionsAlike = UNDECIDED;
   if (m_nSub == 0) {
     m_subGoals = {m_target};
   } else {
     const vpMorph morph(current, m_target);
     m_subGoals = morph.sequence(m_nSub);
+    // Whether the two regions are one shape seen twice is a property of the current object against the target
+    // (the sub-goals before the deformation frames are views of the current contour itself): see fitToSubGoal().
+    if (current.hasRegion() && m_target.hasRegion())
+      m_regionsAlike = std::fabs(std::sqrt(areaRatio(m_target, current)) / morph.rigidTransform().scale() - 1.0) >
+                               m_regionMismatch
+                           ? NOT_ALIKE
+                           : ALIKE;
     const std::size_t nr = morph.rigidFrameCount(m_nSub);
     if (m_rigidPath == CAMERA_STRAIGHT_LINE && nr > 1) {
       // The rigid transform (pixels) as a camera displacement cMc' = [Rz(-theta), d] at the current depth; the
@@ -330,10 +338,17 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
     double cx, cy, gx, gy;
     centroids(goalN, currentN, gx, gy, cx, cy);
     const double s = std::sqrt(areaRatio(goalN, currentN));
-    if (std::fabs(s / Tfit.scale() - 1.0) > m_regionMismatch) {
-      // The regions are not one shape seen twice (part of the object is hidden, or it is deformed): their areas
-      // and centroids would carry the missing part into the pose, the robust fit over corresponded vertices
-      // (outliers down-weighted) does not.
+    // The regions are not one shape seen twice when part of the object is hidden or it is deformed: their areas
+    // and centroids would carry the missing part into the pose, the robust fit over corresponded vertices
+    // (outliers down-weighted) does not. Decided once per sequence, against the target (at start(), or at the
+    // first fit when the target is the only sub-goal): an occluder or a bend belongs to the scene, not to one
+    // frame, and switching between the two estimates (millimetres apart on a thin object, whose fitted scale is
+    // noisy) from one frame to the next made the loop chatter (measured: a Viper850 run oscillating by 1-6 mm and
+    // stopping 1.02 mm off).
+    if (m_regionsAlike == UNDECIDED)
+      m_regionsAlike = std::fabs(s / Tfit.scale() - 1.0) > m_regionMismatch ? NOT_ALIKE : ALIKE;
+    m_areaBased = m_regionsAlike == ALIKE;
+    if (!m_areaBased) {
       T = Tfit;
     } else {
       T = vpMorphRigidTransform(refinedRotation(goalN, currentN, Tfit.theta()), gx - cx, gy - cy, s, cx, cy);
@@ -383,6 +398,7 @@ void vpServoMorph::record()
   it.scaleResidual = m_scaleRes;
   it.work = m_work;
   it.fullMatch = m_fullMatch;
+  it.areaBased = m_areaBased;
   it.eMc = m_estimator.get_eMc();
   it.translationScale = m_estimator.translationScale();
   it.ve = m_ve;

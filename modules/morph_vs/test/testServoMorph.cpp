@@ -330,6 +330,55 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
   CHECK_THROWS_AS(servo.computeControlLaw(projectNormalized(cdMo)), vpMorphException);
 }
 
+namespace
+{
+// The contour with a measured region: the polygon's own area and centroid, the area scaled by \e areaFactor (as
+// when part of the object's region is hidden).
+vpMorphContour withRegion(const vpMorphContour &c, double areaFactor)
+{
+  vpMorphContour r = c;
+  double cx, cy;
+  c.centroid(cx, cy);
+  r.setRegion(areaFactor * c.area(), cx, cy, 1.0, 0.0, 1.0);
+  return r;
+}
+
+// Runs the servo on the free camera with regions on every contour; returns the history.
+std::vector<vpServoMorph::Iteration> runWithRegions(double currentAreaFactor)
+{
+  vpServoMorph servo;
+  servo.setTarget(withRegion(projectPixels(cdMo), 1.0), depth(cdMo));
+  vpSimulatorCamera robot;
+  robot.setSamplingTime(0.1);
+  robot.setMaxTranslationVelocity(10.0);
+  robot.setMaxRotationVelocity(100.0);
+  robot.setPosition(planarPose(20 + 120, 0.04, -0.02).inverse());
+  for (int i = 0; i < 60; ++i) {
+    const vpColVector ve = servo.computeControlLaw(withRegion(projectPixels(robot.getPosition().inverse()),
+                                                              currentAreaFactor));
+    if (servo.status() != vpServoMorph::MOVING && servo.status() != vpServoMorph::SUBGOAL_REACHED)
+      break;
+    robot.setVelocity(vpRobot::CAMERA_FRAME, vpVelocityTwistMatrix(servo.get_eMc().inverse()) * ve);
+  }
+  return servo.history();
+}
+} // namespace
+
+TEST_CASE("vpServoMorph decides once per sequence, against the target, whether the areas can be trusted", "[servo]")
+{
+  // A region matching the target's: area centroids and ratio on every iteration.
+  const auto alike = runWithRegions(1.0);
+  REQUIRE(alike.size() > 10);
+  for (const auto &it : alike)
+    CHECK(it.areaBased);
+  // A region 15 % smaller than its outline says (part hidden): the vertex fit on every iteration, from the first
+  // one, although the first sub-goals are views of the current contour itself (whose region matches its own).
+  const auto hidden = runWithRegions(0.85);
+  REQUIRE(hidden.size() > 10);
+  for (const auto &it : hidden)
+    CHECK_FALSE(it.areaBased);
+}
+
 TEST_CASE("vpServoMorph sub-goal switching thresholds are configurable", "[servo]")
 {
   const vpMorphContour start = projectPixels(planarPose(20 + 170, 0.06, -0.03));

@@ -39,7 +39,10 @@
   current centroid c, translation t, scale s, in normalised coordinates with the estimated intrinsics): theta by
   robust least squares over the corresponded vertices, c the current area centroid, t the displacement of the area
   centroid and s the square root of the area ratio (a vertex fit biases t and s by millimetres when the two
-  polygons place their vertices differently, as a real contour and a stored one do). Through the image projection of a
+  polygons place their vertices differently, as a real contour and a stored one do), unless the current object's area
+  does not match the target's (area-ratio scale more than 2 % from the fitted scale when the sequence starts: part of
+  the object hidden, or deformed): then t and s are the robust fit's, for the whole sequence (Iteration::areaBased).
+  Through the image projection of a
   plane parallel to the image at the current depth Z (estimated from the area: \f$Z = Z^* \sqrt{a^{*} / a}\f$), the
   camera displacement that produces it is \f[ {}^cM_{c'} = \left[R_z(-\theta),\ \left(k Z (c - R(-\theta)(c + t)/s),\ Z
   (1 - 1/s)\right)\right] \f] (the image of a static object moves opposite to the camera; k is the estimated projection
@@ -119,6 +122,8 @@ public:
     double scaleResidual = 0;       //!< |s - 1| times the contour's RMS radius (px)
     double work = 0;                //!< work of the correspondence to the sub-goal
     bool fullMatch = false;         //!< the correspondence came from a full search
+    bool areaBased = false; //!< translation and scale from the area centroids and ratio (regions if both have one),
+                            //!< not from the vertex fit (see fitToSubGoal in the source: occluded or deformed views)
     vpHomogeneousMatrix eMc;        //!< hand-eye estimate after this iteration
     double translationScale = 1;    //!< projection scale estimate after this iteration
     vpColVector ve;                 //!< commanded end-effector velocity
@@ -233,6 +238,7 @@ private:
   double m_jumpFactor = 2.0, m_workFloor = 0.05, m_minMargin = 0.02, m_minArea = 25.0;
   double m_jumpRotation = 0.1;                    // rad: fit rotation jump beyond one step that is not noise
   double m_regionMismatch = 0.02; // |area-ratio scale / fitted scale - 1| above which the regions are not alike
+  enum { UNDECIDED, ALIKE, NOT_ALIKE } m_regionsAlike = UNDECIDED; // decided at the first fit of a sequence
   double m_calibRotation = 0.05, m_calibPx = 8.0; // image motion that makes one calibration observation
   bool m_online = true;
 
@@ -247,7 +253,7 @@ private:
   Status m_status = NOT_STARTED;
   unsigned int m_iter = 0;
   double m_rotRes = 0, m_transRes = 0, m_scaleRes = 0, m_work = 0;
-  bool m_fullMatch = false;
+  bool m_fullMatch = false, m_areaBased = false;
   // For the distance-jump test and the calibration: the previous iteration to the same sub-goal.
   bool m_haveWork = false, m_haveMove = false;
   double m_prevWork = 0, m_margin = 1;
