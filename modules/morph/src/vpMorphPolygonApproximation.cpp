@@ -32,26 +32,30 @@ class Chain
 public:
   explicit Chain(const std::vector<Pt> &p) : m_p(p), m_n(static_cast<std::ptrdiff_t>(p.size())) {}
 
-  const Pt &at(std::ptrdiff_t i) const { return m_p[static_cast<std::size_t>(((i % m_n) + m_n) % m_n)]; }
+  std::ptrdiff_t wrap(std::ptrdiff_t i) const { return ((i % m_n) + m_n) % m_n; }
+  const Pt &at(std::ptrdiff_t i) const { return m_p[static_cast<std::size_t>(wrap(i))]; }
   std::ptrdiff_t size() const { return m_n; }
 
+  // Pixel coordinates are small integers: sqrt of the squared norm is as exact as std::hypot (which guards against
+  // overflow at a cost: it was half of the extraction's time) for them.
   static double segDist(const Pt &a, const Pt &b, const Pt &q)
   {
     const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
     if (l2 <= 0.0)
-      return std::hypot(q.x - a.x, q.y - a.y);
+      return norm(q.x - a.x, q.y - a.y);
     double t = ((q.x - a.x) * dx + (q.y - a.y) * dy) / l2;
     t = std::min(1.0, std::max(0.0, t));
-    return std::hypot(q.x - (a.x + t * dx), q.y - (a.y + t * dy));
+    return norm(q.x - (a.x + t * dx), q.y - (a.y + t * dy));
   }
+  static double norm(double x, double y) { return std::sqrt(x * x + y * y); }
 
   EdgeError error(std::ptrdiff_t a, std::ptrdiff_t b) const
   {
     EdgeError e;
     const Pt &pa = at(a), &pb = at(b);
     e.tol = vpMorphPolygonApproximation::tolerance(pa.x, pa.y, pb.x, pb.y);
-    for (std::ptrdiff_t i = a + 1; i < b; ++i) {
-      const double d = segDist(pa, pb, at(i));
+    for (std::ptrdiff_t i = a + 1, w = wrap(i); i < b; ++i, w = w + 1 == m_n ? 0 : w + 1) {
+      const double d = segDist(pa, pb, m_p[static_cast<std::size_t>(w)]);
       e.sum += d;
       if (d > e.max) {
         e.max = d;
@@ -67,8 +71,8 @@ public:
   {
     const Pt &pa = at(a), &pb = at(b);
     double s = 0.0;
-    for (std::ptrdiff_t i = a + 1; i < b; ++i)
-      s += segDist(pa, pb, at(i));
+    for (std::ptrdiff_t i = a + 1, w = wrap(i); i < b; ++i, w = w + 1 == m_n ? 0 : w + 1)
+      s += segDist(pa, pb, m_p[static_cast<std::size_t>(w)]);
     return s;
   }
 

@@ -1,0 +1,208 @@
+/*!
+  \file vispmorph-perf-servo.cpp
+  \brief Micro-benchmark of one servo iteration: what the issue's "compute time per iteration" means, measured
+  apart from rendering and from whatever else the machine runs.
+
+  The input is real: a free camera servoes the pliers from a 150 deg start with the whole pipeline (rendered image,
+  tag masked, silhouette extracted, vpServoMorph), and the contours it extracted are recorded once. The benchmarks
+  then replay them:
+  - BM_extract: the silhouette extraction of one 640x480 image (vpMorphContourExtractor, tag masking excluded);
+  - BM_morphIteration: vpServoMorph::computeControlLaw() over the recorded run (tracked correspondence, fit,
+    calibration update, Eq. 11), restarted at the end of the run; the first call of each pass also builds the
+    morph and its sub-goals, so the mean includes them once per run;
+  - BM_morphStart: that first call alone (full cyclic search, morph, sequence);
+  - BM_ibvs4Points: the baseline, a stock vpServo on 4 points (IBVS, current L), one computeControlLaw().
+  CPU time of the fastest repetition; the table at the end gives the ratios to the IBVS baseline.
+
+  \code
+  vispmorph-perf-servo --benchmark_repetitions=5
+  \endcode
+*/
+#include <benchmark/benchmark.h>
+
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpVelocityTwistMatrix.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph_sim/vpMorphPlanarScene.h>
+#include <visp3/morph_sim/vpMorphSimRobot.h>
+#include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
+#include <visp3/morph_vs/vpServoMorph.h>
+#include <visp3/visual_features/vpFeatureBuilder.h>
+#include <visp3/visual_features/vpFeaturePoint.h>
+#include <visp3/vs/vpServo.h>
+
+namespace
+{
+//! One recorded run: the taught target, the images' tag corners, and the contours extracted on the way.
+struct Recording
+{
+  vpMorphContour target;
+  double Zd = 0.5;
+  vpImage<unsigned char> firstImage;
+  std::vector<vpImagePoint> firstCorners;
+  std::vector<vpMorphContour> contours;
+};
+
+const Recording &recording()
+{
+  static const Recording rec = [] {
+    Recording r;
+    vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
+    const vpMorphTagPoseEstimator tag = scene.tagPoseEstimator();
+    const vpHomogeneousMatrix cdMo(0.0, 0.0, 0.5, 0, 0, 0);
+    vpImage<unsigned char> I;
+    vpHomogeneousMatrix cMt;
+    std::vector<vpImagePoint> corners;
+    scene.render(cdMo, I);
+    tag.estimate(I, cMt, &corners);
+    r.target = vpMorphTagPoseEstimator::silhouette(I, corners);
+    r.Zd = cdMo[2][3];
+
+    vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA, 0.04);
+    robot.setDesiredPose(cdMo);
+    robot.initialiseCameraRelativeToDesired(vpHomogeneousMatrix(0.03, -0.02, 0, 0, 0, vpMath::rad(150)));
+    vpServoMorph servo;
+    servo.setCameraParameters(scene.camera());
+    servo.set_eMc(robot.eMcTrue());
+    servo.setSamplingTime(0.04);
+    servo.setTarget(r.target, r.Zd);
+    for (int it = 0; it < 400 && !servo.converged(); ++it) {
+      scene.render(robot.get_cMo(), I, it);
+      corners.clear();
+      tag.estimate(I, cMt, &corners);
+      const vpMorphContour c = vpMorphTagPoseEstimator::silhouette(I, corners);
+      if (it == 0) {
+        r.firstImage = I;
+        r.firstCorners = corners;
+      }
+      r.contours.push_back(c);
+      robot.setVelocity(vpRobot::END_EFFECTOR_FRAME, servo.computeControlLaw(c));
+    }
+    if (!servo.converged())
+      throw vpException(vpException::fatalError, "vispmorph-perf-servo: the recorded run did not converge");
+    return r;
+  }();
+  return rec;
+}
+
+void configure(vpServoMorph &servo, const Recording &r)
+{
+  servo.setCameraParameters(vpMorphPlanarScene::defaultCamera());
+  servo.setSamplingTime(0.04);
+  servo.setTarget(r.target, r.Zd);
+}
+
+void BM_extract(benchmark::State &state)
+{
+  const Recording &r = recording();
+  vpImage<unsigned char> masked = r.firstImage;
+  vpMorphTagPoseEstimator::maskTag(masked, r.firstCorners);
+  vpMorphContourExtractor extractor;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(extractor.extract(masked).size());
+}
+
+void BM_morphIteration(benchmark::State &state)
+{
+  const Recording &r = recording();
+  vpServoMorph servo;
+  configure(servo, r);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    if (k == r.contours.size()) {
+      servo.restart();
+      k = 0;
+    }
+    benchmark::DoNotOptimize(servo.computeControlLaw(r.contours[k++])[0]);
+  }
+  state.counters["contours"] = static_cast<double>(r.contours.size());
+}
+
+void BM_morphStart(benchmark::State &state)
+{
+  const Recording &r = recording();
+  vpServoMorph servo;
+  configure(servo, r);
+  for (auto _ : state) {
+    servo.restart();
+    benchmark::DoNotOptimize(servo.computeControlLaw(r.contours.front())[0]);
+  }
+}
+
+void BM_ibvs4Points(benchmark::State &state)
+{
+  vpServo task;
+  task.setServo(vpServo::EYEINHAND_CAMERA);
+  task.setInteractionMatrixType(vpServo::CURRENT);
+  task.setLambda(0.5);
+  vpFeaturePoint s[4], sd[4];
+  const double xy[4][2] = {{-0.1, -0.1}, {0.1, -0.1}, {0.1, 0.1}, {-0.1, 0.1}};
+  for (int i = 0; i < 4; ++i) {
+    sd[i].buildFrom(xy[i][0], xy[i][1], 0.5);
+    s[i].buildFrom(0.9 * xy[i][0] + 0.01, 0.9 * xy[i][1] - 0.02, 0.55);
+    task.addFeature(s[i], sd[i]);
+  }
+  for (auto _ : state)
+    benchmark::DoNotOptimize(task.computeControlLaw()[0]);
+}
+
+// The console table, then the ratios to the IBVS baseline (CPU time, fastest repetition).
+class RatioReporter : public benchmark::ConsoleReporter
+{
+public:
+  void ReportRuns(const std::vector<Run> &runs) override
+  {
+    for (const Run &r : runs)
+      if (r.run_type == Run::RT_Iteration && r.iterations > 0) {
+        const std::string name = r.run_name.str();
+        const double t = r.GetAdjustedCPUTime();
+        m_time[name] = m_time.count(name) ? std::min(m_time[name], t) : t;
+      }
+    ConsoleReporter::ReportRuns(runs);
+  }
+  void Finalize() override
+  {
+    ConsoleReporter::Finalize();
+    std::ostream &os = GetOutputStream();
+    if (!m_time.count("BM_ibvs4Points"))
+      return;
+    const double base = m_time["BM_ibvs4Points"];
+    os << "\nper call, CPU time of the fastest repetition, and ratio to a stock 4-point IBVS computeControlLaw()\n";
+    for (const auto &t : m_time)
+      os << std::setw(20) << std::left << t.first << std::right << std::fixed << std::setprecision(3)
+         << std::setw(12) << t.second / 1000.0 << " ms" << std::setprecision(1) << std::setw(10) << t.second / base
+         << " x\n";
+  }
+
+private:
+  std::map<std::string, double> m_time;
+};
+} // namespace
+
+BENCHMARK(BM_extract)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_morphIteration)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_morphStart)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ibvs4Points)->Unit(benchmark::kMicrosecond);
+
+int main(int argc, char **argv)
+{
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv))
+    return 1;
+  try {
+    recording(); // before any timing, and a clear error if the recorded run fails
+  } catch (const vpException &e) {
+    std::cerr << e.getStringMessage() << std::endl;
+    return 1;
+  }
+  RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  benchmark::Shutdown();
+  return 0;
+}
