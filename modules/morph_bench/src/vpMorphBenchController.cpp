@@ -173,11 +173,16 @@ protected:
   std::string m_object;
 };
 
-//! VISPMorph's controller: vpServoMorph through 10 sub-goals, Eq. 5-11, online hand-eye estimation.
+/*!
+  VISPMorph's controller: vpServoMorph through 10 sub-goals, Eq. 5-11, online hand-eye estimation ("morph"); with
+  the out-of-plane (tilt) correction from the contour's homography on the final approach ("morph-tilt",
+  vpServoMorph::TILT_FINAL_APPROACH, default dead zone).
+*/
 class MorphController : public MorphBase
 {
 public:
-  std::string name() const override { return "morph"; }
+  explicit MorphController(bool tilt = false) : m_tilt(tilt), m_name(tilt ? "morph-tilt" : "morph") {}
+  std::string name() const override { return m_name; }
   Command step(const vpImage<unsigned char> &I, const vpMatrix &) override
   {
     vpMorphContour c;
@@ -214,9 +219,13 @@ private:
     m_servo->setGain(std::min(1.0, m_ctx.lambda * m_ctx.samplingTime)); // same exponential rate as lambda
     // Extracted contours are digitised: the final residual settles at a few tenths of a pixel.
     m_servo->setFinalThresholds(0.002, 0.2);
+    if (m_tilt)
+      m_servo->setTiltCorrection(vpServoMorph::TILT_FINAL_APPROACH);
     m_targetSet = false;
   }
 
+  bool m_tilt;
+  std::string m_name;
   std::unique_ptr<vpServoMorph> m_servo;
   bool m_targetSet = false;
 };
@@ -456,13 +465,15 @@ private:
 
 std::vector<std::string> vpMorphBenchController::names()
 {
-  return {"morph", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments"};
+  return {"morph", "morph-tilt", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments"};
 }
 
 std::unique_ptr<vpMorphBenchController> vpMorphBenchController::create(const std::string &name)
 {
   if (name == "morph")
     return std::unique_ptr<vpMorphBenchController>(new MorphController);
+  if (name == "morph-tilt")
+    return std::unique_ptr<vpMorphBenchController>(new MorphController(true));
   if (name == "morph-vpservo")
     return std::unique_ptr<vpMorphBenchController>(new MorphVpServoController);
   if (name == "ibvs-current")
@@ -477,5 +488,5 @@ std::unique_ptr<vpMorphBenchController> vpMorphBenchController::create(const std
     return std::unique_ptr<vpMorphBenchController>(new MomentsController);
   throw vpMorphException(vpMorphException::notFoundError,
                          "vpMorphBenchController: unknown controller '" + name +
-                             "' (morph, morph-vpservo, ibvs-current, ibvs-desired, ibvs-mean, pbvs, moments)");
+                             "' (morph, morph-tilt, morph-vpservo, ibvs-current, ibvs-desired, ibvs-mean, pbvs, moments)");
 }

@@ -6,6 +6,8 @@
 
 #include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpExponentialMap.h>
+#include <visp3/core/vpRotationMatrix.h>
+#include <visp3/core/vpThetaUVector.h>
 #include <visp3/core/vpVelocityTwistMatrix.h>
 #include <visp3/morph/vpMorph.h>
 #include <visp3/morph/vpMorphException.h>
@@ -250,6 +252,11 @@ void vpServoMorph::restart()
   m_iter = 0;
   m_haveMove = m_haveWork = false;
   m_tracker.reset();
+  m_tiltTracker.reset();
+  m_tiltOk = false;
+  m_tiltLatched = false;
+  m_tiltRes = 0;
+  m_cMcdH.eye();
   m_history.clear();
   m_ve = vpColVector(6, 0.0);
   m_vc = vpColVector(6, 0.0);
@@ -302,6 +309,8 @@ void vpServoMorph::start(const vpMorphContour &current)
   }
   m_k = 0;
   m_tracker.reset();
+  m_tiltTracker.reset();
+  m_tiltLatched = false;
   m_haveWork = false;
   m_started = true;
 }
@@ -402,6 +411,7 @@ void vpServoMorph::record()
   it.eMc = m_estimator.get_eMc();
   it.translationScale = m_estimator.translationScale();
   it.ve = m_ve;
+  it.tiltResidual = m_tiltRes;
   m_history.push_back(it);
 }
 
@@ -464,7 +474,12 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       m_status = SUBGOAL_REACHED;
       T = fitToSubGoal(currentN, current, Z);
     }
-    if (m_k == last && m_rotRes < m_rotFine && m_transRes < m_pxFine && m_scaleRes < m_pxFine) {
+    // Out-of-plane part from the homography to the target (zero displacement when off or not estimated).
+    vpHomogeneousMatrix cMct;
+    double Zp = Z;
+    const bool tilt = estimateTilt(currentN, cMct, Zp);
+    if (m_k == last && m_rotRes < m_rotFine && m_transRes < m_pxFine && m_scaleRes < m_pxFine &&
+        (!tilt || m_tiltRes < std::max(m_tiltFine, m_tiltDeadZone))) {
       m_prevWork = m_work;
       m_haveWork = true;
       return stop(CONVERGED);
@@ -474,7 +489,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     const double k = m_estimator.translationScale();
     vpColVector ve;
     if (m_law == HOMOGENEOUS_TRANSFORMS) {
-      const vpHomogeneousMatrix eMe = eMc * cameraDisplacement(T, Z, k) * eMc.inverse(); // Eq. 11
+      const vpHomogeneousMatrix eMe = eMc * cameraDisplacement(T, tilt ? Zp : Z, k) * eMc.inverse(); // Eq. 11
       ve = m_gain * vpExponentialMap::inverse(eMe, m_dt);
     } else {
       vpColVector vc = m_stockVc; // computed with the fit to the current sub-goal
@@ -482,11 +497,15 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       vc[1] *= k;
       ve = vpVelocityTwistMatrix(eMc) * vc;
     }
+    // The hand-eye estimator sees the planar part only: the tilt orbit leaves the image similarity unchanged.
+    const vpColVector vePlanar = ve;
+    if (tilt)
+      ve += m_gain * (vpVelocityTwistMatrix(eMc) * vpExponentialMap::inverse(cMct, m_dt));
     if (!allFinite(ve))
       return stop(DEGENERATE_CONTOUR);
     m_ve = ve;
     m_vc = vpVelocityTwistMatrix(eMc.inverse()) * ve;
-    m_prevCmd = vpExponentialMap::direct(ve, m_dt);
+    m_prevCmd = vpExponentialMap::direct(vePlanar, m_dt);
     if (!m_haveMove) { // new anchor for the calibration
       m_anchorT = T;
       m_anchorZ = Z;
@@ -495,11 +514,109 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     m_prevT = T;
     m_prevWork = m_work;
     m_haveWork = true;
-    m_haveMove = true;
+    // A tilt orbit executed through a wrong eMc moves the image in ways the planar calibration model cannot tell
+    // from a planar error: no calibration observation spans a tilt command (re-anchored at the next iteration).
+    m_haveMove = !(tilt && m_tiltRes > m_tiltDeadZone);
     record();
     return m_ve;
   } catch (const vpException &) {
     // A contour the morph cannot use (e.g. it collapsed): stop rather than throw from inside a control loop.
     return stop(DEGENERATE_CONTOUR);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Out-of-plane (tilt) correction: the homography from the current contour to the target.
+
+void vpServoMorph::setTiltCorrection(TiltCorrection mode)
+{
+  m_tiltMode = mode;
+  restart();
+}
+
+void vpServoMorph::setFinalTiltThreshold(double rad)
+{
+  checkPositive(rad, "the final tilt threshold");
+  m_tiltFine = rad;
+}
+
+void vpServoMorph::setTiltDeadZone(double rad)
+{
+  if (!std::isfinite(rad) || rad < 0.0) {
+    std::ostringstream os;
+    os << "vpServoMorph::setTiltDeadZone: the dead zone must be finite and >= 0, got " << rad;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  m_tiltDeadZone = rad;
+}
+
+bool vpServoMorph::tiltActive() const
+{
+  return m_tiltMode == TILT_ALWAYS || (m_tiltMode == TILT_FINAL_APPROACH && m_k + 1 == m_subGoals.size());
+}
+
+/*
+  cMct: the camera displacement that turns the optical axis onto the plane normal about the plane point P seen at the
+  current centroid (so that the object stays where it is in the image), and Zp the depth of P, from the homography
+  current -> target decomposed with the target's plane (fronto-parallel at Zd). False (identity, Zp unchanged) when
+  the correction is off on this sub-goal or the homography is not usable: the planar law then runs alone.
+*/
+bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &cMct, double &Zp)
+{
+  m_tiltOk = false;
+  m_tiltRes = 0;
+  m_cMcdH.eye();
+  cMct.eye();
+  if (!tiltActive() || m_tiltLatched)
+    return false;
+  try {
+    const vpMorphContour targetN = m_target.toNormalized(m_cam);
+    const vpMorphCorrespondence &corr = m_tiltTracker.update(currentN, targetN);
+    const double pixel = 1.0 / std::max(m_cam.get_px(), m_cam.get_py());
+    const vpMorphHomography G = vpMorphHomography::fit(currentN, targetN, corr, 0.5 * pixel, 120, 12);
+    // A wrong correspondence ends in a local minimum that leaves much of the outline unexplained: ignore it.
+    if (G.inlierShare() < m_tiltMinInliers || G.residual() > m_tiltMaxResidualPx * pixel)
+      return false;
+    const vpHomogeneousMatrix cMcd = G.inputMtarget(m_Zd);
+    const vpColVector n = cMcd.getRotationMatrix().getCol(2); // plane normal in the current camera frame
+    const vpTranslationVector t = cMcd.getTranslationVector();
+    const double dc = m_Zd + n[0] * t[0] + n[1] * t[1] + n[2] * t[2]; // distance of the camera to the plane
+    double cx, cy;
+    currentN.regionCentroid(cx, cy);
+    const double nr = n[0] * cx + n[1] * cy + n[2];
+    if (!(dc > 0.0) || !(nr > 1e-3))
+      return false;
+    const double lambda = dc / nr; // depth of P
+    const vpColVector P = vpColVector({lambda * cx, lambda * cy, lambda});
+    const double angle = std::acos(std::max(-1.0, std::min(1.0, n[2])));
+    if (m_tiltDeadZone > 0.0 && angle <= m_tiltDeadZone && m_k + 1 == m_subGoals.size()) {
+      // Within the dead zone on the final approach: what the contour shows below it is the polygonisation, and
+      // following it would random-walk the camera; the planar law finishes alone (latched until restart()).
+      m_tiltLatched = true;
+      m_tiltRes = angle;
+      return false;
+    }
+    // Only the part beyond the dead zone is commanded: below it the estimate is not trusted (see setTiltDeadZone()).
+    const double cmd = std::max(0.0, angle - m_tiltDeadZone);
+    const double ax = -n[1], ay = n[0], sa = std::hypot(ax, ay);
+    vpRotationMatrix Rt; // identity when already aligned
+    if (sa > 1e-12 && cmd > 0.0)
+      Rt = vpRotationMatrix(vpThetaUVector(cmd * ax / sa, cmd * ay / sa, 0.0));
+    const vpColVector RP = vpMatrix(Rt) * P;
+    const vpTranslationVector tt(P[0] - RP[0], P[1] - RP[1], P[2] - RP[2]);
+    cMct = vpHomogeneousMatrix(tt, Rt);
+    if (!std::isfinite(lambda) || !std::isfinite(angle) || !std::isfinite(tt[0]) || !std::isfinite(tt[1]) ||
+        !std::isfinite(tt[2])) {
+      cMct.eye();
+      return false;
+    }
+    m_cMcdH = cMcd;
+    m_tiltRes = angle;
+    m_tiltOk = true;
+    Zp = lambda;
+    return true;
+  } catch (const vpException &) {
+    cMct.eye();
+    return false;
   }
 }

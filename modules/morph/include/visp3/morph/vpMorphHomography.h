@@ -1,0 +1,108 @@
+/*!
+  \file vpMorphHomography.h
+  \brief The plane homography between two views of a planar contour, and its decomposition into a camera pose.
+*/
+#ifndef VP_MORPH_HOMOGRAPHY_H
+#define VP_MORPH_HOMOGRAPHY_H
+
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpMatrix.h>
+#include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphCorrespondence.h>
+
+/*!
+  \class vpMorphHomography
+  \ingroup group_morph
+  \brief Plane homography \f$ x_t \sim G\, x_i \f$ from an input contour to a target contour (value type), its
+  robust estimation from the two outlines, and its decomposition into the camera displacement when the plane is
+  known in the target view.
+
+  Why: a similarity (vpMorphRigidTransform) describes two views of a plane only when both cameras look straight
+  at it. When one of them is tilted, the outline is distorted projectively; the tilt and the true depth are in
+  that distortion, and only a homography captures it. With normalised coordinates (x = X/Z) and the plane
+  fronto-parallel in the target view at depth d (the stored view of vpServoMorph), the homography gives the full
+  camera displacement, tilt included.
+
+  <b>Estimation</b> (fit()). The minimal-work correspondence is only a vertex association, and two polygonisations
+  of one outline do not place their vertices at the same points, so it serves only to start:
+  -# both contours are sampled densely along the corresponded segments (pairs k, k+1 of the correspondence,
+     sampled in proportion to their length) and a normalised DLT (Hartley), made robust by iteratively reweighted
+     least squares on the transfer error, gives the initial G;
+  -# G is refined by Gauss-Newton on point-to-segment distances, both ways: samples evenly spaced along the input
+     outline mapped by G onto the target polygon, and along the target mapped by G^-1 onto the input polygon (the
+     nearest point of the polygon, recomputed at each iteration as in ICP). Huber weights, then Tukey biweights,
+     with a robust scale 1.4826 MAD floored at \e minSigma (give half a pixel in these units for contours from
+     images), so that an occluded or deformed part of an outline stops pulling the fit. Distances measured
+     along the outline do not matter, so the vertex placement does not bias the result.
+
+  On two exact projections of the same polygon the residual is zero at the true homography, which is then found
+  to numerical precision.
+
+  <b>Degenerate input</b> throws vpMorphException: empty contours, different units, a correspondence that does
+  not fit them, fewer than 4 vertices on either contour (a triangle's outline does not fix a homography: points
+  may slide along its edges), or normal equations too ill-conditioned to solve (a sliver), or a singular result.
+
+  <b>Decomposition</b> (inputMtarget()). With the plane \f$ n^T X = d \f$, n = (0, 0, 1), in the target camera
+  frame, the inverse \f$ H = G^{-1} \sim {}^iR_t + {}^it_t\, n^T / d \f$ maps target to input: its first two
+  columns, scaled to unit norm, are the first two columns of \f${}^iR_t\f$ (the nearest orthonormal pair is
+  taken: with wrong intrinsics they are not exactly orthonormal), their cross product the third, and the third
+  column minus it is \f${}^it_t / d\f$. The sign is the one that puts the plane in front of the input camera.
+*/
+class vpMorphHomography
+{
+public:
+  //! Identity.
+  vpMorphHomography();
+  /*!
+    From a 3x3 matrix G (input to target), stored scaled to unit Frobenius norm.
+    \throw vpMorphException::badParameterError if G is not 3x3, not finite, or singular.
+  */
+  explicit vpMorphHomography(const vpMatrix &G);
+
+  //! The 3x3 matrix G (input to target), of unit Frobenius norm.
+  const vpMatrix &matrix() const { return m_G; }
+  //! Maps (x, y) of the input to the target; false (outputs unchanged) when the point maps to infinity.
+  bool apply(double x, double y, double &xo, double &yo) const;
+  /*!
+    Mapped contour (vertices only: a measured region does not follow a projective map and is dropped).
+    \throw vpMorphException::badContourError if a vertex maps to infinity or the result is not a valid contour.
+  */
+  vpMorphContour apply(const vpMorphContour &c) const;
+  //! The target to input homography.
+  vpMorphHomography inverse() const;
+
+  //! RMS of the point-to-segment distances of the inlier samples after fit() (units of the contours).
+  double residual() const { return m_residual; }
+  //! Share of the samples whose final robust weight is not zero, after fit() (1 for a constructed homography).
+  double inlierShare() const { return m_inlierShare; }
+  //! Gauss-Newton iterations run by fit().
+  unsigned int iterations() const { return m_iterations; }
+
+  /*!
+    Robust homography from \e input to \e target (same units; normalised coordinates for inputMtarget()),
+    started from \e correspondence (see the class description).
+    \param samples samples per contour for the refinement (>= 16).
+    \param maxIterations Gauss-Newton iterations at most (>= 1).
+    \param minSigma floor of the robust scale, in the contours' units (>= 0).
+    \throw vpMorphException on degenerate input (see the class description) or bad parameters.
+  */
+  static vpMorphHomography fit(const vpMorphContour &input, const vpMorphContour &target,
+                               const vpMorphCorrespondence &correspondence, double minSigma = 0.0,
+                               unsigned int samples = 200, unsigned int maxIterations = 20);
+
+  /*!
+    The pose of the target camera in the input camera frame, iMt (for a servo whose input is the current view and
+    whose target is the desired one: cMcd, the displacement that reaches the goal), for a homography between
+    normalised coordinates and the plane z = d of the target camera frame (fronto-parallel at depth d).
+    \throw vpMorphException::badParameterError if d is not finite and > 0; badContourError if the homography has
+    no such decomposition (rank-deficient columns).
+  */
+  vpHomogeneousMatrix inputMtarget(double d) const;
+
+private:
+  vpMatrix m_G;
+  double m_residual = 0.0, m_inlierShare = 1.0;
+  unsigned int m_iterations = 0;
+};
+
+#endif

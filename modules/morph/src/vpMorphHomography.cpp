@@ -1,0 +1,467 @@
+#include <visp3/morph/vpMorphHomography.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
+
+namespace
+{
+using Mat3 = Eigen::Matrix3d;
+using Vec3 = Eigen::Vector3d;
+using Mat8 = Eigen::Matrix<double, 8, 8>;
+using Vec8 = Eigen::Matrix<double, 8, 1>;
+
+struct Point
+{
+  double x, y;
+};
+
+Mat3 toEigen(const vpMatrix &M)
+{
+  Mat3 E;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      E(r, c) = M[r][c];
+  return E;
+}
+
+vpMatrix toVisp(const Mat3 &E)
+{
+  vpMatrix M(3, 3);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      M[r][c] = E(r, c);
+  return M;
+}
+
+bool finite(const Mat3 &M) { return M.allFinite(); }
+
+// Unit Frobenius norm, positive determinant: one representative of the projective class.
+Mat3 normalise(const Mat3 &M)
+{
+  const double n = M.norm();
+  Mat3 N = M / n;
+  if (N.determinant() < 0)
+    N = -N;
+  return N;
+}
+
+bool project(const Mat3 &M, double x, double y, double &xo, double &yo)
+{
+  const Vec3 u = M * Vec3(x, y, 1.0);
+  if (!(std::fabs(u[2]) > 1e-12 * u.norm()))
+    return false;
+  xo = u[0] / u[2];
+  yo = u[1] / u[2];
+  return std::isfinite(xo) && std::isfinite(yo);
+}
+
+// n points evenly spaced along the closed polygon, starting at vertex 0.
+std::vector<Point> sampleOutline(const vpMorphContour &c, unsigned int n)
+{
+  const double L = c.perimeter();
+  std::vector<Point> out;
+  out.reserve(n);
+  std::size_t k = 0; // current edge from vertex k to k+1
+  double s0 = 0.0;   // arc length at vertex k
+  for (unsigned int i = 0; i < n; ++i) {
+    const double s = L * double(i) / double(n);
+    double len = c.edgeLength((k + 1) % c.size());
+    while (s > s0 + len && k + 1 < c.size()) {
+      s0 += len;
+      ++k;
+      len = c.edgeLength((k + 1) % c.size());
+    }
+    const std::size_t l = (k + 1) % c.size();
+    const double t = len > 0 ? std::min(1.0, (s - s0) / len) : 0.0;
+    out.push_back({c.x(k) + t * (c.x(l) - c.x(k)), c.y(k) + t * (c.y(l) - c.y(k))});
+  }
+  return out;
+}
+
+// Signed distance from p to the nearest point of the closed polygon c, and the unit direction m along which it is
+// measured (the edge normal when the nearest point is inside an edge, towards p when it is a vertex).
+double nearestOnPolygon(const vpMorphContour &c, double px, double py, double &mx, double &my)
+{
+  double best = std::numeric_limits<double>::max(), fx = 0, fy = 0, nx = 0, ny = 1;
+  bool interior = true;
+  const std::size_t n = c.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t l = (k + 1) % n;
+    const double ax = c.x(k), ay = c.y(k), dx = c.x(l) - ax, dy = c.y(l) - ay, l2 = dx * dx + dy * dy;
+    double t = l2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / l2 : 0.0;
+    bool in = true;
+    if (t <= 0.0) {
+      t = 0.0;
+      in = false;
+    } else if (t >= 1.0) {
+      t = 1.0;
+      in = false;
+    }
+    const double qx = ax + t * dx, qy = ay + t * dy;
+    const double d2 = (px - qx) * (px - qx) + (py - qy) * (py - qy);
+    if (d2 < best) {
+      best = d2;
+      fx = qx;
+      fy = qy;
+      interior = in;
+      const double len = std::sqrt(l2);
+      nx = len > 0 ? -dy / len : 0.0;
+      ny = len > 0 ? dx / len : 1.0;
+    }
+  }
+  const double ex = px - fx, ey = py - fy, e = std::hypot(ex, ey);
+  if (interior || e <= 0.0) {
+    mx = nx;
+    my = ny;
+    return nx * ex + ny * ey;
+  }
+  mx = ex / e;
+  my = ey / e;
+  return e;
+}
+
+double median(std::vector<double> v)
+{
+  if (v.empty())
+    return 0.0;
+  const std::size_t m = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + m, v.end());
+  return v[m];
+}
+
+// Robust weight of a residual in units of sigma: Huber (c = 1.345) or Tukey biweight (c = 4.685).
+double robustWeight(double r, double sigma, bool tukey)
+{
+  const double u = std::fabs(r) / sigma;
+  if (tukey) {
+    const double c = 4.685;
+    if (u >= c)
+      return 0.0;
+    const double a = 1.0 - (u / c) * (u / c);
+    return a * a;
+  }
+  const double c = 1.345;
+  return u <= c ? 1.0 : c / u;
+}
+
+// Hartley normalisation: centroid to the origin, mean distance sqrt(2).
+Mat3 hartley(const std::vector<Point> &P, const std::vector<double> &w)
+{
+  double sw = 0, mx = 0, my = 0;
+  for (std::size_t k = 0; k < P.size(); ++k) {
+    sw += w[k];
+    mx += w[k] * P[k].x;
+    my += w[k] * P[k].y;
+  }
+  mx /= sw;
+  my /= sw;
+  double md = 0;
+  for (std::size_t k = 0; k < P.size(); ++k)
+    md += w[k] * std::hypot(P[k].x - mx, P[k].y - my);
+  md /= sw;
+  const double s = md > 0 ? std::sqrt(2.0) / md : 1.0;
+  Mat3 T;
+  T << s, 0, -s * mx, 0, s, -s * my, 0, 0, 1;
+  return T;
+}
+
+// Weighted DLT from point pairs (Hartley-normalised); returns false on a rank-deficient system.
+bool dlt(const std::vector<Point> &A, const std::vector<Point> &B, const std::vector<double> &w, Mat3 &G)
+{
+  const Mat3 Ta = hartley(A, w), Tb = hartley(B, w);
+  Eigen::Matrix<double, 9, 9> M = Eigen::Matrix<double, 9, 9>::Zero();
+  for (std::size_t k = 0; k < A.size(); ++k) {
+    if (!(w[k] > 0))
+      continue;
+    const Vec3 a = Ta * Vec3(A[k].x, A[k].y, 1.0), b = Tb * Vec3(B[k].x, B[k].y, 1.0);
+    Eigen::Matrix<double, 9, 1> r1, r2;
+    r1 << 0, 0, 0, -a[0], -a[1], -a[2], b[1] * a[0], b[1] * a[1], b[1] * a[2];
+    r2 << a[0], a[1], a[2], 0, 0, 0, -b[0] * a[0], -b[0] * a[1], -b[0] * a[2];
+    M += w[k] * (r1 * r1.transpose() + r2 * r2.transpose());
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> es(M);
+  if (es.info() != Eigen::Success)
+    return false;
+  const Eigen::Matrix<double, 9, 1> ev = es.eigenvalues();
+  // A unique solution: one (near) zero eigenvalue, the next one clearly above it.
+  if (!(ev[1] > 1e-12 * ev[8]))
+    return false;
+  const Eigen::Matrix<double, 9, 1> h = es.eigenvectors().col(0);
+  Mat3 Gn;
+  Gn << h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7], h[8];
+  G = Tb.inverse() * Gn * Ta;
+  return finite(G) && std::fabs(G.determinant()) > 0;
+}
+
+[[noreturn]] void degenerate(const std::string &msg)
+{
+  throw vpMorphException(vpMorphException::badContourError, "vpMorphHomography::fit: " + msg);
+}
+} // namespace
+
+vpMorphHomography::vpMorphHomography() : m_G(3, 3)
+{
+  m_G.eye();
+  m_G /= std::sqrt(3.0);
+}
+
+vpMorphHomography::vpMorphHomography(const vpMatrix &G)
+{
+  if (G.getRows() != 3 || G.getCols() != 3) {
+    std::ostringstream os;
+    os << "vpMorphHomography: the matrix must be 3x3, got " << G.getRows() << "x" << G.getCols();
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  const Mat3 E = toEigen(G);
+  if (!finite(E) || !(std::fabs(E.determinant()) > 1e-14 * std::pow(E.norm(), 3)))
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphHomography: the matrix must be finite and non-singular");
+  m_G = toVisp(normalise(E));
+}
+
+bool vpMorphHomography::apply(double x, double y, double &xo, double &yo) const
+{
+  double a, b;
+  if (!project(toEigen(m_G), x, y, a, b))
+    return false;
+  xo = a;
+  yo = b;
+  return true;
+}
+
+vpMorphContour vpMorphHomography::apply(const vpMorphContour &c) const
+{
+  std::vector<double> x(c.size()), y(c.size());
+  for (std::size_t k = 0; k < c.size(); ++k)
+    if (!apply(c.x(k), c.y(k), x[k], y[k]))
+      throw vpMorphException(vpMorphException::badContourError,
+                             "vpMorphHomography::apply: a vertex maps to infinity (the line at infinity crosses the "
+                             "contour)");
+  return vpMorphContour(x, y, c.units());
+}
+
+vpMorphHomography vpMorphHomography::inverse() const
+{
+  vpMorphHomography h;
+  h.m_G = toVisp(normalise(toEigen(m_G).inverse()));
+  h.m_residual = m_residual;
+  h.m_inlierShare = m_inlierShare;
+  h.m_iterations = m_iterations;
+  return h;
+}
+
+vpMorphHomography vpMorphHomography::fit(const vpMorphContour &input, const vpMorphContour &target,
+                                         const vpMorphCorrespondence &corr, double minSigma, unsigned int samples,
+                                         unsigned int maxIterations)
+{
+  vpMorphRigidTransform::checkCorrespondence(input, target, corr, "vpMorphHomography::fit");
+  if (!std::isfinite(minSigma) || minSigma < 0.0) {
+    std::ostringstream os;
+    os << "vpMorphHomography::fit: minSigma must be finite and >= 0, got " << minSigma;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  if (samples < 16 || maxIterations < 1) {
+    std::ostringstream os;
+    os << "vpMorphHomography::fit: need samples >= 16 and maxIterations >= 1, got " << samples << " and "
+       << maxIterations;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  if (input.size() < 4 || target.size() < 4) {
+    std::ostringstream os;
+    os << "vpMorphHomography::fit: a homography needs outlines of at least 4 vertices (a triangle's edges let "
+          "points slide along them), got "
+       << input.size() << " and " << target.size();
+    degenerate(os.str());
+  }
+  const double LI = input.perimeter(), LT = target.perimeter();
+  // Scale of the coordinates, for the relative floors below.
+  const double scale = 0.5 * (LI + LT);
+
+  // 1. Initial homography: weighted DLT over the corresponded segments sampled in proportion to their length.
+  std::vector<Point> A, B;
+  std::vector<double> w;
+  const auto &pairs = corr.pairs();
+  const std::size_t K = pairs.size();
+  for (std::size_t k = 0; k < K; ++k) {
+    const auto &p0 = pairs[k], &p1 = pairs[(k + 1) % K];
+    const double ax = input.x(p0.first), ay = input.y(p0.first), bx = target.x(p0.second), by = target.y(p0.second);
+    const double adx = input.x(p1.first) - ax, ady = input.y(p1.first) - ay;
+    const double bdx = target.x(p1.second) - bx, bdy = target.y(p1.second) - by;
+    const double L = 0.5 * (std::hypot(adx, ady) / LI + std::hypot(bdx, bdy) / LT);
+    const unsigned int m = std::max(1u, static_cast<unsigned int>(std::lround(L * samples)));
+    for (unsigned int s = 0; s < m; ++s) {
+      const double t = double(s) / double(m);
+      A.push_back({ax + t * adx, ay + t * ady});
+      B.push_back({bx + t * bdx, by + t * bdy});
+      w.push_back(std::max(L, 1e-6) / m);
+    }
+  }
+  Mat3 G;
+  if (!dlt(A, B, w, G))
+    degenerate("the corresponded points do not determine a homography (nearly collinear outline)");
+  {
+    // Robust reweighting on the transfer error: a target vertex matched to several input vertices pairs points
+    // that are not images of each other.
+    const std::vector<double> w0 = w;
+    std::vector<double> e(A.size());
+    for (int it = 0; it < 6; ++it) {
+      for (std::size_t k = 0; k < A.size(); ++k) {
+        double x, y;
+        e[k] = project(G, A[k].x, A[k].y, x, y) ? std::hypot(x - B[k].x, y - B[k].y) : 1e3 * scale;
+      }
+      const double sigma = std::max({minSigma, 1.4826 * median(e), 1e-12 * scale});
+      for (std::size_t k = 0; k < A.size(); ++k)
+        w[k] = w0[k] * robustWeight(e[k], sigma, it >= 3);
+      Mat3 Gi;
+      if (!dlt(A, B, w, Gi))
+        break; // keep the previous one
+      G = Gi;
+    }
+  }
+  G = normalise(G);
+
+  // 2. Gauss-Newton on point-to-segment distances, both ways, nearest points recomputed at each iteration.
+  const std::vector<Point> SI = sampleOutline(input, samples), ST = sampleOutline(target, samples);
+  const std::size_t N = SI.size() + ST.size();
+  std::vector<double> r(N), rw(N);
+  std::vector<Eigen::Matrix<double, 1, 8>> J(N);
+  vpMorphHomography out;
+  unsigned int it = 0;
+  bool converged = false;
+  const unsigned int huberIterations = std::min(4u, std::max(1u, maxIterations / 2));
+  for (it = 0; it < maxIterations && !converged; ++it) {
+    const Mat3 Gi = G.inverse();
+    bool ok = true;
+    for (std::size_t k = 0; k < N && ok; ++k) {
+      const bool fwd = k < SI.size();
+      const Point &p = fwd ? SI[k] : ST[k - SI.size()];
+      const Vec3 u = (fwd ? G : Gi) * Vec3(p.x, p.y, 1.0);
+      if (!(std::fabs(u[2]) > 1e-12 * u.norm())) {
+        ok = false;
+        break;
+      }
+      const double x = u[0] / u[2], y = u[1] / u[2];
+      double mx, my;
+      r[k] = nearestOnPolygon(fwd ? target : input, x, y, mx, my);
+      // d(residual) = m^T dpi, dpi = (1/u3) [1 0 -x; 0 1 -y] du; forward du = G D p, backward du = -D u.
+      Eigen::Matrix<double, 1, 3> g;
+      g << mx / u[2], my / u[2], -(mx * x + my * y) / u[2];
+      Vec3 q;
+      if (fwd) {
+        g = g * G;
+        q = Vec3(p.x, p.y, 1.0);
+      } else {
+        g = -g;
+        q = u;
+      }
+      J[k] << g[0] * q[0], g[0] * q[1], g[0] * q[2], g[1] * q[0], g[1] * q[1], g[1] * q[2], g[2] * q[0],
+          g[2] * q[1];
+    }
+    if (!ok)
+      degenerate("the homography maps part of an outline to infinity");
+    std::vector<double> ar(N);
+    for (std::size_t k = 0; k < N; ++k)
+      ar[k] = std::fabs(r[k]);
+    const bool tukey = it >= huberIterations;
+    const double sigma = std::max({minSigma, 1.4826 * median(ar), 1e-13 * scale});
+    Mat8 M = Mat8::Zero();
+    Vec8 b = Vec8::Zero();
+    for (std::size_t k = 0; k < N; ++k) {
+      rw[k] = robustWeight(r[k], sigma, tukey);
+      if (rw[k] > 0) {
+        M += rw[k] * J[k].transpose() * J[k];
+        b -= rw[k] * J[k].transpose() * r[k];
+      }
+    }
+    // Conditioning on the Jacobi-scaled normal matrix: a sliver or a collapsed outline leaves directions free.
+    Vec8 dg;
+    for (int i = 0; i < 8; ++i)
+      dg[i] = M(i, i) > 0 ? 1.0 / std::sqrt(M(i, i)) : 0.0;
+    const Mat8 Ms = dg.asDiagonal() * M * dg.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Mat8> es(Ms, Eigen::EigenvaluesOnly);
+    if (!(dg.minCoeff() > 0) || !(es.eigenvalues()[0] > 1e-10 * es.eigenvalues()[7]))
+      degenerate("the outlines leave the homography undetermined (ill-conditioned normal equations)");
+    const Vec8 d = dg.asDiagonal() * Ms.ldlt().solve(dg.asDiagonal() * b);
+    if (!d.allFinite())
+      degenerate("non-finite update");
+    Mat3 D;
+    D << d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], 0.0;
+    G = normalise(G * (Mat3::Identity() + D));
+    converged = tukey && d.lpNorm<Eigen::Infinity>() < 1e-13;
+  }
+  if (!finite(G) || !(std::fabs(G.determinant()) > 1e-14))
+    degenerate("singular result");
+
+  // Final residuals and inliers at the returned homography.
+  {
+    const Mat3 Gi = G.inverse();
+    std::vector<double> ar;
+    ar.reserve(N);
+    for (std::size_t k = 0; k < N; ++k) {
+      const bool fwd = k < SI.size();
+      const Point &p = fwd ? SI[k] : ST[k - SI.size()];
+      double x, y, mx, my;
+      if (!project(fwd ? G : Gi, p.x, p.y, x, y))
+        degenerate("the homography maps part of an outline to infinity");
+      r[k] = nearestOnPolygon(fwd ? target : input, x, y, mx, my);
+      ar.push_back(std::fabs(r[k]));
+    }
+    const double sigma = std::max({minSigma, 1.4826 * median(ar), 1e-13 * scale});
+    double s2 = 0;
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < N; ++k)
+      if (robustWeight(r[k], sigma, true) > 0) {
+        s2 += r[k] * r[k];
+        ++n;
+      }
+    out.m_residual = n > 0 ? std::sqrt(s2 / n) : 0.0;
+    out.m_inlierShare = double(n) / double(N);
+  }
+  out.m_G = toVisp(G);
+  out.m_iterations = it;
+  return out;
+}
+
+vpHomogeneousMatrix vpMorphHomography::inputMtarget(double d) const
+{
+  if (!std::isfinite(d) || d <= 0.0) {
+    std::ostringstream os;
+    os << "vpMorphHomography::inputMtarget: the plane depth d must be finite and > 0, got " << d;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  // H = G^-1 ~ iRt + itt n^T / d, n = e3 (target to input).
+  Mat3 H = toEigen(m_G).inverse();
+  const double n1 = H.col(0).norm(), n2 = H.col(1).norm();
+  if (!(n1 > 1e-12) || !(n2 > 1e-12) || !H.allFinite())
+    throw vpMorphException(vpMorphException::badContourError,
+                           "vpMorphHomography::inputMtarget: the homography has a null column, no pose");
+  // det H = (distance of the input camera to the plane) / d: positive when both cameras see the plane's same side.
+  double lambda = 2.0 / (n1 + n2);
+  if (H.determinant() < 0)
+    lambda = -lambda;
+  H *= lambda;
+  Eigen::Matrix<double, 3, 2> C = H.leftCols<2>();
+  const Eigen::JacobiSVD<Eigen::Matrix<double, 3, 2>> svd(C, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Matrix<double, 3, 2> R12 = svd.matrixU().leftCols<2>() * svd.matrixV().transpose();
+  Mat3 R;
+  R.col(0) = R12.col(0);
+  R.col(1) = R12.col(1);
+  R.col(2) = R12.col(0).cross(R12.col(1));
+  const Vec3 t = d * (H.col(2) - R.col(2));
+  vpHomogeneousMatrix M;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j)
+      M[i][j] = R(i, j);
+    M[i][3] = t[i];
+  }
+  return M;
+}
