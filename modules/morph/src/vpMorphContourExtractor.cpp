@@ -236,7 +236,102 @@ vpMorphContour polygon(const Region &r)
   return c;
 }
 
+// Closest pair of pixels between two chains (brute force: chains are a few thousand pixels at most).
+double closestPair(const std::vector<cv::Point> &a, const std::vector<cv::Point> &b, cv::Point &pa, cv::Point &pb)
+{
+  double best = INFINITY;
+  for (const cv::Point &p : a)
+    for (const cv::Point &q : b) {
+      const double d = std::hypot(double(p.x - q.x), double(p.y - q.y));
+      if (d < best) {
+        best = d;
+        pa = p;
+        pb = q;
+      }
+    }
+  return best;
+}
+
+// The pixels of a chain within r of a point.
+void near(const std::vector<cv::Point> &chain, const cv::Point &c, double r, std::vector<cv::Point> &out)
+{
+  for (const cv::Point &p : chain)
+    if (std::hypot(double(p.x - c.x), double(p.y - c.y)) <= r)
+      out.push_back(p);
+}
 } // namespace
+
+vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned char> &I) const
+{
+  std::vector<Region> regs = regions(I, 1);
+  const Region &largest = regs.front();
+  const cv::Rect box = cv::boundingRect(largest.chain);
+  const double maxGap = joinedMaxGap() * std::hypot(double(box.width), double(box.height));
+  std::vector<const Region *> group{&largest}, pieces;
+  for (std::size_t k = 1; k < regs.size(); ++k)
+    if (regs[k].area >= joinedMinShare() * largest.area)
+      pieces.push_back(&regs[k]);
+  cv::Mat joined = cv::Mat::zeros(static_cast<int>(I.getHeight()) + 2, static_cast<int>(I.getWidth()) + 2, CV_8UC1);
+  auto fill = [&joined](const std::vector<cv::Point> &poly, bool convex) {
+    std::vector<cv::Point> shifted(poly);
+    for (cv::Point &p : shifted)
+      p += cv::Point(1, 1);
+    if (convex)
+      cv::fillConvexPoly(joined, shifted, cv::Scalar(255), cv::LINE_8);
+    else
+      cv::drawContours(joined, std::vector<std::vector<cv::Point> >{shifted}, 0, cv::Scalar(255), cv::FILLED);
+  };
+  fill(largest.chain, false);
+  // Nearest piece first, each gap bridged by the convex hull of both sides' pixels near it (within 1.5 gaps): a
+  // cut straight across a limb is closed by the limb's own width, a bite out of a side is not filled beyond it.
+  bool any = false;
+  while (!pieces.empty()) {
+    double best = INFINITY;
+    std::size_t bestPiece = 0;
+    cv::Point pg, pp;
+    const Region *bestGroup = nullptr;
+    for (std::size_t k = 0; k < pieces.size(); ++k)
+      for (const Region *g : group) {
+        cv::Point a, b;
+        const double d = closestPair(g->chain, pieces[k]->chain, a, b);
+        if (d < best) {
+          best = d;
+          bestPiece = k;
+          bestGroup = g;
+          pg = a;
+          pp = b;
+        }
+      }
+    if (!(best <= maxGap))
+      break;
+    const double r = std::max(1.5 * best, 3.0);
+    std::vector<cv::Point> bridge, hull;
+    near(bestGroup->chain, pg, r, bridge);
+    near(pieces[bestPiece]->chain, pp, r, bridge);
+    cv::convexHull(bridge, hull);
+    fill(pieces[bestPiece]->chain, false);
+    fill(hull, true);
+    group.push_back(pieces[bestPiece]);
+    pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(bestPiece));
+    any = true;
+  }
+  if (!any)
+    return polygon(largest);
+  std::vector<std::vector<cv::Point> > contours;
+  cv::findContours(joined, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  const auto it = std::max_element(contours.begin(), contours.end(), [](const auto &a, const auto &b) {
+    return cv::contourArea(a) < cv::contourArea(b);
+  });
+  Region r{*it, cv::contourArea(*it), cv::Point()};
+  for (cv::Point &p : r.chain)
+    p -= cv::Point(1, 1);
+  return polygon(r); // no measured region: part of its area is a bridge, not the object's grey levels
+}
+
+vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<vpRGBa> &I) const
+{
+  return extractJoined(toGrey(I));
+}
 
 vpImage<unsigned char> vpMorphContourExtractor::objectMask(const vpImage<unsigned char> &I) const
 {

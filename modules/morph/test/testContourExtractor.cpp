@@ -200,6 +200,51 @@ TEST_CASE("extractor: largest object first, extractAll returns every region", "[
   CHECK(M[5][600] == 0);
 }
 
+TEST_CASE("extractor: extractJoined joins the pieces an occluder cut, not distant objects or specks", "[extract]")
+{
+  // A slanted bar (300 x 24 px) cut across by a 40 px gap into pieces of 160 and 100 px.
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  auto bar = [&](double a, double b) {
+    Poly p;
+    const double u[] = {a, b, b, a}, v[] = {-12, -12, 12, 12};
+    for (int k = 0; k < 4; ++k) {
+      p.x.push_back(320 + c * u[k] - s * v[k]);
+      p.y.push_back(240 + s * u[k] + c * v[k]);
+    }
+    return p;
+  };
+  const Poly whole = bar(-150, 150), left = bar(-150, 10), right = bar(50, 150);
+  const vpMorphContourExtractor ex;
+  const vpMorphContour full = ex.extract(render({whole}, 0, 255));
+  const vpImage<unsigned char> cut = render({left, right}, 0, 255);
+  const vpMorphContour largest = ex.extract(cut), joined = ex.extractJoined(cut);
+  checkValid(joined);
+  CHECK(largest.area() < 0.6 * full.area());
+  // The gap is closed with the bar's own width: the joined outline is the whole bar's.
+  CHECK(joined.area() == Approx(full.area()).epsilon(0.02));
+  CHECK(maxDistTo(joined, whole.x, whole.y) <= 2.0); // measured 1.8 px (the bar alone: 1.45 px)
+  CHECK_FALSE(joined.hasRegion()); // part of its area is bridged, not seen
+  CHECK(largest.hasRegion());
+
+  // Nothing to join: extract() itself, region included.
+  const vpImage<unsigned char> one = render({whole}, 0, 255);
+  const vpMorphContour alone = ex.extractJoined(one);
+  CHECK(alone.size() == full.size());
+  CHECK(alone.hasRegion());
+  CHECK(alone.regionArea() == Approx(full.regionArea()));
+
+  // A speck (under joinedMinShare() of the bar) next to it and a large object far away are left alone.
+  Poly speck, far;
+  speck.x = {320, 326, 326, 320};
+  speck.y = {280, 280, 286, 286};
+  far.x = {20, 80, 80, 20}; // a third of the bar's area, 230 px away (the largest gap joined: 150 px)
+  far.y = {400, 400, 440, 440};
+  const vpMorphContour lone = ex.extractJoined(render({whole, speck, far}, 0, 255));
+  CHECK(lone.area() == Approx(full.area()).epsilon(1e-9));
+  CHECK(lone.hasRegion());
+  CHECK_THROWS_AS(ex.extractJoined(vpImage<unsigned char>(50, 50, 128)), vpMorphException);
+}
+
 TEST_CASE("approximation: vertex count is stable under image noise and sub-pixel motion", "[approx][noise]")
 {
   // 40 renderings of the same 10-vertex polygon, each with a random sub-pixel offset, a small rotation and

@@ -57,7 +57,8 @@ public:
   /*!
     The object's silhouette in a scene image, as every controller of a scene gets it: the tag masked with
     maskTag() when its 4 detected \e corners are given (none: nothing is masked), then the largest object's
-    polygon by vpMorphContourExtractor (with its measured region). Empty when the image shows no object (the
+    polygon by vpMorphContourExtractor::extractJoined() (with its measured region, unless pieces cut by an occluder
+    were joined to it). Empty when the image shows no object (the
     extractor's bad-image errors), so that a control loop can hold or stop instead of unwinding. \e extractionMs,
     when given, receives the time of the extraction alone: masking the tag is an artefact of the scene.
   */
