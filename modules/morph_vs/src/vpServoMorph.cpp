@@ -487,10 +487,15 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       return stop(UNRELIABLE_CORRESPONDENCE);
     }
     const bool workJump = m_haveWork && m_work > m_jumpFactor * m_prevWork + m_workFloor;
-    if (workJump && !consistent && m_checkDb.empty()) {
-      // Both jumped: another shape, or the same one re-digitised at a new place. Without a target check to tell
-      // them apart, stop.
-      return stop(UNRELIABLE_CORRESPONDENCE);
+    if (workJump && !consistent) {
+      // Both jumped: another shape (an occluder, another object), or the same one re-digitised at a new place.
+      // With a database, the distance from the last contour tells them apart (D_morph ignores the place);
+      // without one, stop.
+      const bool sameShape = !m_checkDb.empty() && !m_prevContour.empty() &&
+                             m_checkDb.distance().distance(current, m_prevContour) <=
+                                 m_shapeChange * m_checkDb.threshold(m_checkIndex);
+      if (!sameShape)
+        return stop(UNRELIABLE_CORRESPONDENCE);
     }
     if (m_haveWork && (!consistent || translationJump)) {
       // The view jumped (the robot or the object was displaced, with the target check: whatever the work did).
@@ -563,6 +568,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       m_accCmd.eye();
     }
     m_prevT = T;
+    m_prevContour = current;
     m_prevWork = m_work;
     m_haveWork = true;
     m_haveMove = true;
