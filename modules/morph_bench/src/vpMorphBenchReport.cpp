@@ -126,7 +126,7 @@ std::string vpMorphBenchReport::runsHeader()
   return "set,robot,controller,scenario,seed,object,start_rotation_deg,start_translation_mm,start_tilt_deg,"
          "start_depth_change,success,failure,iterations,converged_iteration,path_length_m,straight_line_m,path_ratio,"
          "final_t_mm,final_r_deg,final_tag_t_mm,final_tag_r_deg,recognized,recognition_correct,measure_ms,"
-         "control_ms,faults,holds,replans,rerecognitions";
+         "control_ms,faults,holds,replans,rerecognitions,max_speed_mps,max_rotation_speed_degps";
 }
 
 std::string vpMorphBenchReport::runsRow(const vpMorphBenchResult &r)
@@ -142,7 +142,8 @@ std::string vpMorphBenchReport::runsRow(const vpMorphBenchResult &r)
      << (r.tagMeasured ? num(1000 * r.finalTagTranslation) : std::string()) << ','
      << (r.tagMeasured ? num(vpMath::deg(r.finalTagRotation)) : std::string()) << ',' << r.recognized << ','
      << (r.recognitionCorrect() ? 1 : 0) << ',' << num(r.measureMs) << ',' << num(r.controlMs) << ','
-     << faultKinds(s) << ',' << r.holds << ',' << r.replans << ',' << r.rerecognitions;
+     << faultKinds(s) << ',' << r.holds << ',' << r.replans << ',' << r.rerecognitions << ',' << num(r.maxSpeed) << ','
+     << num(vpMath::deg(r.maxRotationSpeed));
   return os.str();
 }
 

@@ -220,6 +220,6 @@ TEST_CASE("faults: reports carry the fault kind and the counts", "[bench][faults
   REQUIRE(s.size() == 1);
   CHECK(s[0].set == "faults/pose-jump");
   CHECK(s[0].replans == 2);
-  CHECK(vpMorphBenchReport::runsRow(r).find(",pose-jump,1,2,0") != std::string::npos);
+  CHECK(vpMorphBenchReport::runsRow(r).find(",pose-jump,1,2,0,") != std::string::npos);
   CHECK(rep.summaryMarkdown().find("| 1 / 2 / 0 |") != std::string::npos);
 }
