@@ -168,7 +168,7 @@ TEST_CASE("faults: a pose jump (20 mm, 10 deg) is detected, the morph re-planned
   CHECK((s.success || s.failure == "feature-jump"));
 }
 
-TEST_CASE("faults: a sudden occluder never gives a wild velocity; the run converges or stops with a reason",
+TEST_CASE("faults: a sudden occluder never gives a wild velocity, the run converges or stops with a reason",
           "[bench][faults]")
 {
   REQUIRE(clean().success);
