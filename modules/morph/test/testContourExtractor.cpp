@@ -523,7 +523,7 @@ TEST_CASE("extractor: the region's grey-level area, centroid and axis are sub-pi
   CHECK(worstAreaSpread < worstPolySpread / 5); // why the region is measured at all
 }
 
-TEST_CASE("extractor: extractAll measures every region; the region excludes neighbouring objects", "[extract][region]")
+TEST_CASE("extractor: extractAll measures every region, the region excludes neighbouring objects", "[extract][region]")
 {
   Poly a = testPolygon(200, 240), b;
   // A small square 4 px to the right of the big polygon's rightmost vertex (350, 260): inside its edge band.

@@ -81,7 +81,7 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   res.robot = vpMorphSimRobot::kindName(m_settings.robot);
   res.straightLine = sc.cdMc.getTranslationVector().frobeniusNorm();
 
-  const vpMorphPlanarScene scene = sc.scene();
+  vpMorphPlanarScene scene = sc.scene(); // not const: timed faults change it during the run
   const vpCameraParameters camTrue = scene.camera();
   const vpMorphTagPoseEstimator truthTag = scene.tagPoseEstimator();
 
@@ -104,6 +104,9 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   ctx.expectedObject = sc.object;
   ctx.lambda = m_settings.lambda;
   ctx.samplingTime = m_settings.samplingTime;
+  for (const vpMorphBenchEvent &e : sc.events)
+    if (e.kind == vpMorphBenchEvent::WRONG_TEMPLATE)
+      ctx.forcedTemplate = e.wrongTemplate;
   controller->start(ctx);
 
   const bool tagController = controllerName.find("ibvs") == 0 || controllerName == "pbvs";
@@ -115,6 +118,35 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   vpImage<unsigned char> I;
 
   for (unsigned int it = 0; it < m_settings.maxIterations; ++it) {
+    // Timed faults of this iteration: the scene's (occluder, object absent), the robot's (pose jump), the
+    // controller's input (dropped frame).
+    bool dropped = false;
+    vpMorphPlanarScene::Faults faults = sc.faults;
+    for (const vpMorphBenchEvent &e : sc.events) {
+      if (!e.activeAt(it))
+        continue;
+      switch (e.kind) {
+      case vpMorphBenchEvent::DROPPED_FRAMES:
+        dropped = true;
+        break;
+      case vpMorphBenchEvent::NO_OBJECT:
+        faults.objectHidden = true;
+        break;
+      case vpMorphBenchEvent::SUDDEN_OCCLUDER:
+        faults.occludedShare = e.occludedShare;
+        faults.occluderPosition = e.occluderPosition;
+        break;
+      case vpMorphBenchEvent::POSE_JUMP:
+        robot.displaceCamera(e.cMcp); // out of reach: not moved (the arms)
+        break;
+      case vpMorphBenchEvent::WRONG_TEMPLATE:
+        break; // given to the controller at the start
+      }
+    }
+    if (faults.objectHidden != scene.faults().objectHidden || faults.occludedShare != scene.faults().occludedShare ||
+        faults.occluderPosition != scene.faults().occluderPosition)
+      scene.setFaults(faults);
+
     const vpHomogeneousMatrix cMo = robot.get_cMo();
     double et, er;
     vpMorphTagPoseEstimator::poseDifference(sc.cdMo, cMo, et, er);
@@ -131,11 +163,17 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
       failure = "out-of-view";
       break;
     }
-    scene.render(cMo, I, it);
     const vpMatrix eJe = robot.get_eJe();
     vpMorphBenchController::Command cmd;
     try {
-      cmd = controller->step(I, eJe);
+      if (dropped) {
+        cmd = controller->missingFrame();
+      } else {
+        scene.render(cMo, I, it);
+        cmd = controller->step(I, eJe);
+      }
+      res.replans += cmd.replanned ? 1 : 0;
+      res.rerecognitions += cmd.rerecognized ? 1 : 0;
     } catch (const vpException &e) {
       cmd = vpMorphBenchController::Command();
       cmd.stop = true;
@@ -147,6 +185,7 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
       break;
     }
     if (!cmd.measured) {
+      ++res.holds;
       if (++lost >= kLostFrames) {
         failure = "feature-lost";
         break;
@@ -164,6 +203,8 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
     }
     double vt, vr;
     commandSpeed(cmd.v, cmd.frame, eJe, vt, vr);
+    res.maxSpeed = std::max(res.maxSpeed, vt);
+    res.maxRotationSpeed = std::max(res.maxRotationSpeed, vr);
     stillCount = (vt < kStillTranslation && vr < kStillRotation) ? stillCount + 1 : 0;
     if (stillCount >= kStillFrames) {
       still = true;
@@ -172,7 +213,10 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
     robot.setVelocity(cmd.frame, cmd.v);
   }
 
-  // Final state, truth and tag.
+  // Final state, truth and tag (the scene without the transient faults).
+  vpMorphPlanarScene::Faults last = scene.faults();
+  last.objectHidden = false;
+  scene.setFaults(last);
   const vpHomogeneousMatrix cMo = robot.get_cMo();
   vpMorphTagPoseEstimator::poseDifference(sc.cdMo, cMo, res.finalTranslation, res.finalRotation);
   if (scene.tagInView(cMo)) {
@@ -206,7 +250,7 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   if (res.success)
     res.failure = "none";
   else if (!failure.empty())
-    res.failure = (!res.recognitionCorrect() && !fatal) ? "recognition" : failure;
+    res.failure = (!res.recognitionCorrect() && !fatal && failure != "target-mismatch") ? "recognition" : failure;
   else if (!res.recognitionCorrect())
     res.failure = "recognition";
   else if (robot.jointLimitHits() > 0)

@@ -1,5 +1,6 @@
 #include <visp3/morph_bench/vpMorphBenchController.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -118,13 +119,21 @@ protected:
   std::unique_ptr<vpMorphTagPoseEstimator> m_tag;
 };
 
-//! Recognition at the first frame, shared by the two VISPMorph adapters.
+//! Recognition at the first frame, the target check and the re-recognition, shared by the two VISPMorph adapters.
 class MorphBase : public Base
 {
 public:
   std::string recognizedObject() const override { return m_object; }
 
 protected:
+  //! Factor on a template's acceptance threshold for vpServoMorph's own target check: a slack over recognition's
+  //! threshold, as a view seen during the servo is not the first view (a last line of defence, see mismatch()).
+  static constexpr double kCheckSlack = 1.25;
+  //! The recognition is checked on the first image and then every kCheckPeriod measured images (1 s at 25 Hz).
+  static constexpr unsigned int kCheckPeriod = 25;
+  //! Another template replaces the current one only when the current one costs this much more work.
+  static constexpr double kSwitchRatio = 1.2; // vpServoMorph::mismatchRatio()
+
   /*!
     The silhouette of image \e I and, on the first one, the recognition. False when the caller must return
     \e cmd as it is (hold: no silhouette; stop: rejected); true with cmd.measureMs set.
@@ -154,6 +163,11 @@ protected:
       return true;
     if (!m_ctx.database || m_ctx.database->empty())
       throw vpMorphException(vpMorphException::badParameterError, "morph controller: no template database");
+    if (!m_ctx.forcedTemplate.empty()) { // fault injection: a recognition error
+      m_template = &(*m_ctx.database)[m_ctx.forcedTemplate];
+      m_object = m_template->name();
+      return true;
+    }
     const vpMorphRecognition r = m_ctx.database->recognize(c);
     if (r.index == vpMorphRecognition::npos || !r.accepted) {
       reason = "recognition";
@@ -163,14 +177,55 @@ protected:
     m_object = m_template->name();
     return true;
   }
+  /*!
+    True when \e c is not the current template's shape (vpServoMorph's target check, for the adapter without
+    vpServoMorph): beyond the template's acceptance threshold times kCheckSlack, or the database clearly prefers
+    another template (its best, accepted, at least kSwitchRatio times cheaper). The thresholds alone cannot
+    tell every pair apart: calibrated on 20 % occlusions, the pliers' threshold (1.57) is above its distance to
+    the screwdriver (1.44), so a screwdriver taken for the pliers passes it.
+  */
+  bool mismatch(const vpMorphContour &c) const
+  {
+    const vpMorphDatabase &db = *m_ctx.database;
+    const std::size_t cur = db.find(m_template->name());
+    const vpMorphRecognition r = db.recognize(c);
+    if (r.index == vpMorphRecognition::npos || r.index == cur)
+      return false;
+    const double d = db.distance().distance(c, m_template->contour());
+    return !(d <= kCheckSlack * db.threshold(cur)) || (r.accepted && d >= kSwitchRatio * r.distance);
+  }
+  /*!
+    The current template was found wrong for \e c: recognises \e c again without the templates already
+    rejected (the best, else the runner-up, if within its acceptance threshold). False when none is left.
+  */
+  bool rerecognize(const vpMorphContour &c)
+  {
+    const vpMorphDatabase &db = *m_ctx.database;
+    m_rejected.push_back(db.find(m_template->name()));
+    const vpMorphRecognition r = db.recognize(c);
+    const std::size_t idx[2] = {r.index, r.secondIndex};
+    const double dist[2] = {r.distance, r.secondDistance};
+    for (int k = 0; k < 2; ++k) {
+      if (idx[k] == vpMorphRecognition::npos ||
+          std::find(m_rejected.begin(), m_rejected.end(), idx[k]) != m_rejected.end() ||
+          !(dist[k] <= db.threshold(idx[k])))
+        continue;
+      m_template = &db[idx[k]];
+      m_object = m_template->name();
+      return true;
+    }
+    return false;
+  }
   void reset() override
   {
     m_template = nullptr;
     m_object.clear();
+    m_rejected.clear();
   }
 
   const vpMorphTemplate *m_template = nullptr;
   std::string m_object;
+  std::vector<std::size_t> m_rejected;
 };
 
 /*!
@@ -187,27 +242,72 @@ public:
   {
     vpMorphContour c;
     Command cmd;
-    if (!observe(I, c, cmd))
-      return cmd;
-    if (!m_targetSet) {
-      m_servo->setTarget(*m_template);
-      m_targetSet = true;
+    if (!observe(I, c, cmd)) {
+      if (cmd.measured || !m_targetSet)
+        return cmd; // a stop, or nothing seen before the first recognition
+      Command hold = missingFrame(); // nothing seen: vpServoMorph holds (and stops after too long)
+      hold.measureMs = cmd.measureMs;
+      return hold;
     }
+    if (!m_targetSet)
+      setTarget();
     const Clock::time_point t0 = Clock::now();
     cmd.v = m_servo->computeControlLaw(c);
     cmd.controlMs = msSince(t0);
-    cmd.frame = vpRobot::END_EFFECTOR_FRAME;
-    const vpServoMorph::Status s = m_servo->status();
-    cmd.converged = s == vpServoMorph::CONVERGED;
-    if (s == vpServoMorph::TARGET_LOST || s == vpServoMorph::DEGENERATE_CONTOUR ||
-        s == vpServoMorph::UNRELIABLE_CORRESPONDENCE) {
-      cmd.stop = true;
-      cmd.reason = vpServoMorph::statusName(s);
+    if (m_servo->status() == vpServoMorph::TARGET_MISMATCH) {
+      // vpServoMorph's target check (at each new sequence and before convergence): recognise anew, restart.
+      if (!rerecognize(c))
+        return stopCommand("target-mismatch");
+      setTarget();
+      cmd.rerecognized = true;
+      cmd.v = m_servo->computeControlLaw(c);
     }
-    return cmd;
+    return fromStatus(cmd);
+  }
+  Command missingFrame() override
+  {
+    if (!m_targetSet)
+      return holdCommand(0);
+    Command cmd;
+    cmd.v = m_servo->computeControlLaw(vpMorphContour()); // hold, counted towards the lost limit
+    return fromStatus(cmd);
   }
 
 private:
+  void setTarget()
+  {
+    m_servo->setTarget(*m_template);
+    m_servo->setTargetCheck(*m_ctx.database, m_template->name(), kCheckSlack);
+    m_targetSet = true;
+  }
+  Command fromStatus(Command cmd) const
+  {
+    cmd.frame = vpRobot::END_EFFECTOR_FRAME;
+    const vpServoMorph::Status s = m_servo->status();
+    cmd.converged = s == vpServoMorph::CONVERGED;
+    switch (s) {
+    case vpServoMorph::TARGET_LOST:
+      cmd.measured = false; // hold
+      break;
+    case vpServoMorph::REPLANNED:
+      cmd.replanned = true;
+      break;
+    case vpServoMorph::LOST_TOO_LONG:
+    case vpServoMorph::TOO_MANY_REPLANS:
+    case vpServoMorph::TARGET_MISMATCH:
+    case vpServoMorph::DEGENERATE_CONTOUR:
+    case vpServoMorph::UNRELIABLE_CORRESPONDENCE: {
+      cmd.stop = true;
+      std::string r = vpServoMorph::statusName(s);
+      std::replace(r.begin(), r.end(), ' ', '-');
+      cmd.reason = r;
+      break;
+    }
+    default:
+      break;
+    }
+    return cmd;
+  }
   void reset() override
   {
     MorphBase::reset();
@@ -221,6 +321,7 @@ private:
     m_servo->setFinalThresholds(0.002, 0.2);
     if (m_tilt)
       m_servo->setTiltCorrection(vpServoMorph::TILT_FINAL_APPROACH);
+    m_servo->setMaxLostIterations(8); // its own stop before the loop's feature-lost (10)
     m_targetSet = false;
   }
 
@@ -234,6 +335,7 @@ private:
   vpFeatureMorph in a stock vpServo, to the final goal (no sub-goals): EYEINHAND_CAMERA with the tilt rotations
   disabled (setCameraDoF: the feature has 4 components for a planar task), current L, then the camera velocity
   is mapped to the end-effector with the estimated eMc. The depth comes from the area ratio to the template.
+  The target check runs on the first image and every kCheckPeriod measured iterations.
 */
 class MorphVpServoController : public MorphBase
 {
@@ -245,6 +347,15 @@ public:
     Command cmd;
     if (!observe(I, c, cmd))
       return cmd;
+    if (m_measured++ % kCheckPeriod == 0 && mismatch(c)) {
+      if (!rerecognize(c))
+        return stopCommand("target-mismatch");
+      cmd.rerecognized = true;
+      m_built = false; // a new goal
+      m_havePrev = false;
+    }
+    if (featureJump(c))
+      return stopCommand("feature-jump");
     const Clock::time_point t0 = Clock::now();
     const double Zd = m_template->cdMo()[2][3];
     try {
@@ -280,18 +391,49 @@ public:
   }
 
 private:
+  /*!
+    A stock vpServo has no plan to re-make and no test of its own input: a view that jumps (a bump, an occluder
+    covering part of the object) would drag it anywhere. The contour's centroid and area may move per period by
+    about lambda dt of their errors to the goal (the centroid also by the rotation error about the principal
+    point); twice that plus 15 px or 5 % of the area is a jump, and the adapter stops ("feature-jump").
+  */
+  bool featureJump(const vpMorphContour &c)
+  {
+    double cx, cy, gx, gy;
+    c.centroid(cx, cy);
+    m_template->contour().centroid(gx, gy);
+    const double a = c.area(), ga = m_template->contour().area(), g = m_ctx.lambda * m_ctx.samplingTime;
+    bool jump = false;
+    if (m_havePrev && a > 0 && m_prevArea > 0) {
+      const double theta = m_built ? std::fabs(m_s.lastFit().theta()) : M_PI;
+      const double r = std::hypot(m_prevCx - m_ctx.cam.get_u0(), m_prevCy - m_ctx.cam.get_v0());
+      const double allowedPx = 2.0 * g * (std::hypot(m_prevCx - gx, m_prevCy - gy) + theta * r) + 15.0;
+      const double allowedArea = 2.0 * g * std::fabs(std::log(m_prevArea / ga)) + 0.05;
+      jump = std::hypot(cx - m_prevCx, cy - m_prevCy) > allowedPx || std::fabs(std::log(a / m_prevArea)) > allowedArea;
+    }
+    m_prevCx = cx;
+    m_prevCy = cy;
+    m_prevArea = a;
+    m_havePrev = true;
+    return jump;
+  }
   void reset() override
   {
     MorphBase::reset();
+    m_havePrev = false;
     m_task.reset();
     m_s = vpFeatureMorph();
     m_sd = vpFeatureMorph();
     m_built = false;
+    m_measured = 0;
   }
   vpFeatureMorph m_s, m_sd;
   std::unique_ptr<vpServo> m_task;
   double m_areaD = 0;
   bool m_built = false;
+  unsigned int m_measured = 0;
+  bool m_havePrev = false;
+  double m_prevCx = 0, m_prevCy = 0, m_prevArea = 0;
 };
 
 //! IBVS on the 4 tag corners (ViSP's tutorial-ibvs-4pts set-up), depth of each corner from the tag pose.
@@ -462,6 +604,13 @@ private:
   std::unique_ptr<vpServo> m_task;
 };
 } // namespace
+
+vpMorphBenchController::Command vpMorphBenchController::missingFrame()
+{
+  Command c;
+  c.measured = false;
+  return c;
+}
 
 std::vector<std::string> vpMorphBenchController::names()
 {

@@ -41,6 +41,22 @@ int orderOf(const std::vector<std::string> &names, const std::string &n)
 }
 
 nlohmann::json jnum(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+//! The kinds of a run's timed faults, joined by '+' (empty without).
+std::string faultKinds(const vpMorphBenchScenario &s)
+{
+  std::string k;
+  for (const vpMorphBenchEvent &e : s.events)
+    k += (k.empty() ? "" : "+") + vpMorphBenchEvent::kindName(e.kind);
+  return k;
+}
+
+//! The set as summarised: runs with timed faults are grouped per fault kind ("faults/pose-jump").
+std::string groupSet(const vpMorphBenchScenario &s)
+{
+  const std::string k = faultKinds(s);
+  return k.empty() ? s.set : s.set + "/" + k;
+}
 } // namespace
 
 void vpMorphBenchReport::add(const vpMorphBenchResult &r) { m_results.push_back(r); }
@@ -56,14 +72,14 @@ std::vector<vpMorphBenchReport::Summary> vpMorphBenchReport::summarize() const
   std::map<std::tuple<int, int, int, std::string>, std::vector<const vpMorphBenchResult *>> groups;
   for (const vpMorphBenchResult &r : m_results)
     groups[std::make_tuple(orderOf(sets, r.scenario.set), orderOf(robots, r.robot), orderOf(ctrls, r.controller),
-                           r.scenario.set + "|" + r.controller)]
+                           groupSet(r.scenario))]
         .push_back(&r);
 
   std::vector<Summary> out;
   for (const auto &g : groups) {
     Summary s;
     const vpMorphBenchResult &first = *g.second.front();
-    s.set = first.scenario.set;
+    s.set = groupSet(first.scenario);
     s.robot = first.robot;
     s.controller = first.controller;
     std::vector<double> its, path, ratio, ft, fr, tt, tr;
@@ -78,6 +94,9 @@ std::vector<vpMorphBenchReport::Summary> vpMorphBenchReport::summarize() const
       }
       sumM += r->measureMs;
       sumC += r->controlMs;
+      s.holds += r->holds;
+      s.replans += r->replans;
+      s.rerecognitions += r->rerecognitions;
       s.maxControlMs = std::max(s.maxControlMs, r->maxControlMs);
       if (r->success) {
         ++s.successes;
@@ -107,7 +126,7 @@ std::string vpMorphBenchReport::runsHeader()
   return "set,robot,controller,scenario,seed,object,start_rotation_deg,start_translation_mm,start_tilt_deg,"
          "start_depth_change,success,failure,iterations,converged_iteration,path_length_m,straight_line_m,path_ratio,"
          "final_t_mm,final_r_deg,final_tag_t_mm,final_tag_r_deg,recognized,recognition_correct,measure_ms,"
-         "control_ms";
+         "control_ms,faults,holds,replans,rerecognitions,max_speed_mps,max_rotation_speed_degps";
 }
 
 std::string vpMorphBenchReport::runsRow(const vpMorphBenchResult &r)
@@ -122,7 +141,9 @@ std::string vpMorphBenchReport::runsRow(const vpMorphBenchResult &r)
      << num(1000 * r.finalTranslation) << ',' << num(vpMath::deg(r.finalRotation)) << ','
      << (r.tagMeasured ? num(1000 * r.finalTagTranslation) : std::string()) << ','
      << (r.tagMeasured ? num(vpMath::deg(r.finalTagRotation)) : std::string()) << ',' << r.recognized << ','
-     << (r.recognitionCorrect() ? 1 : 0) << ',' << num(r.measureMs) << ',' << num(r.controlMs);
+     << (r.recognitionCorrect() ? 1 : 0) << ',' << num(r.measureMs) << ',' << num(r.controlMs) << ','
+     << faultKinds(s) << ',' << r.holds << ',' << r.replans << ',' << r.rerecognitions << ',' << num(r.maxSpeed) << ','
+     << num(vpMath::deg(r.maxRotationSpeed));
   return os.str();
 }
 
@@ -163,6 +184,9 @@ std::string vpMorphBenchReport::summaryJson(const std::map<std::string, std::str
     e["mean_control_ms"] = s.meanControlMs;
     e["max_control_ms"] = s.maxControlMs;
     e["failures"] = s.failures;
+    e["holds"] = s.holds;
+    e["replans"] = s.replans;
+    e["rerecognitions"] = s.rerecognitions;
     j["summaries"].push_back(e);
   }
   return j.dump(2);
@@ -172,8 +196,9 @@ std::string vpMorphBenchReport::summaryMarkdown() const
 {
   std::ostringstream os;
   os << "| set | robot | controller | success | median iter. | median path (mm) | path ratio | final error "
-        "truth (mm / deg) | final error tag (mm / deg) | measure / control (ms) | failures |\n";
-  os << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "truth (mm / deg) | final error tag (mm / deg) | measure / control (ms) | failures | holds / re-plans / "
+        "re-recognitions |\n";
+  os << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Summary &s : summarize()) {
     std::ostringstream fails;
     for (const auto &f : s.failures)
@@ -185,7 +210,8 @@ std::string vpMorphBenchReport::summaryMarkdown() const
        << dash(num(1000 * s.medianFinalTranslation, 3)) << " / " << dash(num(vpMath::deg(s.medianFinalRotation), 3))
        << " | " << dash(num(1000 * s.medianFinalTagTranslation, 3)) << " / "
        << dash(num(vpMath::deg(s.medianFinalTagRotation), 3)) << " | " << num(s.meanMeasureMs, 3) << " / "
-       << num(s.meanControlMs, 3) << " | " << dash(fails.str()) << " |\n";
+       << num(s.meanControlMs, 3) << " | " << dash(fails.str()) << " | " << s.holds << " / " << s.replans << " / "
+       << s.rerecognitions << " |\n";
   }
   return os.str();
 }

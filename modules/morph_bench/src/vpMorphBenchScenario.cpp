@@ -1,5 +1,6 @@
 #include <visp3/morph_bench/vpMorphBenchScenario.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -73,12 +74,14 @@ std::string vpMorphBenchScenario::describe() const
     os << ", occluded " << 100 * faults.occludedShare << " %";
   if (focalScaleX != 1 || focalScaleY != 1)
     os << ", focal x" << focalScaleX << "/x" << focalScaleY;
+  for (const vpMorphBenchEvent &e : events)
+    os << ", " << e.describe();
   return os.str();
 }
 
 std::vector<std::string> vpMorphBenchScenario::setNames()
 {
-  return {"planar", "planar-hard", "6dof", "calib", "noise", "occlusion", "deformable"};
+  return {"planar", "planar-hard", "6dof", "calib", "noise", "occlusion", "deformable", "faults"};
 }
 
 std::vector<std::string> vpMorphBenchScenario::objectNames()
@@ -104,7 +107,7 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
   if (std::find(sets.begin(), sets.end(), set) == sets.end())
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphBenchScenario::generate: unknown set '" + set +
-                               "' (planar, planar-hard, 6dof, calib, noise, occlusion, deformable)");
+                               "' (planar, planar-hard, 6dof, calib, noise, occlusion, deformable, faults)");
   if (count == 0)
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphBenchScenario::generate: count must be > 0");
 
@@ -141,7 +144,8 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
     std::mt19937 rng(sc.seed);
     auto uni = [&rng](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
 
-    sc.object = objects[i % objects.size()];
+    // faults: the kinds in turn (index % 5), the objects in turn per round of kinds, so every kind meets them all.
+    sc.object = objects[(set == "faults" ? i / 5 + i % 5 : i) % objects.size()];
     sc.templateImage = dataDir + "/objects/" + sc.object + ".png";
     sc.objectImage = set == "deformable" ? dataDir + "/objects/" + sc.object + "-deformed.png" : sc.templateImage;
     sc.cdMo = desiredPose(sc.object);
@@ -169,6 +173,37 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
     } else if (set == "occlusion") {
       sc.faults.occludedShare = uni(0.05, 0.20);
       sc.faults.occluderPosition = uni(0, 1);
+    } else if (set == "faults") {
+      vpMorphBenchEvent e;
+      e.kind = static_cast<vpMorphBenchEvent::Kind>(i % 5);
+      e.iteration = static_cast<unsigned int>(std::floor(uni(15, 41)));
+      switch (e.kind) {
+      case vpMorphBenchEvent::DROPPED_FRAMES:
+        e.frames = static_cast<unsigned int>(std::floor(uni(3, 9)));
+        break;
+      case vpMorphBenchEvent::NO_OBJECT:
+        e.frames = static_cast<unsigned int>(std::floor(uni(2, 7)));
+        break;
+      case vpMorphBenchEvent::SUDDEN_OCCLUDER:
+        e.occludedShare = uni(0.10, 0.25);
+        e.occluderPosition = uni(0, 1);
+        break;
+      case vpMorphBenchEvent::POSE_JUMP: {
+        const double a = uni(-M_PI, M_PI), r = (uni(0, 1) < 0.5 ? -1 : 1) * vpMath::rad(10);
+        e.cMcp = vpHomogeneousMatrix(0.02 * std::cos(a), 0.02 * std::sin(a), 0, 0, 0, r);
+        break;
+      }
+      case vpMorphBenchEvent::WRONG_TEMPLATE: {
+        e.iteration = 0;
+        std::vector<std::string> others;
+        for (const std::string &o : objects)
+          if (o != sc.object)
+            others.push_back(o);
+        e.wrongTemplate = others[std::min<std::size_t>(others.size() - 1, std::size_t(uni(0, 1) * others.size()))];
+        break;
+      }
+      }
+      sc.events.push_back(e);
     }
 
     const vpMorphPlanarScene &scene = sceneOf(sc);

@@ -89,6 +89,7 @@ TEST_CASE("bench scenario sets follow the protocol's ranges and show object and 
       if (set == "occlusion")
         CHECK((s.faults.occludedShare >= 0.05 && s.faults.occludedShare <= 0.2));
       CHECK((s.objectImage != s.templateImage) == (set == "deformable"));
+      CHECK(s.events.empty() == (set != "faults")); // timed faults only in their set
     }
   }
 }

@@ -435,7 +435,8 @@ std::vector<vpMorphPlanarScene::Patch> vpMorphPlanarScene::patches() const
     return planePoint(m_objX + c * lx - s * ly, m_objY + s * lx + c * ly);
   };
   const double W = m_texture.getWidth() - 1.0, H = m_texture.getHeight() - 1.0;
-  out.push_back({{place(0, 0), place(W, 0), place(W, H), place(0, H)}, 0});
+  if (!m_faults.objectHidden)
+    out.push_back({{place(0, 0), place(W, 0), place(W, H), place(0, H)}, 0});
   for (const auto &d : m_distractors)
     out.push_back({d, 3});
   const double h = vpMorphTagTexture::textureSideForTagSize(m_tagSize, kTagCell) / 2;

@@ -188,12 +188,10 @@ void vpMorphSimRobot::setDesiredPose(const vpHomogeneousMatrix &cdMo)
   m_path = 0.0;
 }
 
-bool vpMorphSimRobot::initialiseCameraRelativeToObject(const vpHomogeneousMatrix &cMo)
+bool vpMorphSimRobot::placeCamera(const vpHomogeneousMatrix &fMc, const vpColVector &qSeed)
 {
-  checkPose(cMo, "cMo");
-  const vpHomogeneousMatrix fMc = m_fMo * cMo.inverse();
   const vpHomogeneousMatrix fMe = fMc * m_eMcTrue.inverse();
-  vpColVector q = referenceJointPositions();
+  vpColVector q = qSeed;
   bool ok = true;
   switch (m_kind) {
   case FREE_CAMERA:
@@ -225,17 +223,31 @@ bool vpMorphSimRobot::initialiseCameraRelativeToObject(const vpHomogeneousMatrix
       vpThetaUVector tu(d.getRotationMatrix());
       ok = d.getTranslationVector().frobeniusNorm() < 1e-6 && std::sqrt(tu.sumSquare()) < 1e-6;
     }
-    if (!ok) {
-      m_status = UNREACHABLE;
+    if (!ok)
       return false;
-    }
     m_model->q = q;
+  }
+  return true;
+}
+
+bool vpMorphSimRobot::initialiseCameraRelativeToObject(const vpHomogeneousMatrix &cMo)
+{
+  checkPose(cMo, "cMo");
+  if (!placeCamera(m_fMo * cMo.inverse(), referenceJointPositions())) {
+    m_status = UNREACHABLE;
+    return false;
   }
   m_status = OK;
   m_limitHits = 0;
   m_steps = 0;
   m_path = 0.0;
   return true;
+}
+
+bool vpMorphSimRobot::displaceCamera(const vpHomogeneousMatrix &cMcp)
+{
+  checkPose(cMcp, "cMcp");
+  return placeCamera(get_fMc() * cMcp, getJointPositions());
 }
 
 bool vpMorphSimRobot::initialiseCameraRelativeToDesired(const vpHomogeneousMatrix &cdMc)

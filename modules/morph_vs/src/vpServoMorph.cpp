@@ -149,6 +149,14 @@ const char *vpServoMorph::statusName(Status s)
     return "degenerate contour";
   case UNRELIABLE_CORRESPONDENCE:
     return "unreliable correspondence";
+  case REPLANNED:
+    return "replanned";
+  case LOST_TOO_LONG:
+    return "lost too long";
+  case TOO_MANY_REPLANS:
+    return "too many replans";
+  case TARGET_MISMATCH:
+    return "target mismatch";
   }
   return "?";
 }
@@ -242,9 +250,45 @@ void vpServoMorph::setMinArea(double px2)
   m_minArea = px2;
 }
 
+void vpServoMorph::setJumpPixels(double px)
+{
+  checkPositive(px, "the jump threshold in pixels");
+  m_jumpPx = px;
+}
+
+void vpServoMorph::setTargetCheck(const vpMorphDatabase &db, const std::string &name, double slack)
+{
+  if (!std::isfinite(slack) || slack < 1.0)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpServoMorph::setTargetCheck: the slack must be finite and >= 1");
+  const std::size_t k = db.find(name);
+  if (k == vpMorphRecognition::npos)
+    throw vpMorphException(vpMorphException::notFoundError,
+                           "vpServoMorph::setTargetCheck: no template '" + name + "' in the database");
+  m_checkDb = db;
+  m_checkIndex = k;
+  m_checkSlack = slack;
+}
+
+bool vpServoMorph::targetMismatch(const vpMorphContour &current)
+{
+  if (m_checkDb.empty())
+    return false;
+  const vpMorphRecognition r = m_checkDb.recognize(current);
+  m_targetDistance = m_checkDb.distance().distance(current, m_target);
+  if (!(m_targetDistance <= m_checkSlack * m_checkDb.threshold(m_checkIndex)))
+    return true; // NaN too
+  return r.index != vpMorphRecognition::npos && r.index != m_checkIndex && r.accepted &&
+         m_targetDistance >= mismatchRatio() * r.distance;
+}
+
 void vpServoMorph::restart()
 {
   m_started = false;
+  m_lost = 0;
+  m_replans = 0;
+  m_halted = false;
+  m_targetDistance = std::numeric_limits<double>::quiet_NaN();
   m_current = vpMorphContour();
   m_subGoals.clear();
   m_k = 0;
@@ -422,8 +466,17 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
                            "vpServoMorph::computeControlLaw: no target; call setTarget() first");
   ++m_iter;
   m_current = vpMorphContour();
-  if (current.empty())
+  if (m_halted) // a stop status stays until restart()
+    return stop(m_status);
+  if (current.empty()) {
+    // Hold: nothing seen this period (dropped frame, object absent). The sequence and the last fit are kept.
+    if (++m_lost > m_maxLost) {
+      m_halted = true;
+      return stop(LOST_TOO_LONG);
+    }
     return stop(TARGET_LOST);
+  }
+  m_lost = 0;
   if (current.units() != vpMorphContour::PIXEL)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpServoMorph::computeControlLaw: the current contour must be in pixels");
@@ -432,8 +485,13 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
   if (!std::isfinite(a) || a < m_minArea)
     return stop(DEGENERATE_CONTOUR);
   try {
-    if (!m_started)
+    if (!m_started) {
       start(current);
+      if (targetMismatch(current)) {
+        m_halted = true;
+        return stop(TARGET_MISMATCH);
+      }
+    }
     const vpMorphContour currentN = current.toNormalized(m_cam);
     const double Z = m_Zd * std::sqrt(areaRatio(m_target, current));
     vpMorphRigidTransform T = fitToSubGoal(currentN, current, Z);
@@ -441,16 +499,45 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     // from one image to the next, which changes the work and the margin while the fit does not. Unreliable is
     // either of them together with a jump of the fitted rotation beyond what one step (gain x previous residual)
     // and noise explain; with no previous fit to the same sub-goal, a low margin alone.
-    bool consistent = false;
+    bool consistent = false, translationJump = false;
     if (m_haveWork) {
       const double dth = std::fabs(std::remainder(T.theta() - m_prevT.theta(), 2 * M_PI));
       consistent = dth <= m_gain * std::fabs(m_prevT.theta()) + m_jumpRotation;
+      // The fit's translation moves by about gain x its previous value per period (twice that for calibration
+      // errors); beyond, plus jumpPixels(), the view jumped.
+      const double px = m_cam.get_px(), py = m_cam.get_py();
+      const double dt = std::hypot((T.tx() - m_prevT.tx()) * px, (T.ty() - m_prevT.ty()) * py);
+      translationJump = dt > 2.0 * m_gain * std::hypot(m_prevT.tx() * px, m_prevT.ty() * py) + m_jumpPx;
     }
     if (m_fullMatch && m_margin < m_minMargin && !consistent) {
       return stop(UNRELIABLE_CORRESPONDENCE);
     }
-    if (m_haveWork && m_work > m_jumpFactor * m_prevWork + m_workFloor && !consistent) {
-      return stop(UNRELIABLE_CORRESPONDENCE);
+    const bool workJump = m_haveWork && m_work > m_jumpFactor * m_prevWork + m_workFloor;
+    if (workJump && !consistent) {
+      // Both jumped: another shape (an occluder, another object), or the same one re-digitised at a new place.
+      // With a database, the distance from the last contour tells them apart (D_morph ignores the place);
+      // without one, stop.
+      const bool sameShape = !m_checkDb.empty() && !m_prevContour.empty() &&
+                             m_checkDb.distance().distance(current, m_prevContour) <=
+                                 m_shapeChange * m_checkDb.threshold(m_checkIndex);
+      if (!sameShape)
+        return stop(UNRELIABLE_CORRESPONDENCE);
+    }
+    if (m_haveWork && (!consistent || translationJump)) {
+      // The view jumped (the robot or the object was displaced, with the target check: whatever the work did).
+      // Re-plan from this view (the sub-goals of the old plan lead from where the camera no longer is), bounded;
+      // the target check at the new start stops on another shape; no calibration observation across the jump.
+      if (m_replans >= m_maxReplans) {
+        m_halted = true;
+        return stop(TOO_MANY_REPLANS);
+      }
+      ++m_replans;
+      start(current);
+      if (targetMismatch(current)) {
+        m_halted = true;
+        return stop(TARGET_MISMATCH);
+      }
+      return stop(REPLANNED);
     }
 
     // Online calibration: the image motion since the anchor (a fit to the same sub-goal) against the moves
@@ -482,6 +569,10 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
         (!tilt || m_tiltRes < std::max(m_tiltFine, m_tiltDeadZone))) {
       m_prevWork = m_work;
       m_haveWork = true;
+      if (targetMismatch(current)) { // aligned, but not the target's shape: never report CONVERGED on it
+        m_halted = true;
+        return stop(TARGET_MISMATCH);
+      }
       return stop(CONVERGED);
     }
 
@@ -512,6 +603,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       m_accCmd.eye();
     }
     m_prevT = T;
+    m_prevContour = current;
     m_prevWork = m_work;
     m_haveWork = true;
     // A tilt orbit executed through a wrong eMc moves the image in ways the planar calibration model cannot tell

@@ -31,6 +31,12 @@
   velocity stays below 1 mm/s and 0.1 deg/s for 10 iterations (with the default gain, errors of 0.4 mm and
   0.04 deg: the success thresholds are 1 mm and 0.5 deg), on a failure, or at the iteration budget.
 
+  <b>Timed faults</b> (vpMorphBenchScenario::events, see vpMorphBenchEvent) are applied at the start of their
+  iteration, before the truth is recorded and the image rendered: the scene's faults are switched (object hidden,
+  occluder), the camera is displaced (pose jump), or the controller is told the frame is missing
+  (vpMorphBenchController::missingFrame()); a wrong template is handed to the controller at the start. Iterations
+  without features count as holds (vpMorphBenchResult::holds), re-plans and re-recognitions are counted too.
+
   Thread safety: run() is const and builds everything it changes, so runs can go on several threads.
 */
 class vpMorphBench

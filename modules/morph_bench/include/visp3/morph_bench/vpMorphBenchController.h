@@ -36,6 +36,23 @@
   (vpFeatureMomentCommon on the silhouette polygon: normalised centre of gravity, area, c-invariants and alpha,
   as ViSP's servoMomentPolygon example, plane from the tag pose). Every stock one runs
   EYEINHAND_L_cVe_eJe with cVe from the estimated eMc and eJe from the robot, and the same constant gain.
+
+  <b>Faults</b> (vpMorphBenchEvent). Every controller holds (zero velocity, Command::measured false) on a
+  missing frame or when its features are not in the image; the loop gives up after 10 such iterations in a row
+  (feature-lost). The VISPMorph adapters add:
+  - both check the recognition again: the target is wrong when the contour is beyond 1.25 x the template's
+    acceptance threshold, or when the database's best template is another one, accepted, and at least 1.2 times
+    cheaper. Then the object is recognised anew, the rejected templates excluded (Command::rerecognized), and the
+    servo restarts towards the new template; when nothing acceptable remains the run stops with
+    "target-mismatch". "morph" has vpServoMorph check (vpServoMorph::setTargetCheck()) at each new sequence
+    (the first image, each re-plan) and before it reports convergence; "morph-vpservo" checks on the first image
+    and every 25 measured images (1 s).
+  - "morph": vpServoMorph holds while nothing is seen and resumes on the same sub-goal, stops after 8 periods
+    (reason "lost-too-long", before the loop's 10); re-plans after a view jump (Command::replanned; at most 3,
+    then "too-many-replans").
+  - "morph-vpservo": no sequence to re-plan, and a stock vpServo does not test its input: a jump of the
+    contour's centroid or area beyond what one step explains (a bump, an occluder) stops the run
+    ("feature-jump").
 */
 class vpMorphBenchController
 {
@@ -54,6 +71,8 @@ public:
     std::string expectedObject;                //!< the object truly present (only to score the recognition)
     double lambda = 2.5;                       //!< gain (1/s): the same for every controller
     double samplingTime = 0.04;                //!< s
+    //! Fault injection (WRONG_TEMPLATE): the first recognition returns this template, whatever it sees.
+    std::string forcedTemplate;
   };
   //! One command.
   struct Command
@@ -64,6 +83,8 @@ public:
     bool stop = false;      //!< the controller gave up (see reason); zero velocity
     bool converged = false; //!< the controller's own convergence test passed
     std::string reason;     //!< short word when stop (e.g. "recognition", "unreliable-correspondence")
+    bool replanned = false;    //!< the view jumped and the controller re-planned from it (zero velocity)
+    bool rerecognized = false; //!< the target was found wrong and the object recognised anew
     double measureMs = 0;   //!< time to measure the features (tag masking for silhouettes excluded)
     double controlMs = 0;   //!< time of the control law
   };
@@ -74,6 +95,11 @@ public:
   virtual void start(const Context &ctx) = 0;
   //! One iteration on the image \e I with the robot Jacobian \e eJe.
   virtual Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe) = 0;
+  /*!
+    One iteration without an image (a dropped frame): the controller is told, rather than given the previous
+    image again, which it would integrate twice. Default: hold (not measured, zero velocity).
+  */
+  virtual Command missingFrame();
   //! Name of the recognised template (VISPMorph), empty otherwise.
   virtual std::string recognizedObject() const { return std::string(); }
 

@@ -17,7 +17,8 @@
   \brief Collects results and summarises them the way the comparison is read.
 
   CSV: runsHeader()/runsRow() (one row per run, written as runs finish so that an interrupted bench keeps what it
-  did) and curvesRows() (truth error per iteration). The summary groups by (set, robot, controller): success rate,
+  did) and curvesRows() (truth error per iteration). The summary groups by (set, robot, controller), runs with
+  timed faults by fault kind as well (set "faults/pose-jump", ...): success rate,
   median settling iteration, median camera path and path ratio of the successful runs, median final errors
   (truth and tag) of all runs, mean and worst compute times, and the failure reasons with their counts.
 */
@@ -35,6 +36,7 @@ public:
     double medianFinalTagTranslation = 0, medianFinalTagRotation = 0; //!< tag, runs where it was seen
     double meanMeasureMs = 0, meanControlMs = 0, maxControlMs = 0;
     std::map<std::string, unsigned int> failures; //!< reason -> count (without "none")
+    unsigned int holds = 0, replans = 0, rerecognitions = 0; //!< sums over the runs (timed faults)
     double successRate() const { return runs ? double(successes) / runs : 0.0; }
   };
 

@@ -21,7 +21,7 @@
   event that applies in this order: unreachable (start out of the robot's reach), out-of-view, diverged (the
   camera left 0.15-1.5 m from the plane), feature-lost (features not measured in 10 successive images),
   recognition (the object was rejected or taken for another), a controller's own stop (its status, e.g.
-  unreliable-correspondence), joint-limit (a joint limit was hit), budget (still moving at the last
+  unreliable-correspondence, lost-too-long, too-many-replans, target-mismatch), joint-limit (a joint limit was hit), budget (still moving at the last
   iteration), final-error (stopped away from the goal).
 */
 class vpMorphBenchResult
@@ -46,6 +46,11 @@ public:
   double controlMs = 0;           //!< mean control-law time per iteration
   double maxControlMs = 0;        //!< worst control-law time
   unsigned int jointLimitHits = 0;
+  double maxSpeed = 0;             //!< largest commanded translation speed (end-effector twist), m/s
+  double maxRotationSpeed = 0;     //!< largest commanded rotation speed, rad/s
+  unsigned int holds = 0;          //!< iterations without features (missing frames included): zero velocity
+  unsigned int replans = 0;        //!< re-plans after a view jump (VISPMorph)
+  unsigned int rerecognitions = 0; //!< re-recognitions after a wrong target (VISPMorph)
   std::vector<double> curveTranslation; //!< truth error per iteration, m
   std::vector<double> curveRotation;    //!< rad
 

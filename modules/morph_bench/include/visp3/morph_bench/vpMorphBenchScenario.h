@@ -10,6 +10,7 @@
 
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/morph_bench/vpMorphBenchEvent.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 
 /*!
@@ -33,6 +34,13 @@
     illumination change (gain in [0.7, 1.3], offset in [-25, 25]);
   - occlusion: planar, with a card hiding a share in [5, 20] % of the object's outline at a random place;
   - deformable: planar, the object seen is the deformed variant of its template (e.g. pliers opened wider).
+  - faults: planar, with one timed fault (vpMorphBenchEvent) per start, the kinds in turn (index modulo 5:
+    dropped-frames, no-object, sudden-occluder, pose-jump, wrong-template) so that 5 n starts give n of each:
+    dropped frames for 3-8 iterations or the object absent for 2-6 iterations from iteration 15-40; an occluder
+    of 10-25 % of the outline appearing at iteration 15-40; a jump of 20 mm in a random in-plane direction and
+    10 deg about the optical axis (either sign) at iteration 15-40; recognition forced to another object's
+    template (drawn among the five others) at the first frame. The object in turn comes from the start's index
+    divided by 5, so each fault kind meets different objects.
 
   A start is redrawn (from the same seeded stream, at most 1000 times) until the object and the tag are
   entirely in view, 10 px from the border, at the start pose: a start that shows nothing is no comparison.
@@ -58,6 +66,7 @@ public:
   double focalScaleX = 1, focalScaleY = 1;         //!< intrinsics given to the controllers: px, py times these
   double principalShiftU = 0, principalShiftV = 0; //!< and u0, v0 shifted by these (px)
   vpHomogeneousMatrix eMcError;                    //!< hand-eye estimate given to the controllers: eMcTrue * eMcError
+  std::vector<vpMorphBenchEvent> events;           //!< timed faults of the run (set "faults")
 
   /*!
     The scene of this scenario: objectImage with the faults, in the object frame of templateImage when the two

@@ -56,6 +56,9 @@ public:
         0.0;                      //!< Where the occluder sits: fraction of the perimeter from contour vertex 0, [0, 1).
     unsigned int distractors = 0; //!< Number of small distractor objects (at most 20).
     unsigned int seed = 0;        //!< Seed of the noise and of the distractor placement.
+    //! The object is not drawn (a frame where it is absent: taken away, or hidden from the camera); the tag,
+    //! occluder and distractors still are.
+    bool objectHidden = false;
   };
 
   /*!

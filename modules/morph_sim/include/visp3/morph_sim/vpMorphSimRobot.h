@@ -95,6 +95,13 @@ public:
     initialiseCameraRelativeToObject(). Needs setDesiredPose() first.
   */
   bool initialiseCameraRelativeToDesired(const vpHomogeneousMatrix &cdMc);
+  /*!
+    A sudden, uncommanded displacement of the camera (the robot or its mount was bumped): the true camera moves
+    instantly by \e cMcp, expressed in its current frame (the new camera pose is fMc * cMcp), through inverse
+    kinematics from the current joints for the arms. Not a commanded motion: the path length, the step count
+    and the status are kept. Returns false, robot not moved, when the new pose is out of reach.
+  */
+  bool displaceCamera(const vpHomogeneousMatrix &cMcp);
   //! The desired pose given to setDesiredPose().
   const vpHomogeneousMatrix &get_cdMo() const { return m_cdMo; }
   //! Sets the joint positions directly (checked against the limits); resets path length and status.
@@ -135,6 +142,7 @@ public:
 private:
   struct Model;
   void checkPose(const vpHomogeneousMatrix &M, const char *what) const;
+  bool placeCamera(const vpHomogeneousMatrix &fMc, const vpColVector &qSeed);
 
   Kind m_kind;
   double m_dt;
