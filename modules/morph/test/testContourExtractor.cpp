@@ -313,6 +313,24 @@ TEST_CASE("approximation: exact on clean polygons, start-point independent, para
     CHECK(std::hypot(circ.x(k) - 100.0, circ.y(k) - 100.0) == Approx(70.0).margin(1.5));
 }
 
+TEST_CASE("approximation: a comb of one-pixel spikes (a chain that retraces itself) gives a simple polygon",
+          "[approx][bad]")
+{
+  // 150 spikes one pixel wide on a bar: the 8-connected outline goes up and down each spike over the same pixels,
+  // so the approximation is not simple and must be repaired (this took O(V^4) before: a hang on noisy outlines).
+  vpImage<unsigned char> I(200, 640, 255);
+  for (unsigned int u = 10; u < 630; ++u)
+    for (unsigned int v = 150; v < 160; ++v)
+      I[v][u] = 0;
+  for (unsigned int k = 0; k < 150; ++k)
+    for (unsigned int v = 40 + (k * 37) % 90; v < 150; ++v)
+      I[v][12 + 4 * k] = 0;
+  const vpMorphContour c = vpMorphContourExtractor().extract(I);
+  checkValid(c);
+  CHECK(c.isSimple());
+  CHECK(c.area() > 0.9 * 620 * 10);
+}
+
 TEST_CASE("approximation: bad chains throw", "[approx][bad]")
 {
   std::vector<vpImagePoint> two{vpImagePoint(0, 0), vpImagePoint(0, 1)};
