@@ -20,6 +20,8 @@
   x = X/Z and y = Y/Z. The edge from the last vertex back to the first is implicit.
 
   A valid contour has at least 3 finite vertices, no two consecutive vertices equal, and a non-zero area;
+  its edge lengths, perimeter and area must also be representable in double precision (no edge whose length
+  underflows to 0, no length or area that overflows: coordinates about 1e-160 apart or beyond 1e150 are refused);
   the constructors check this and throw vpMorphException otherwise, so every algorithm downstream can rely
   on it. Self-intersection is not rejected at construction (linear morphs may legitimately produce it):
   test it with isSimple().
