@@ -72,6 +72,14 @@ void vpMorphContour::validate() const
       os << "vertex " << k << " is not finite (" << m_x[k] << ", " << m_y[k] << ")";
       fail(os.str());
     }
+    // Second-order moments (orientation(), the rigid fits) sum fourth powers of coordinates: beyond 1e75 they
+    // overflow and the centroid or a fitted transform becomes infinite (found by fuzz_polygon_correspondence).
+    if (std::fabs(m_x[k]) > maxCoordinate() || std::fabs(m_y[k]) > maxCoordinate()) {
+      std::ostringstream os;
+      os << "vertex " << k << " (" << m_x[k] << ", " << m_y[k] << ") is beyond " << maxCoordinate()
+         << " in magnitude: its moments would overflow double precision";
+      fail(os.str());
+    }
   }
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t p = (k + n - 1) % n;
