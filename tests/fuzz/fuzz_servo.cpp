@@ -14,6 +14,7 @@
 */
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <vector>
 
 #include <visp3/core/vpCameraParameters.h>
@@ -77,6 +78,9 @@ void checkFeature(const vpMorphContour &current, const vpFeatureMorph &sd, const
   } catch (const vpException &) {
     return;
   }
+  if (e.getRows() == 4 && !allFinite(e))
+    std::fprintf(stderr, "error (%g, %g, %g, %g), fit theta %g scale %g\n", e[0], e[1], e[2], e[3],
+                 s.lastFit().theta(), s.lastFit().scale());
   VP_FUZZ_CHECK(e.getRows() == 4 && allFinite(e), "vpFeatureMorph::error() is a finite 4-vector");
   VP_FUZZ_CHECK(L.getRows() == 4 && L.getCols() == 6 && allFinite(L),
                 "vpFeatureMorph::interaction() is a finite 4x6 matrix");
