@@ -2,7 +2,7 @@
 # unrelated project (this folder) that knows nothing but find_package(VISPMorph) and that prefix.
 #
 #   cmake -DBUILD_DIR=<suite build> -DWORK_DIR=<scratch> -DSOURCE_DIR=<suite source> [-DGENERATOR=...]
-#         [-DCXX_COMPILER=...] [-DBUILD_TYPE=...] -P check_install.cmake
+#         [-DCXX_COMPILER=...] [-DCXX_FLAGS=...] [-DBUILD_TYPE=...] -P check_install.cmake
 #
 # Everything happens under WORK_DIR, which is wiped first, so the test depends on no other test.
 foreach(v BUILD_DIR WORK_DIR SOURCE_DIR)
@@ -71,6 +71,9 @@ set(configure_args -S "${CMAKE_CURRENT_LIST_DIR}" -B "${app_build}" "-DCMAKE_PRE
                    -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON)
 if(GENERATOR)
   list(APPEND configure_args -G "${GENERATOR}")
+endif()
+if(CXX_FLAGS) # e.g. the sanitizers of a VISPMORPH_SANITIZE build: its libraries need them in the executable too
+  list(APPEND configure_args "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${CXX_FLAGS}")
 endif()
 if(CXX_COMPILER)
   list(APPEND configure_args "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}")

@@ -68,7 +68,13 @@ void vpMorph::build()
     throw vpMorphException(vpMorphException::badParameterError, os.str());
   }
   }
-  m_rectified = m_estimator == NONE ? m_input : m_rigid.apply(m_input);
+  try {
+    m_rectified = m_estimator == NONE ? m_input : m_rigid.apply(m_input);
+  } catch (const vpException &e) {
+    throw vpMorphException(vpMorphException::badContourError,
+                           "vpMorph: the rectified input is degenerate (" + e.getStringMessage() +
+                               "): input and target differ in scale by too many orders of magnitude");
+  }
 }
 
 vpMorphContour vpMorph::at(double t) const
@@ -126,8 +132,20 @@ std::vector<vpMorphContour> vpMorph::sequence(std::size_t n) const
     return frames;
   frames.reserve(n);
   const std::size_t nr = rigidFrameCount(n), nd = n - nr;
-  for (std::size_t k = 1; k <= nr; ++k)
-    frames.push_back(k == nr ? m_rectified : m_rigid.interpolated(double(k) / double(nr)).apply(m_input));
+  for (std::size_t k = 1; k <= nr; ++k) {
+    if (k == nr) {
+      frames.push_back(m_rectified);
+      continue;
+    }
+    try {
+      frames.push_back(m_rigid.interpolated(double(k) / double(nr)).apply(m_input));
+    } catch (const vpException &e) {
+      std::ostringstream os;
+      os << "vpMorph::sequence: rigid frame " << k << " of " << nr << " is degenerate (" << e.getStringMessage()
+         << ")";
+      throw vpMorphException(vpMorphException::badContourError, os.str());
+    }
+  }
   for (std::size_t k = 1; k <= nd; ++k)
     frames.push_back(at(double(k) / double(nd)));
   return frames;

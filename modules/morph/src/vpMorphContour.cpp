@@ -72,6 +72,14 @@ void vpMorphContour::validate() const
       os << "vertex " << k << " is not finite (" << m_x[k] << ", " << m_y[k] << ")";
       fail(os.str());
     }
+    // Second-order moments (orientation(), the rigid fits) sum fourth powers of coordinates: beyond 1e75 they
+    // overflow and the centroid or a fitted transform becomes infinite (found by fuzz_polygon_correspondence).
+    if (std::fabs(m_x[k]) > maxCoordinate() || std::fabs(m_y[k]) > maxCoordinate()) {
+      std::ostringstream os;
+      os << "vertex " << k << " (" << m_x[k] << ", " << m_y[k] << ") is beyond " << maxCoordinate()
+         << " in magnitude: its moments would overflow double precision";
+      fail(os.str());
+    }
   }
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t p = (k + n - 1) % n;
@@ -81,8 +89,26 @@ void vpMorphContour::validate() const
       fail(os.str());
     }
   }
+  // Distinct vertices can still be too close or too far apart for double arithmetic: an edge length that
+  // underflows to 0 (coordinates differing by 1e-200) or a length or area that overflows (coordinates beyond
+  // 1e154) gives every algorithm downstream 0/0 or inf - inf, i.e. NaN work and out-of-band paths in the matcher.
+  for (std::size_t k = 0; k < n; ++k) {
+    const double len = edgeLength(k);
+    if (!(len > 0.0) || !std::isfinite(len)) {
+      std::ostringstream os;
+      os << "edge " << k << " has length " << len << " in double precision (vertices (" << m_x[(k + n - 1) % n]
+         << ", " << m_y[(k + n - 1) % n] << ") and (" << m_x[k] << ", " << m_y[k]
+         << ")): coordinates too close or too large";
+      fail(os.str());
+    }
+  }
   // Zero area relative to the squared perimeter: all vertices collinear.
   const double a = std::fabs(signedArea()), l = perimeter();
+  if (!std::isfinite(a) || !std::isfinite(l) || !std::isfinite(l * l)) {
+    std::ostringstream os;
+    os << "area (" << a << ") or perimeter (" << l << ") overflows double precision: coordinates too large";
+    fail(os.str());
+  }
   if (!(a > 1e-12 * l * l))
     fail("the vertices are collinear (zero area)");
 }

@@ -510,7 +510,8 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error &e) {
+  } catch (const json::exception &e) {
+    // parse_error, and also out_of_range for a number beyond double (1e400): both are a malformed file.
     throw ioError(std::string("vpMorphDatabase: not valid JSON (malformed or truncated file): ") + e.what());
   }
   if (!j.is_object())

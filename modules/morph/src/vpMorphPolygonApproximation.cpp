@@ -242,35 +242,109 @@ bool toContour(const std::vector<Pt> &p, const Vertices &v, vpMorphContour &out)
   return out.isSimple();
 }
 
-// Last resort: drop the vertex whose removal best restores simplicity, one at a time on small polygons. Each test
-// of simplicity is O(V^2): trying every removal at every step was O(V^4), a hang on the thousand-vertex outline of
-// a noisy silhouette (found: a benchmark run stuck for 45 minutes in one image), so larger polygons first shed the
-// sixteenth of their vertices closest to their neighbours' chords at each step (O(V^2) steps in all).
-bool repair(const std::vector<Pt> &p, Vertices v, vpMorphContour &out)
+double orient(const Pt &a, const Pt &b, const Pt &c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); }
+
+bool onSeg(const Pt &a, const Pt &b, const Pt &c)
 {
-  const std::size_t small = 32;
-  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
-  const Chain c(p);
-  while (v.size() > 3) {
-    if (v.size() <= small) {
-      for (std::size_t j = 0; j < v.size(); ++j) {
-        Vertices w(v);
-        w.erase(w.begin() + static_cast<std::ptrdiff_t>(j));
-        vpMorphContour cw;
-        try {
-          if (toContour(p, w, cw)) {
-            out = cw;
-            return true;
-          }
-        } catch (const vpMorphException &) {
-        }
+  return std::min(a.x, b.x) <= c.x && c.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= c.y && c.y <= std::max(a.y, b.y);
+}
+
+bool segsIntersect(const Pt &a, const Pt &b, const Pt &c, const Pt &d)
+{
+  const double d1 = orient(c, d, a), d2 = orient(c, d, b), d3 = orient(a, b, c), d4 = orient(a, b, d);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
+    return true;
+  return (d1 == 0 && onSeg(c, d, a)) || (d2 == 0 && onSeg(c, d, b)) || (d3 == 0 && onSeg(a, b, c)) ||
+         (d4 == 0 && onSeg(a, b, d));
+}
+
+// Positions in \e v of the vertices of the first violation of simplicity (the test of vpMorphContour::isSimple()
+// on the polygon toContour() builds: a fold-back at a vertex, or two crossing edges); empty when there is none.
+// Removing a vertex changes only its two edges, so a single removal can restore simplicity only if it is one of
+// these vertices: repair() tries them instead of every vertex.
+std::vector<std::size_t> firstViolation(const std::vector<Pt> &p, const Vertices &v)
+{
+  const std::ptrdiff_t np = static_cast<std::ptrdiff_t>(p.size());
+  std::vector<Pt> q;
+  std::vector<std::vector<std::size_t>> pos; // positions of v that give polygon vertex k
+  for (std::size_t j = 0; j < v.size(); ++j) {
+    const Pt &r = p[static_cast<std::size_t>(((v[j] % np) + np) % np)];
+    if (!q.empty() && q.back().x == r.x && q.back().y == r.y) {
+      pos.back().push_back(j);
+      continue;
+    }
+    q.push_back(r);
+    pos.push_back({j});
+  }
+  while (q.size() > 1 && q.back().x == q.front().x && q.back().y == q.front().y) {
+    pos.front().insert(pos.front().end(), pos.back().begin(), pos.back().end());
+    q.pop_back();
+    pos.pop_back();
+  }
+  const std::size_t n = q.size();
+  std::vector<std::size_t> ks;
+  for (std::size_t i = 0; i < n && ks.empty(); ++i) {
+    const std::size_t i1 = (i + 1) % n, i2 = (i + 2) % n;
+    if (orient(q[i], q[i1], q[i2]) == 0.0 &&
+        (q[i1].x - q[i].x) * (q[i2].x - q[i1].x) + (q[i1].y - q[i].y) * (q[i2].y - q[i1].y) < 0.0) {
+      ks = {i, i1, i2};
+      break;
+    }
+    for (std::size_t j = i + 2; j < n; ++j) {
+      const std::size_t j1 = (j + 1) % n;
+      if (j1 != i && segsIntersect(q[i], q[i1], q[j], q[j1])) {
+        ks = {i, i1, j, j1};
+        break;
       }
     }
-    // Drop the vertices closest to their neighbours' chord (one on small polygons), then try again.
+  }
+  std::vector<std::size_t> out;
+  for (std::size_t k : ks)
+    out.insert(out.end(), pos[k].begin(), pos[k].end());
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// Last resort: drop the vertex whose removal best restores simplicity, one at a time. Each round tries, in
+// order, the single removals that can help (the vertices of the first violation; the others cannot), so a round
+// costs O(V^2) instead of O(V^3) and the repair O(V^3) instead of O(V^4): with every vertex tried, a jagged
+// boundary of a few hundred vertices took minutes (found by fuzz_contour_extraction). The choice is the same as
+// trying every vertex (the first helpful one in order, else the vertex closest to its neighbours' chord), except
+// for a removal that only helps by merging two equal neighbours, which is tried when those are in the violation.
+bool repair(const std::vector<Pt> &p, Vertices v, vpMorphContour &out)
+{
+  while (v.size() > 3) {
+    bool done = false;
+    std::vector<std::size_t> candidates = firstViolation(p, v);
+    if (candidates.empty()) { // simple already, yet refused (degenerate): try every vertex, as before
+      candidates.resize(v.size());
+      for (std::size_t j = 0; j < v.size(); ++j)
+        candidates[j] = j;
+    }
+    for (std::size_t j : candidates) {
+      if (done)
+        break;
+      Vertices w(v);
+      w.erase(w.begin() + static_cast<std::ptrdiff_t>(j));
+      vpMorphContour c;
+      try {
+        if (toContour(p, w, c)) {
+          out = c;
+          return true;
+        }
+      } catch (const vpMorphException &) {
+      }
+    }
+    // No single removal suffices: drop the vertex closest to its neighbours' chord and try again. Polygons over
+    // 32 vertices drop the sixteenth of their vertices closest to their chords at once: one at a time, the rounds
+    // on a thousand-vertex noisy outline still cost O(V^3) (a benchmark run stuck for 45 minutes in one image).
+    const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+    const Chain c(p);
     std::vector<std::pair<double, std::size_t> > d(v.size());
     for (std::size_t j = 0; j < v.size(); ++j)
       d[j] = {Chain::segDist(c.at(prevOf(v, j, n)), c.at(nextOf(v, j, n)), c.at(v[j])), j};
-    const std::size_t drop = v.size() <= small ? 1 : std::min(v.size() - 3, (v.size() + 15) / 16);
+    const std::size_t drop = v.size() <= 32 ? 1 : (v.size() + 15) / 16;
     std::partial_sort(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(drop), d.end());
     std::vector<bool> gone(v.size(), false);
     for (std::size_t k = 0; k < drop; ++k)
@@ -280,16 +354,6 @@ bool repair(const std::vector<Pt> &p, Vertices v, vpMorphContour &out)
       if (!gone[j])
         w.push_back(v[j]);
     v.swap(w);
-    if (v.size() > small) {
-      vpMorphContour cw;
-      try {
-        if (toContour(p, v, cw)) {
-          out = cw;
-          return true;
-        }
-      } catch (const vpMorphException &) {
-      }
-    }
   }
   return false;
 }

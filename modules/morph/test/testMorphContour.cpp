@@ -199,3 +199,24 @@ TEST_CASE("contour region: bad values throw", "[contour][region][bad]")
   REQUIRE_THROWS_AS(r.setRegion(8.0, 1, 1, std::numeric_limits<double>::infinity(), 0, 1), vpMorphException);
   CHECK_FALSE(r.hasRegion());
 }
+
+// Found by fuzzing (tests/fuzz/regressions/polygon_correspondence/): two distinct vertices 1e-231 apart make an
+// edge whose length underflows to 0, and coordinates beyond 1e75 make the moments (centroid, rigid fits) overflow; such
+// contours used to be accepted and gave the matcher NaN step costs, whose trace-back then left its band
+// (heap-buffer-overflow under ASan). They are refused at construction now, with a message saying why.
+TEST_CASE("contour: coordinates too close or too large for double precision throw", "[contour][bad][fuzz]")
+{
+  // The L shape of the fuzz seed with its last vertex 2.6e-231 above the first one.
+  REQUIRE_THROWS_WITH((vpMorphContour({0, 60, 60, 30, 30, 0}, {0, 0, 6, 6, 20, 2.586563270614692e-231})),
+                      Catch::Contains("edge 0 has length 0"));
+  REQUIRE_THROWS_AS((vpMorphContour({0, 40, 40, 10, 10, 0}, {0, 0, 1.8e-260, 10, 50, 50})), vpMorphException);
+  // Overflow: beyond maxCoordinate().
+  REQUIRE_THROWS_WITH((vpMorphContour({0, 1e300, 1e300}, {0, 0, 1e300})), Catch::Contains("beyond"));
+  REQUIRE_THROWS_WITH((vpMorphContour({0, 5e153, 5e153}, {0, 0, 5e153})), Catch::Contains("beyond 1e+75"));
+  REQUIRE_THROWS_WITH((vpMorphContour({0, 2e75, 2e75}, {0, 0, 1})), Catch::Contains("overflow"));
+  CHECK_NOTHROW(vpMorphContour({0, 1e75, 1e75}, {0, 0, 1e75}));
+  // Still accepted: tiny and large but representable polygons.
+  CHECK_NOTHROW(rectangle(0, 0, 1e-100, 2e-100));
+  CHECK_NOTHROW(rectangle(1e70, -1e70, 1e70, 3e70));
+  CHECK(rectangle(0, 0, 1e-100, 2e-100).area() > 0);
+}

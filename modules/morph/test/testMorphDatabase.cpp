@@ -197,6 +197,12 @@ TEST_CASE("database: bad files give clear errors", "[database]")
   negArea.replace(negArea.find("\"area\": "), 8, "\"area\": -");
   expectIo(loadText(negArea), "finite positive area");
   expectIo(errorOf([&] { vpMorphDatabase::load((dir / "absent.json").string()); }), "cannot open");
+  // Found by fuzz_database_json: a number beyond double made the JSON parser throw out_of_range, which escaped
+  // as a nlohmann exception instead of a vpMorphException (regressions/database_json/).
+  expectIo(loadText("[\n 44440000000000000000000e000000000000000000000000395, 0.05]"), "malformed");
+  std::string hugeX = text;
+  hugeX.replace(hugeX.find("\"x\": ["), 6, "\"x\": [1e400,");
+  expectIo(loadText(hugeX), "malformed");
 
   // A template whose image disappeared.
   vpMorphDatabase db;

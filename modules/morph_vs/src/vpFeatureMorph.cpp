@@ -106,13 +106,29 @@ void vpFeatureMorph::buildFrom(const vpMorphContour &contour, const vpCameraPara
 
 void vpFeatureMorph::setContour(const vpMorphContour &normalized, double A, double B, double C)
 {
+  double a, xg, yg, n20, n02, n11;
+  regionMoments(normalized, a, xg, yg, n20, n02, n11);
+  const double Z = 1.0 / (A * xg + B * yg + C);
+  // A valid contour can still be too small for its moments in normalised coordinates (a polygon of 1e-160: the
+  // area underflows to 0, the centroid divides by it): refuse it rather than give vpServo an infinite error
+  // (found by fuzz_servo).
+  // The interaction matrix sums cubes of the vertex offsets: below 1e-50 normalised units (a 1e-50 rad object,
+  // far below any image) they underflow and ViSP divides by zero.
+  if (!(std::sqrt(a) >= 1e-50) || !std::isfinite(a) || !std::isfinite(xg) || !std::isfinite(yg) || !std::isfinite(n20) ||
+      !std::isfinite(n02) || !std::isfinite(n11) || !std::isfinite(Z) || !std::isfinite(std::log(a))) {
+    std::ostringstream os;
+    os << "vpFeatureMorph::buildFrom: the contour's moments are not finite in normalised coordinates (area " << a
+       << ", centroid (" << xg << ", " << yg << ")): the polygon is too small (below 1e-50 normalised units) or too large";
+    throw vpMorphException(vpMorphException::badContourError, os.str());
+  }
   m_contour = normalized;
   m_A = A;
   m_B = B;
   m_C = C;
-  double a, xg, yg;
-  regionMoments(m_contour, a, xg, yg, m_n20, m_n02, m_n11);
-  m_Z = 1.0 / (A * xg + B * yg + C);
+  m_n20 = n20;
+  m_n02 = n02;
+  m_n11 = n11;
+  m_Z = Z;
   s[0] = xg;
   s[1] = yg;
   s[3] = 0.5 * std::log(a);
@@ -192,7 +208,10 @@ vpMatrix vpFeatureMorph::interaction(unsigned int select)
         r[0][k] += w[i] * (ax * Ly[k] - ay * Lx[k]);
       N += w[i] * (ax * ax + ay * ay);
     }
-    r /= N;
+    // Element by element: vpMatrix::operator/= refuses divisors below machine epsilon, i.e. any contour smaller
+    // than about 1e-5 normalised units (N is a cube of its size), which buildFrom() accepts (found by fuzzing).
+    for (unsigned int k = 0; k < 6; ++k)
+      r[0][k] /= N;
     L = vpMatrix::stack(L, r);
   }
   if (select & selectScale()) {

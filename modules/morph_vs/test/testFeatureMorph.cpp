@@ -251,3 +251,41 @@ TEST_CASE("vpFeatureMorph converges in a stock vpServo with current, desired and
     }
   }
 }
+
+// Found by fuzzing (tests/fuzz/regressions/servo/): a valid contour of about 1e-160 normalised units has an
+// area that underflows and a centroid that divides by it; buildFrom() accepted it and error() returned
+// infinities to vpServo (at 1e-150, interaction() divided by zero). Such contours are refused now (below 1e-50),
+// by buildFrom() or by vpMorphContour itself, and the feature stays unbuilt.
+TEST_CASE("vpFeatureMorph refuses a contour whose moments are not finite", "[feature][bad][fuzz]")
+{
+  const vpCameraParameters cam(800, 800, 320, 240);
+  for (double e : {1e-51, 1e-150, 1e-155, 1e-160, 1e-161}) {
+    CAPTURE(e);
+    vpFeatureMorph s;
+    try {
+      s.buildFrom(vpMorphContour({0.0, e, e, 0.0}, {0.0, 0.0, e, e}, vpMorphContour::NORMALIZED), 0.5);
+      FAIL("a contour too small for double precision was accepted");
+    } catch (const vpMorphException &ex) {
+      CHECK(ex.getCode() == vpMorphException::badContourError);
+    }
+    CHECK_FALSE(s.isBuilt());
+  }
+  // At 1e-40 normalised units, and at a usable pixel scale, the square is accepted with finite values.
+  for (double e : {1e-40, 1e-3}) {
+    CAPTURE(e);
+    vpFeatureMorph s, sd;
+    const vpMorphContour c({0.0, e, e, 0.0}, {0.0, 0.0, e, e}, vpMorphContour::NORMALIZED);
+    s.buildFrom(c, 0.5);
+    sd.buildFrom(c.transformed(0.3, e, 0.0), 0.5);
+    const vpColVector err = s.error(sd);
+    const vpMatrix L = s.interaction();
+    for (unsigned int i = 0; i < err.getRows(); ++i)
+      CHECK(std::isfinite(err[i]));
+    for (unsigned int i = 0; i < L.getRows(); ++i)
+      for (unsigned int j = 0; j < L.getCols(); ++j)
+        CHECK(std::isfinite(L[i][j]));
+  }
+  vpFeatureMorph s;
+  CHECK_NOTHROW(s.buildFrom(vpMorphContour({320.0, 321.0, 321.0, 320.0}, {240.0, 240.0, 241.0, 241.0}), cam, 0.5));
+  CHECK(s.isBuilt());
+}

@@ -41,7 +41,8 @@ public:
 
   /*!
     Morph with the default matcher (vpMorphWorkModel defaults, scale normalisation on).
-    \throw vpMorphException on empty contours or different units (badParameterError).
+    \throw vpMorphException on empty contours or different units (badParameterError); badContourError when the
+    rectified input degenerates (rounding merges two of its vertices: scales differing by many orders of magnitude).
   */
   vpMorph(const vpMorphContour &input, const vpMorphContour &target, Estimator estimator = LEAST_SQUARES,
           bool withScale = true);
@@ -73,7 +74,9 @@ public:
     vertex per pair, starting at the starting pair, except that exactly coincident consecutive vertices are
     merged.
     \throw vpMorphException::badParameterError if t is not finite or outside [0, 1];
-    badContourError if the interpolated polygon degenerates (possible only without rectification).
+    badContourError if the interpolated polygon degenerates: without rectification (two views far apart in
+    rotation), or between very different or very differently scaled shapes, where a vertex can run onto its
+    neighbour or all vertices become collinear (found by fuzzing; vpServoMorph then reports DEGENERATE_CONTOUR).
   */
   vpMorphContour at(double t) const;
 
@@ -83,6 +86,8 @@ public:
     then nd deformation frames at(k / nd), k = 1..nd. nd = max(1, n / 2) and nr = n - nd: half of the frames
     for each stage, with at least the final one, so that n = 1 gives just the target. For NONE, nr = 0.
     The last contour is exactly the target. n = 0 gives an empty vector.
+    \throw vpMorphException::badContourError when a frame degenerates (see at(); a rigid frame can too, when the
+    input is scaled by orders of magnitude and rounding makes two of its vertices coincide).
   */
   std::vector<vpMorphContour> sequence(std::size_t n) const;
   //! input() followed by sequence(n): n + 1 contours, as drawn in the paper's figures.

@@ -20,6 +20,8 @@
   x = X/Z and y = Y/Z. The edge from the last vertex back to the first is implicit.
 
   A valid contour has at least 3 finite vertices, no two consecutive vertices equal, and a non-zero area;
+  its coordinates must be within maxCoordinate() in magnitude and its edge lengths representable in double
+  precision (no edge whose length underflows to 0: vertices about 1e-160 apart are refused);
   the constructors check this and throw vpMorphException otherwise, so every algorithm downstream can rely
   on it. Self-intersection is not rejected at construction (linear morphs may legitimately produce it):
   test it with isSimple().
@@ -38,6 +40,9 @@ public:
   vpMorphContour(const std::vector<double> &x, const std::vector<double> &y, Units units = PIXEL);
   //! From ViSP image points: x = get_u(), y = get_v().
   explicit vpMorphContour(const std::vector<vpImagePoint> &points, Units units = PIXEL);
+
+  //! Largest coordinate magnitude accepted (1e75): the moments of the region (fourth powers) must stay finite.
+  static double maxCoordinate() { return 1e75; }
 
   std::size_t size() const { return m_x.size(); }
   bool empty() const { return m_x.empty(); }

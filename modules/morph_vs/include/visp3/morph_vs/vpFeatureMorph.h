@@ -61,7 +61,8 @@ public:
   /*!
     From a contour in pixels (or already normalised) and the depth of the object's plane.
     \throw vpMorphException::badParameterError if Z is not finite and > 0;
-    badContourError if the contour is empty.
+    badContourError if the contour is empty, or smaller than 1e-50 normalised units (square root of its area) or
+    with non-finite moments: too small for the interaction matrix in double precision.
   */
   void buildFrom(const vpMorphContour &contour, const vpCameraParameters &cam, double Z);
   //! From a contour in normalised coordinates (the camera parameters are then only used by display()).
