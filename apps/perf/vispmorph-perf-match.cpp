@@ -13,6 +13,8 @@
 */
 #include <benchmark/benchmark.h>
 
+#include "vispmorph-perf-reporter.h"
+
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -80,20 +82,9 @@ BENCHMARK(BM_fast)->RangeMultiplier(2)->Range(32, 256)->Unit(benchmark::kMicrose
 BENCHMARK(BM_window)->RangeMultiplier(2)->Range(32, 256)->Unit(benchmark::kMicrosecond);
 
 // Console output plus, at the end, the speed-up of fast and window over brute force at each N.
-class RatioReporter : public benchmark::ConsoleReporter
+class RatioReporter : public vpMorphPerfReporter
 {
 public:
-  void ReportRuns(const std::vector<Run> &runs) override
-  {
-    for (const Run &r : runs)
-      if (r.run_type == Run::RT_Iteration && r.iterations > 0) {
-        // Fastest repetition: the least disturbed by whatever else the machine runs.
-        const std::string name = r.run_name.str();
-        const double t = r.GetAdjustedCPUTime(); // CPU time: robust to other processes taking the core
-        m_time[name] = m_time.count(name) ? std::min(m_time[name], t) : t;
-      }
-    ConsoleReporter::ReportRuns(runs);
-  }
   void Finalize() override
   {
     ConsoleReporter::Finalize();
@@ -113,8 +104,6 @@ public:
     }
   }
 
-private:
-  std::map<std::string, double> m_time;
 };
 } // namespace
 

@@ -20,6 +20,8 @@
 */
 #include <benchmark/benchmark.h>
 
+#include "vispmorph-perf-reporter.h"
+
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -153,19 +155,9 @@ void BM_ibvs4Points(benchmark::State &state)
 }
 
 // The console table, then the ratios to the IBVS baseline (CPU time, fastest repetition).
-class RatioReporter : public benchmark::ConsoleReporter
+class RatioReporter : public vpMorphPerfReporter
 {
 public:
-  void ReportRuns(const std::vector<Run> &runs) override
-  {
-    for (const Run &r : runs)
-      if (r.run_type == Run::RT_Iteration && r.iterations > 0) {
-        const std::string name = r.run_name.str();
-        const double t = r.GetAdjustedCPUTime();
-        m_time[name] = m_time.count(name) ? std::min(m_time[name], t) : t;
-      }
-    ConsoleReporter::ReportRuns(runs);
-  }
   void Finalize() override
   {
     ConsoleReporter::Finalize();
@@ -180,8 +172,6 @@ public:
          << " x\n";
   }
 
-private:
-  std::map<std::string, double> m_time;
 };
 } // namespace
 
