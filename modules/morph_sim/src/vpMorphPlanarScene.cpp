@@ -137,6 +137,23 @@ template <> void applyFaults<vpRGBa>(vpImage<vpRGBa> &I, const vpMorphPlanarScen
 }
 } // namespace
 
+namespace
+{
+// Reads a template image; \e what names it in the errors (notFoundError when missing, ioError when unreadable).
+void readImage(const std::string &path, const std::string &what, vpImage<unsigned char> &I)
+{
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw vpMorphException(vpMorphException::notFoundError, what + " not found: '" + path + "'");
+  try {
+    vpImageIo::read(I, path);
+  } catch (const vpException &e) {
+    throw vpMorphException(vpMorphException::ioError,
+                           what + " '" + path + "' cannot be read: " + e.getStringMessage());
+  }
+}
+} // namespace
+
 vpMorphPlanarScene::vpMorphPlanarScene(const std::string &objectImage, double objectSize, int tagId, double tagSize)
   : m_path(objectImage), m_objectSize(objectSize), m_tagSize(tagSize), m_tagId(tagId), m_cam(defaultCamera())
 {
@@ -146,16 +163,7 @@ vpMorphPlanarScene::vpMorphPlanarScene(const std::string &objectImage, double ob
        << tagSize << " m)";
     badParameter(os.str());
   }
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(objectImage, ec))
-    throw vpMorphException(vpMorphException::notFoundError,
-                           "vpMorphPlanarScene: object image not found: '" + objectImage + "'");
-  try {
-    vpImageIo::read(m_texture, objectImage);
-  } catch (const vpException &e) {
-    throw vpMorphException(vpMorphException::ioError, "vpMorphPlanarScene: cannot read object image '" + objectImage +
-                                                          "': " + e.getStringMessage());
-  }
+  readImage(objectImage, "vpMorphPlanarScene: object image", m_texture);
   m_tag = vpMorphTagTexture::create(tagId, kTagCell);                    // checks the id
   const vpMorphContour c = vpMorphContourExtractor().extract(m_texture); // throws badImageError without object
   m_texX = c.xs();
@@ -176,16 +184,7 @@ void vpMorphPlanarScene::textureFrame(const vpMorphContour &c, double objectSize
 void vpMorphPlanarScene::setReferenceImage(const std::string &referenceImage)
 {
   vpImage<unsigned char> ref;
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(referenceImage, ec))
-    throw vpMorphException(vpMorphException::notFoundError,
-                           "vpMorphPlanarScene::setReferenceImage: image not found: '" + referenceImage + "'");
-  try {
-    vpImageIo::read(ref, referenceImage);
-  } catch (const vpException &e) {
-    throw vpMorphException(vpMorphException::ioError, "vpMorphPlanarScene::setReferenceImage: cannot read '" +
-                                                          referenceImage + "': " + e.getStringMessage());
-  }
+  readImage(referenceImage, "vpMorphPlanarScene::setReferenceImage: reference image", ref);
   if (ref.getWidth() != m_texture.getWidth() || ref.getHeight() != m_texture.getHeight())
     badParameter("vpMorphPlanarScene::setReferenceImage: '" + referenceImage +
                  "' is not of the object image's size: the two must share one texture frame");
