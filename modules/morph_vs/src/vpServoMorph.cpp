@@ -23,6 +23,15 @@ void checkPositive(double v, const char *what)
   }
 }
 
+void checkNonNegative(double v, const char *what)
+{
+  if (!std::isfinite(v) || v < 0.0) {
+    std::ostringstream os;
+    os << "vpServoMorph: " << what << " must be finite and >= 0, got " << v;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+}
+
 bool allFinite(const vpColVector &v)
 {
   for (unsigned int i = 0; i < v.size(); ++i)
@@ -232,8 +241,7 @@ void vpServoMorph::setJumpFactor(double f)
 
 void vpServoMorph::setWorkFloor(double w)
 {
-  if (!std::isfinite(w) || w < 0)
-    throw vpMorphException(vpMorphException::badParameterError, "vpServoMorph::setWorkFloor: must be finite, >= 0");
+  checkNonNegative(w, "the work floor");
   m_workFloor = w;
 }
 
@@ -634,11 +642,7 @@ void vpServoMorph::setFinalTiltThreshold(double rad)
 
 void vpServoMorph::setTiltDeadZone(double rad)
 {
-  if (!std::isfinite(rad) || rad < 0.0) {
-    std::ostringstream os;
-    os << "vpServoMorph::setTiltDeadZone: the dead zone must be finite and >= 0, got " << rad;
-    throw vpMorphException(vpMorphException::badParameterError, os.str());
-  }
+  checkNonNegative(rad, "the tilt dead zone");
   m_tiltDeadZone = rad;
 }
 
