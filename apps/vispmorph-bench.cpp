@@ -48,6 +48,7 @@ void usage(std::ostream &os)
         "                     ibvs-mean, pbvs, moments\n"
         "  --robot R          camera (default), viper850 or afma6\n"
         "  --count N          scenarios per set (default 10)\n"
+        "  --only LIST        replay only these scenario indices of each set (comma-separated, each < N)\n"
         "  --seed S           seed of the scenario sets (default 1)\n"
         "  --threads T        threads (default: all cores)\n"
         "  --max-iterations N iteration budget per run (default 600)\n"
@@ -115,6 +116,7 @@ int main(int argc, char **argv)
   std::vector<std::string> sets, controllers = vpMorphBenchController::names();
   std::string out, robotName = "camera", dataDir = VISPMORPH_DATA_DIR;
   unsigned int count = 10, seed = 1, threads = 0;
+  std::vector<unsigned int> only;
   vpMorphBench::Settings settings;
   bool curves = true, plots = true;
   try {
@@ -155,7 +157,10 @@ int main(int argc, char **argv)
           throw BadArgs{"unknown robot '" + robotName + "' (camera, viper850, afma6)"};
       } else if (a == "--count")
         count = static_cast<unsigned int>(parseUnsigned(a, value(), 1));
-      else if (a == "--seed")
+      else if (a == "--only") {
+        for (const std::string &k : splitList(value()))
+          only.push_back(static_cast<unsigned int>(parseUnsigned(a, k, 0)));
+      } else if (a == "--seed")
         seed = static_cast<unsigned int>(parseUnsigned(a, value(), 0));
       else if (a == "--threads")
         threads = static_cast<unsigned int>(parseUnsigned(a, value(), 1));
@@ -183,6 +188,9 @@ int main(int argc, char **argv)
       throw BadArgs{"--out is required"};
     if (controllers.empty())
       throw BadArgs{"--controllers is empty"};
+    for (unsigned int k : only)
+      if (k >= count)
+        throw BadArgs{"--only: scenario " + std::to_string(k) + " is not below --count " + std::to_string(count)};
   } catch (const BadArgs &e) {
     std::cerr << "vispmorph-bench: " << e.msg << "\n";
     usage(std::cerr);
@@ -197,8 +205,10 @@ int main(int argc, char **argv)
 
     std::vector<vpMorphBenchScenario> scenarios;
     for (const std::string &s : sets) {
-      const std::vector<vpMorphBenchScenario> v = vpMorphBenchScenario::generate(s, count, seed, dataDir);
-      scenarios.insert(scenarios.end(), v.begin(), v.end());
+      // A scenario depends on (seed, set, index) only: replaying a few of them gives the same starts.
+      for (const vpMorphBenchScenario &sc : vpMorphBenchScenario::generate(s, count, seed, dataDir))
+        if (only.empty() || std::find(only.begin(), only.end(), sc.index) != only.end())
+          scenarios.push_back(sc);
     }
     {
       std::ofstream f(out + "/scenarios.csv");
