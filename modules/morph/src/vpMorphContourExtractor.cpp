@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -105,6 +106,69 @@ double medianUnder(const cv::Mat &grey, const cv::Mat &m)
   return 255.0;
 }
 
+// Share of the pixels under a mask at grey level \e v (a saturated level), 0 when the mask is empty.
+double shareAt(const cv::Mat &grey, const cv::Mat &m, unsigned char v)
+{
+  long n = 0, at = 0;
+  for (int r = 0; r < m.rows; ++r) {
+    const unsigned char *pm = m.ptr<unsigned char>(r), *pg = grey.ptr<unsigned char>(r);
+    for (int c = 0; c < m.cols; ++c)
+      if (pm[c]) {
+        ++n;
+        at += pg[c] == v;
+      }
+  }
+  return n > 0 ? double(at) / double(n) : 0.0;
+}
+
+/*
+  Grey level and slope (grey levels per pixel) of an edge at its gradient maxima: the medians over the
+  band's pixels that are a maximum of the gradient magnitude along the gradient direction, each refined to the
+  parabola's vertex. A blurred step is antisymmetric about its edge, so the gradient peaks on the edge whatever
+  clips its far side. False when too few maxima (under 16) are found.
+*/
+bool edgeProfile(const cv::Mat &g, const cv::Mat &band, double minSlope, double &level, double &slope)
+{
+  cv::Mat gx, gy;
+  cv::Sobel(g, gx, CV_32F, 1, 0, 3, 1.0 / 8.0, 0.0, cv::BORDER_REPLICATE);
+  cv::Sobel(g, gy, CV_32F, 0, 1, 3, 1.0 / 8.0, 0.0, cv::BORDER_REPLICATE);
+  cv::Mat mag;
+  cv::magnitude(gx, gy, mag);
+  auto at = [&mag](double x, double y) { // bilinear, clamped to the box
+    x = std::min(std::max(x, 0.0), double(mag.cols - 1));
+    y = std::min(std::max(y, 0.0), double(mag.rows - 1));
+    const int x0 = std::min(int(x), mag.cols - 2 < 0 ? 0 : mag.cols - 2), y0 = std::min(int(y), mag.rows - 2 < 0 ? 0 : mag.rows - 2);
+    const int x1 = std::min(x0 + 1, mag.cols - 1), y1 = std::min(y0 + 1, mag.rows - 1);
+    const double a = x - x0, b = y - y0;
+    return (1 - a) * (1 - b) * mag.at<float>(y0, x0) + a * (1 - b) * mag.at<float>(y0, x1) +
+           (1 - a) * b * mag.at<float>(y1, x0) + a * b * mag.at<float>(y1, x1);
+  };
+  std::vector<double> levels, slopes;
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.cols; ++c) {
+      const double m0 = mag.at<float>(r, c);
+      if (!band.at<unsigned char>(r, c) || !(m0 > minSlope))
+        continue;
+      const double nx = gx.at<float>(r, c) / m0, ny = gy.at<float>(r, c) / m0;
+      const double mm = at(c - nx, r - ny), mp = at(c + nx, r + ny);
+      if (!(m0 >= mm && m0 > mp))
+        continue;
+      const double den = mm - 2.0 * m0 + mp;
+      const double d = den < 0.0 ? std::min(0.5, std::max(-0.5, 0.5 * (mm - mp) / den)) : 0.0;
+      levels.push_back(g.at<unsigned char>(r, c) + d * m0); // g rises along the gradient at m0 per pixel
+      slopes.push_back(m0 - 0.25 * (mm - mp) * d);
+    }
+  if (levels.size() < 16)
+    return false;
+  auto median = [](std::vector<double> &v) {
+    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  level = median(levels);
+  slope = median(slopes);
+  return slope > 0.0;
+}
+
 /*
   Area and centroid of a region from its grey levels: pixels well inside count 1, pixels across the edge count
   their fraction of the way from the background level to the object level (both measured locally, as medians,
@@ -142,6 +206,17 @@ void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg)
   // Raw moments about the box corner (well conditioned), centred at the end.
   double m00 = 0.0, m10 = 0.0, m01 = 0.0, m20 = 0.0, m11 = 0.0, m02 = 0.0;
   const bool grades = fg >= 0.0 && bg >= 0.0 && std::fabs(fg - bg) >= 8.0;
+  // A level clipped by the sensor (a bright background at 255 under a brighter light) flattens the far half of the
+  // edge: the linear weights then lose that half's share and the region shrinks by a few tenths of a pixel all
+  // round (measured: millimetres of depth for a servo). There, the pixels count by their distance to the edge,
+  // (level - g) / slope, the edge's level and slope read where the gradient peaks, which clipping beyond the
+  // middle of the step does not move. A quarter of the far level's pixels at the limit marks it as clipped.
+  double edgeLevel = 0.0, edgeSlope = 0.0;
+  const unsigned char far = fg < bg ? 255 : 0, near = fg < bg ? 0 : 255;
+  const bool clipped = grades && (shareAt(g, ring, far) >= 0.25 || shareAt(g, inner, near) >= 0.25) &&
+                       edgeProfile(g, band, std::fabs(fg - bg) / 8.0, edgeLevel, edgeSlope) &&
+                       (edgeLevel - fg) * (bg - edgeLevel) > 0.0;
+  const double toward = fg < bg ? -1.0 : 1.0; // sign of g - edgeLevel inside the object
   const cv::Mat &full = grades ? inner : region;
   for (int r = 0; r < box.height; ++r) {
     const unsigned char *pf = full.ptr<unsigned char>(r), *pb = band.ptr<unsigned char>(r),
@@ -150,6 +225,8 @@ void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg)
       double w = 0.0;
       if (pf[c])
         w = 1.0;
+      else if (clipped && pb[c])
+        w = std::min(1.0, std::max(0.0, 0.5 + toward * (pg[c] - edgeLevel) / edgeSlope));
       else if (grades && pb[c])
         w = (pg[c] - bg) / (fg - bg);
       if (w != 0.0) {
