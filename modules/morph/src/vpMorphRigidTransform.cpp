@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -386,4 +387,119 @@ vpMorphRigidTransform vpMorphRigidTransform::fitLeastSquares(const vpMorphContou
     }
   }
   return toTransform(T, input);
+}
+
+namespace
+{
+// Closest point q to p on the closed polygon c, and the unit normal there (of the edge, or from q to p at a vertex).
+void closestOnOutline(const vpMorphContour &c, const Eigen::Vector2d &p, Eigen::Vector2d &q, Eigen::Vector2d &normal)
+{
+  const std::size_t n = c.size();
+  double bestD2 = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d a(c.x(k), c.y(k)), b(c.x((k + 1) % n), c.y((k + 1) % n));
+    const Eigen::Vector2d ab = b - a;
+    const double l2 = ab.squaredNorm();
+    const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, (p - a).dot(ab) / l2)) : 0.0;
+    const Eigen::Vector2d qk = a + t * ab;
+    const double d2 = (qk - p).squaredNorm();
+    if (d2 < bestD2) {
+      bestD2 = d2;
+      q = qk;
+      const Eigen::Vector2d edgeNormal = l2 > 0.0 ? Eigen::Vector2d(-ab.y(), ab.x()) / std::sqrt(l2) : Eigen::Vector2d(1, 0);
+      normal = (t > 0.0 && t < 1.0) || d2 == 0.0 ? edgeNormal : Eigen::Vector2d((p - qk) / std::sqrt(d2));
+    }
+  }
+}
+} // namespace
+
+vpMorphRigidTransform vpMorphRigidTransform::refineOnOutline(const vpMorphContour &input, const vpMorphContour &target,
+                                                             const vpMorphRigidTransform &initial, bool withScale,
+                                                             double minSigma, unsigned int maxIterations)
+{
+  const char *who = "vpMorphRigidTransform::refineOnOutline";
+  if (input.empty() || target.empty())
+    throw vpMorphException(vpMorphException::badContourError, std::string(who) + ": empty contour");
+  if (input.units() != target.units())
+    badParameter(std::string(who) + ": the two contours have different units");
+  if (maxIterations < 1)
+    badParameter(std::string(who) + ": maxIterations must be >= 1");
+  if (!std::isfinite(minSigma) || minSigma < 0.0)
+    badParameter(std::string(who) + ": minSigma must be finite and >= 0");
+
+  // Input samples every perimeter / 256 along its edges, vertices included, relative to its centroid c.
+  double cx, cy;
+  input.centroid(cx, cy);
+  const Eigen::Vector2d c(cx, cy);
+  std::vector<Eigen::Vector2d> P;
+  const double step = input.perimeter() / 256.0;
+  const std::size_t n = input.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d a(input.x(k), input.y(k)), b(input.x((k + 1) % n), input.y((k + 1) % n));
+    const std::size_t m = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil((b - a).norm() / step)));
+    for (std::size_t j = 0; j < m; ++j)
+      P.push_back(a + (double(j) / double(m)) * (b - a) - c);
+  }
+
+  // The map x' = M (x - c) + t, M = [a -b; b a]: linear in (a, b, t), so that each round is one linear solve.
+  Eigen::Vector4d x;
+  {
+    double tx, ty;
+    initial.apply(cx, cy, tx, ty);
+    x << initial.scale() * std::cos(initial.theta()), initial.scale() * std::sin(initial.theta()), tx, ty;
+  }
+  double spread = 0.0;
+  for (std::size_t k = 0; k < target.size(); ++k)
+    spread = std::max(spread, (Eigen::Vector2d(target.x(k), target.y(k)) - x.tail<2>()).norm());
+  const double sigmaMin = std::max(1e-9 * std::max(spread, 1e-300), minSigma);
+
+  std::vector<Eigen::Vector2d> Q(P.size()), N(P.size());
+  std::vector<double> d(P.size());
+  for (unsigned int it = 0; it < maxIterations; ++it) {
+    for (std::size_t k = 0; k < P.size(); ++k) {
+      const Eigen::Vector2d p(x[0] * P[k].x() - x[1] * P[k].y() + x[2], x[1] * P[k].x() + x[0] * P[k].y() + x[3]);
+      closestOnOutline(target, p, Q[k], N[k]);
+      d[k] = (p - Q[k]).norm();
+    }
+    // Distances are norms (>= 0): their median stands for the MAD of a residual centred on 0. Tukey weights
+    // from the distance trim what the target does not have; the fit itself is point-to-edge, which slides
+    // along the edges in one round instead of creeping, plus a small point-to-point term that keeps it posed
+    // where every kept point lies on one straight edge.
+    const double sigma = std::max(1.4826 * median(d), sigmaMin), cut = 5.0 * sigma;
+    Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+    double W = 0.0;
+    for (std::size_t k = 0; k < P.size(); ++k) {
+      const double u = d[k] / cut;
+      const double w = u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
+      if (w == 0.0)
+        continue;
+      W += w;
+      const double px = P[k].x(), py = P[k].y();
+      auto add = [&](const Eigen::Vector4d &J, double target_, double weight) {
+        A += weight * J * J.transpose();
+        rhs += weight * target_ * J;
+      };
+      const Eigen::Vector2d &nk = N[k];
+      add(Eigen::Vector4d(nk.x() * px + nk.y() * py, nk.y() * px - nk.x() * py, nk.x(), nk.y()), nk.dot(Q[k]), w);
+      add(Eigen::Vector4d(px, -py, 1, 0), Q[k].x(), 1e-3 * w);
+      add(Eigen::Vector4d(py, px, 0, 1), Q[k].y(), 1e-3 * w);
+    }
+    if (!(W > 0.0))
+      break;
+    Eigen::Vector4d xn = A.ldlt().solve(rhs);
+    if (!xn.allFinite())
+      break;
+    if (!withScale)
+      xn.head<2>() /= xn.head<2>().norm();
+    const double change = (xn - x).cwiseAbs().maxCoeff();
+    x = xn;
+    if (change < 1e-12 * std::max(spread, 1.0))
+      break;
+  }
+  const double scale = x.head<2>().norm();
+  if (!(scale > 0.0) || !x.allFinite())
+    return initial;
+  // x' = s R (x - c) + t = s R (x - c) + c + (t - c).
+  return vpMorphRigidTransform(std::atan2(x[1], x[0]), x[2] - cx, x[3] - cy, scale, cx, cy);
 }

@@ -356,3 +356,44 @@ TEST_CASE("vpMorphRigidTransform: minSigma keeps quantised contours from locking
   CHECK_THROWS_AS(vpMorphRigidTransform::fitLeastSquares(A, B, c, true, vpMorphRigidTransform::TUKEY, 30, -1.0),
                   vpMorphException);
 }
+
+TEST_CASE("vpMorphRigidTransform: refineOnOutline aligns a cut outline to the whole one", "[morph][rigid]")
+{
+  // The target outline, and the input: the same outline with a part cut away by a chord (an occluder's edge) and
+  // its vertices placed elsewhere (every edge split at a random point), seen through a similarity.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> at(0.2, 0.8);
+  for (int trial = 0; trial < 20; ++trial) {
+    const vpMorphContour B = starPolygon(rng, 24, 2.5);
+    std::vector<double> x, y;
+    const std::size_t cutFrom = static_cast<std::size_t>(trial) % 24, cutLength = 3 + trial % 4;
+    for (std::size_t k = 0; k < B.size(); ++k) {
+      const std::size_t rel = (k + B.size() - cutFrom) % B.size();
+      if (rel > 0 && rel < cutLength)
+        continue; // hidden: the chord from vertex cutFrom to cutFrom + cutLength replaces them
+      x.push_back(B.x(k));
+      y.push_back(B.y(k));
+      if (rel == 0)
+        continue;
+      const std::size_t k1 = (k + 1) % B.size();
+      const double a = at(rng);
+      x.push_back(B.x(k) + a * (B.x(k1) - B.x(k)));
+      y.push_back(B.y(k) + a * (B.y(k1) - B.y(k)));
+    }
+    const vpMorphRigidTransform truth = randomSimilarity(rng, B);
+    const vpMorphContour A = truth.inverse().apply(vpMorphContour(x, y));
+    // A start a few pixels and degrees off, as a fit over corresponded vertices gives.
+    const vpMorphRigidTransform initial =
+        vpMorphRigidTransform(0.05, 4.0, -3.0, 1.02, truth.cx(), truth.cy()) * truth;
+    const vpMorphRigidTransform refined = vpMorphRigidTransform::refineOnOutline(A, B, initial, true, 0.01);
+    INFO("trial " << trial);
+    CHECK(maxVertexError(A, initial, truth) > 3.0);
+    CHECK(maxVertexError(A, refined, truth) < 0.05);
+  }
+  const vpMorphContour B = starPolygon(rng, 12);
+  CHECK_THROWS_AS(vpMorphRigidTransform::refineOnOutline(vpMorphContour(), B, vpMorphRigidTransform()),
+                  vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::refineOnOutline(B, B, vpMorphRigidTransform(), true, -1.0), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::refineOnOutline(B, B, vpMorphRigidTransform(), true, 0.0, 0),
+                  vpMorphException);
+}

@@ -50,6 +50,31 @@ double areaRatio(const vpMorphContour &goal, const vpMorphContour &current)
   return goal.area() / current.area();
 }
 
+// Whether two contours show one region seen twice (up to a similarity), so that the areas and centroids of their
+// regions can stand for the pose: not so when part of the object is hidden or it is deformed. With measured
+// regions, compared by two similarity invariants of their second-order moments (spread over area, and
+// eccentricity): noise and blur move them by under 1 %, a card hiding 5-20 % of a tool by 5-33 % (measured on
+// the bench sets). A polygon-fitted scale is not used there: on a thin-handled tool it strays 2-3 % from the
+// region's (a noisy first frame was judged occluded and the servo stopped 1.5 mm deep). Without regions, the
+// polygons' area ratio against the fitted scale \e fittedScale.
+bool regionsAlike(const vpMorphContour &goal, const vpMorphContour &current, double fittedScale, double tolerance)
+{
+  if (goal.hasRegion() && current.hasRegion()) {
+    auto invariants = [](const vpMorphContour &c, double &spread, double &eccentricity) {
+      double mu20, mu11, mu02;
+      c.regionMoments(mu20, mu11, mu02);
+      const double tr = mu20 + mu02;
+      spread = tr / c.regionArea();
+      eccentricity = tr > 0.0 ? std::hypot(mu20 - mu02, 2.0 * mu11) / tr : 0.0;
+    };
+    double sg, eg, sc, ec;
+    invariants(goal, sg, eg);
+    invariants(current, sc, ec);
+    return sg > 0.0 && std::fabs(sc / sg - 1.0) <= tolerance && std::fabs(ec - eg) <= tolerance;
+  }
+  return std::fabs(std::sqrt(goal.area() / current.area()) / fittedScale - 1.0) <= tolerance;
+}
+
 void centroids(const vpMorphContour &goal, const vpMorphContour &current, double &gx, double &gy, double &cx,
                double &cy)
 {
@@ -330,11 +355,8 @@ void vpServoMorph::start(const vpMorphContour &current)
     m_subGoals = morph.sequence(m_nSub);
     // Whether the two regions are one shape seen twice is a property of the current object against the target
     // (the sub-goals before the deformation frames are views of the current contour itself): see fitToSubGoal().
-    if (current.hasRegion() && m_target.hasRegion())
-      m_regionsAlike = std::fabs(std::sqrt(areaRatio(m_target, current)) / morph.rigidTransform().scale() - 1.0) >
-                               m_regionMismatch
-                           ? NOT_ALIKE
-                           : ALIKE;
+    m_regionsAlike =
+        regionsAlike(m_target, current, morph.rigidTransform().scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
     const std::size_t nr = morph.rigidFrameCount(m_nSub);
     if (m_rigidPath == CAMERA_STRAIGHT_LINE && nr > 1) {
       // The rigid transform (pixels) as a camera displacement cMc' = [Rz(-theta), d] at the current depth; the
@@ -407,10 +429,13 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
     // noisy) from one frame to the next made the loop chatter (measured: a Viper850 run oscillating by 1-6 mm and
     // stopping 1.02 mm off).
     if (m_regionsAlike == UNDECIDED)
-      m_regionsAlike = std::fabs(s / Tfit.scale() - 1.0) > m_regionMismatch ? NOT_ALIKE : ALIKE;
+      m_regionsAlike = regionsAlike(goalN, currentN, Tfit.scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
     m_areaBased = m_regionsAlike == ALIKE;
     if (!m_areaBased) {
-      T = Tfit;
+      // Part of the outline is not the target's (hidden by an occluder, cut, bent): the corresponded vertices
+      // then crowd the missing part onto the cut and drag the fit along a straight handle by centimetres; the
+      // visible outline laid on the goal's does not slide.
+      T = vpMorphRigidTransform::refineOnOutline(currentN, goalN, Tfit, true, halfPixel);
     } else {
       T = vpMorphRigidTransform(refinedRotation(goalN, currentN, Tfit.theta()), gx - cx, gy - cy, s, cx, cy);
     }

@@ -140,6 +140,22 @@ public:
                                                double minSigma = 0.0);
 
   /*!
+    Refines \e initial by aligning the input's outline to the target's (trimmed ICP): 256 points spread evenly
+    along the input's edges are paired with their closest points on the target's edges, and a similarity is
+    fitted to the pairs point to edge (one linear solve a round, so it slides along the edges at once), each pair
+    Tukey-weighted by its distance (5 sigma, sigma = 1.4826 MAD, floored at \e minSigma), until it stops moving.
+    Unlike a fit over corresponded vertices, this needs no vertex-to-vertex pairing and lets the parts of the
+    input that the target does not have (an occluder's edge, a cut across a hidden part) drop out as outliers;
+    the rest of the outline then fixes the pose. The result is only as good as \e initial's basin: give it a fit
+    from a correspondence.
+    \param maxIterations pairing rounds, >= 1.
+    \throw vpMorphException on empty contours, different units, a bad \e minSigma or \e maxIterations.
+  */
+  static vpMorphRigidTransform refineOnOutline(const vpMorphContour &input, const vpMorphContour &target,
+                                               const vpMorphRigidTransform &initial, bool withScale = true,
+                                               double minSigma = 0.0, unsigned int maxIterations = 10);
+
+  /*!
     Checks that \e correspondence fits the two contours (non-empty contours, same units, sizes equal to the
     contours', indices in range, every vertex of each contour used at least once).
     \throw vpMorphException::badContourError on an empty contour, badParameterError otherwise.

@@ -364,7 +364,7 @@ private:
   ControlLaw m_law = HOMOGENEOUS_TRANSFORMS;
   double m_jumpFactor = 2.0, m_workFloor = 0.05, m_minMargin = 0.02, m_minArea = 25.0;
   double m_jumpRotation = 0.1;                    // rad: fit rotation jump beyond one step that is not noise
-  double m_regionMismatch = 0.02; // |area-ratio scale / fitted scale - 1| above which the regions are not alike
+  double m_regionMismatch = 0.02; // change of the regions' similarity invariants above which they are not alike
   enum { UNDECIDED, ALIKE, NOT_ALIKE } m_regionsAlike = UNDECIDED; // decided at the first fit of a sequence
   double m_calibRotation = 0.05, m_calibPx = 8.0; // image motion that makes one calibration observation
   bool m_online = true;
