@@ -106,7 +106,7 @@ vpMorphContour vpMorphTagPoseEstimator::silhouette(const vpImage<unsigned char> 
   const auto t0 = std::chrono::steady_clock::now();
   vpMorphContour c;
   try {
-    c = vpMorphContourExtractor().extract(J);
+    c = vpMorphContourExtractor().extractJoined(J);
   } catch (const vpMorphException &e) {
     if (e.getCode() != vpMorphException::badImageError)
       throw;

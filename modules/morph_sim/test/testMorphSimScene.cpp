@@ -462,3 +462,36 @@ TEST_CASE("bad scene input throws vpMorphException", "[morph_sim][errors]")
   f.gain = 0;
   CHECK_THROWS_AS(scene.setFaults(f), vpMorphException);
 }
+
+TEST_CASE("the silhouette joins the pieces an occluder cut from the object", "[morph_sim][faults]")
+{
+  // A card across a thin tool leaves two pieces: every controller must get the whole visible object, not the
+  // larger piece alone (a cut-off pliers head was recognised as a wedge).
+  vpMorphPlanarScene scene(object("pliers"));
+  const vpHomogeneousMatrix cMo = view(0.01, 0.0, 0.5, 0, 0, 30);
+  vpImage<unsigned char> I;
+  int severed = 0;
+  for (double where : {0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9}) {
+    vpMorphPlanarScene::Faults f;
+    f.occludedShare = 0.15;
+    f.occluderPosition = where;
+    scene.setFaults(f);
+    scene.render(cMo, I);
+    std::vector<vpImagePoint> corners;
+    vpHomogeneousMatrix cMo_tag;
+    REQUIRE(scene.tagPoseEstimator().estimate(I, cMo_tag, &corners));
+    const vpMorphContour s = vpMorphTagPoseEstimator::silhouette(I, corners);
+    vpImage<unsigned char> J = I;
+    vpMorphTagPoseEstimator::maskTag(J, corners);
+    const std::vector<vpMorphContour> pieces = vpMorphContourExtractor().extractAll(J);
+    REQUIRE(!pieces.empty());
+    INFO("occluder at " << where << ": " << pieces.size() << " regions, silhouette area " << s.area()
+                        << ", largest piece " << pieces[0].area());
+    CHECK(s.area() >= 0.99 * pieces[0].area());
+    if (pieces.size() > 1 && pieces[1].area() > 0.1 * pieces[0].area()) {
+      ++severed;
+      CHECK(s.area() > pieces[0].area() + 0.9 * pieces[1].area());
+    }
+  }
+  CHECK(severed > 0); // the card did cut the tool somewhere
+}

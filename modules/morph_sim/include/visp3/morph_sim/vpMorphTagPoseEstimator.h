@@ -57,9 +57,10 @@ public:
   /*!
     The object's silhouette in a scene image, as every controller of a scene gets it: the tag masked with
     maskTag() when its 4 detected \e corners are given (none: nothing is masked), then the largest object's
-    polygon by vpMorphContourExtractor::extract() (with its measured region). Not extractJoined(): it recognises
-    occluded objects better (16 of 18 occlusion starts against 11), but servoing on the joined outline ended
-    2-89 mm off on 6 of 10 occlusion starts (a wrong pose is worse than a refused one; not yet understood). Empty when the image shows no object (the
+    polygon by vpMorphContourExtractor::extractJoined(): the pieces an occluder cut from it are joined back (a
+    single piece keeps its measured region). The largest piece alone was recognised as another tool on 6 of 10
+    occlusion starts (a cut-off pliers head looks like a wedge); joined, the servo aligns the joined outline by
+    vpServoMorph's trimmed outline fit. Empty when the image shows no object (the
     extractor's bad-image errors), so that a control loop can hold or stop instead of unwinding. \e extractionMs,
     when given, receives the time of the extraction alone: masking the tag is an artefact of the scene.
   */
