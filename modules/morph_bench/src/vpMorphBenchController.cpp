@@ -462,10 +462,14 @@ private:
   {
     m_task.reset(new vpServo);
     setupStockTask(*m_task, m_L);
+    if (m_ctx.taughtTagCorners.size() != 4)
+      throw vpMorphException(vpMorphException::badParameterError, m_name + ": the taught view has no 4 tag corners");
     for (unsigned int i = 0; i < 4; ++i) {
+      // Teach by showing: the corners detected in the taught view, their depth from the pose estimated there.
+      vpFeatureBuilder::create(m_pd[i], m_ctx.cam, m_ctx.taughtTagCorners[i]);
       vpPoint P = m_ctx.tagCorners3D[i];
-      P.track(m_ctx.cdMo);
-      m_pd[i].buildFrom(P.get_x(), P.get_y(), P.get_Z());
+      P.track(m_ctx.taughtTagPose);
+      m_pd[i].set_Z(P.get_Z());
       m_p[i] = m_pd[i]; // replaced at the first measurement; needed for DESIRED and MEAN L before it
       m_task->addFeature(m_p[i], m_pd[i]);
     }
@@ -487,7 +491,7 @@ public:
     const TagView tag = detectTag(*m_tag, I);
     if (!tag.found)
       return holdCommand(msSince(t0));
-    const vpHomogeneousMatrix cdMc = m_ctx.cdMo * tag.cMo.inverse();
+    const vpHomogeneousMatrix cdMc = m_ctx.taughtTagPose * tag.cMo.inverse(); // both measured by the detector
     m_t.buildFrom(cdMc);
     m_tu.buildFrom(cdMc);
     return stockLaw(*m_task, eJe, msSince(t0));

@@ -13,6 +13,7 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
+#include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpPoint.h>
 #include <visp3/morph/vpMorphDatabase.h>
@@ -63,6 +64,10 @@ public:
     vpCameraParameters cam;                    //!< estimated intrinsics
     vpHomogeneousMatrix eMc;                   //!< estimated hand-eye transform
     vpHomogeneousMatrix cdMo;                  //!< desired object pose (taught with the template)
+    //! The tag as the detector saw it in the taught view (rendered at cdMo): the stock controllers' desired
+    //! features, measured like their current ones (teach by showing), so that the detector's own bias cancels.
+    std::vector<vpImagePoint> taughtTagCorners; //!< pixels, detector order
+    vpHomogeneousMatrix taughtTagPose;           //!< cdMo as the detector estimated it
     std::vector<vpPoint> tagCorners3D;         //!< tag corners in the object frame, detector order
     int tagId = 0;                             //!< AprilTag 36h11 id
     double tagSize = 0.08;                     //!< black-border side, m
