@@ -137,7 +137,7 @@ bool edgeProfile(const cv::Mat &g, const cv::Mat &band, double minSlope, double 
   auto at = [&mag](double x, double y) { // bilinear, clamped to the box
     x = std::min(std::max(x, 0.0), double(mag.cols - 1));
     y = std::min(std::max(y, 0.0), double(mag.rows - 1));
-    const int x0 = std::min(int(x), mag.cols - 2 < 0 ? 0 : mag.cols - 2), y0 = std::min(int(y), mag.rows - 2 < 0 ? 0 : mag.rows - 2);
+    const int x0 = std::max(0, std::min(int(x), mag.cols - 2)), y0 = std::max(0, std::min(int(y), mag.rows - 2));
     const int x1 = std::min(x0 + 1, mag.cols - 1), y1 = std::min(y0 + 1, mag.rows - 1);
     const double a = x - x0, b = y - y0;
     return (1 - a) * (1 - b) * mag.at<float>(y0, x0) + a * (1 - b) * mag.at<float>(y0, x1) +

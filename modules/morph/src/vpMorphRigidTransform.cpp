@@ -406,7 +406,8 @@ void closestOnOutline(const vpMorphContour &c, const Eigen::Vector2d &p, Eigen::
     if (d2 < bestD2) {
       bestD2 = d2;
       q = qk;
-      const Eigen::Vector2d edgeNormal = l2 > 0.0 ? Eigen::Vector2d(-ab.y(), ab.x()) / std::sqrt(l2) : Eigen::Vector2d(1, 0);
+      const Eigen::Vector2d edgeNormal =
+          l2 > 0.0 ? Eigen::Vector2d(-ab.y(), ab.x()) / std::sqrt(l2) : Eigen::Vector2d(1, 0);
       normal = (t > 0.0 && t < 1.0) || d2 == 0.0 ? edgeNormal : Eigen::Vector2d((p - qk) / std::sqrt(d2));
     }
   }

@@ -383,8 +383,7 @@ TEST_CASE("vpMorphRigidTransform: refineOnOutline aligns a cut outline to the wh
     const vpMorphRigidTransform truth = randomSimilarity(rng, B);
     const vpMorphContour A = truth.inverse().apply(vpMorphContour(x, y));
     // A start a few pixels and degrees off, as a fit over corresponded vertices gives.
-    const vpMorphRigidTransform initial =
-        vpMorphRigidTransform(0.05, 4.0, -3.0, 1.02, truth.cx(), truth.cy()) * truth;
+    const vpMorphRigidTransform initial = vpMorphRigidTransform(0.05, 4.0, -3.0, 1.02, truth.cx(), truth.cy()) * truth;
     const vpMorphRigidTransform refined = vpMorphRigidTransform::refineOnOutline(A, B, initial, true, 0.01);
     INFO("trial " << trial);
     CHECK(maxVertexError(A, initial, truth) > 3.0);
