@@ -435,7 +435,10 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
       // Part of the outline is not the target's (hidden by an occluder, cut, bent): the corresponded vertices
       // then crowd the missing part onto the cut and drag the fit along a straight handle by centimetres; the
       // visible outline laid on the goal's does not slide.
-      T = vpMorphRigidTransform::refineOnOutline(currentN, goalN, Tfit, true, halfPixel);
+      // Its robust scale is floored at a tenth of a pixel, not half: distances to the goal's edges are continuous
+      // (not vertices on the pixel grid), and a cut at 5 x half a pixel kept the occluder's edge where it meets
+      // the outline (the fit's scale 0.1 % off at the goal, half a millimetre of depth).
+      T = vpMorphRigidTransform::refineOnOutline(currentN, goalN, Tfit, true, 0.2 * halfPixel);
     } else {
       T = vpMorphRigidTransform(refinedRotation(goalN, currentN, Tfit.theta()), gx - cx, gy - cy, s, cx, cy);
     }

@@ -43,9 +43,11 @@
   current centroid c, translation t, scale s, in normalised coordinates with the estimated intrinsics): theta by
   robust least squares over the corresponded vertices, c the current area centroid, t the displacement of the area
   centroid and s the square root of the area ratio (a vertex fit biases t and s by millimetres when the two
-  polygons place their vertices differently, as a real contour and a stored one do), unless the current object's area
-  does not match the target's (area-ratio scale more than 2 % from the fitted scale when the sequence starts: part of
-  the object hidden, or deformed): then t and s are the robust fit's, for the whole sequence (Iteration::areaBased).
+  polygons place their vertices differently, as a real contour and a stored one do), unless the current region is
+  not the target's seen again (its similarity invariants, spread over area and eccentricity of the second moments,
+  more than 2 % from the target's when the sequence starts: part of the object hidden, or deformed): then the whole
+  similarity comes from the outline, the robust vertex fit refined by a trimmed outline fit
+  (vpMorphRigidTransform::refineOnOutline), for the whole sequence (Iteration::areaBased).
   Through the image projection of a
   plane parallel to the image at the current depth Z (estimated from the area: \f$Z = Z^* \sqrt{a^{*} / a}\f$), the
   camera displacement that produces it is \f[ {}^cM_{c'} = \left[R_z(-\theta),\ \left(k Z (c - R(-\theta)(c + t)/s),\ Z
@@ -194,7 +196,7 @@ public:
     double work = 0;                //!< work of the correspondence to the sub-goal
     bool fullMatch = false;         //!< the correspondence came from a full search
     bool areaBased = false; //!< translation and scale from the area centroids and ratio (regions if both have one),
-                            //!< not from the vertex fit (see fitToSubGoal in the source: occluded or deformed views)
+                            //!< not from the outline fit (see fitToSubGoal in the source: occluded or deformed views)
     vpHomogeneousMatrix eMc;        //!< hand-eye estimate after this iteration
     double translationScale = 1;    //!< projection scale estimate after this iteration
     vpColVector ve;                 //!< commanded end-effector velocity
