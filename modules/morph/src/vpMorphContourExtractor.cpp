@@ -316,17 +316,25 @@ vpMorphContour polygon(const Region &r)
 // Closest pair of pixels between two chains (brute force: chains are a few thousand pixels at most).
 double closestPair(const std::vector<cv::Point> &a, const std::vector<cv::Point> &b, cv::Point &pa, cv::Point &pb)
 {
-  double best = INFINITY;
+  long best = LONG_MAX;
   for (const cv::Point &p : a)
     for (const cv::Point &q : b) {
-      const double d = std::hypot(double(p.x - q.x), double(p.y - q.y));
-      if (d < best) {
-        best = d;
+      const long dx = p.x - q.x, dy = p.y - q.y, d2 = dx * dx + dy * dy;
+      if (d2 < best) {
+        best = d2;
         pa = p;
         pb = q;
       }
     }
-  return best;
+  return best == LONG_MAX ? INFINITY : std::sqrt(double(best));
+}
+
+// Distance between two rectangles (0 when they overlap): a lower bound of the distance between what they hold.
+double rectGap(const cv::Rect &a, const cv::Rect &b)
+{
+  const int dx = std::max({0, b.x - (a.x + a.width - 1), a.x - (b.x + b.width - 1)});
+  const int dy = std::max({0, b.y - (a.y + a.height - 1), a.y - (b.y + b.height - 1)});
+  return std::hypot(double(dx), double(dy));
 }
 
 // The pixels of a chain within r of a point.
@@ -344,7 +352,7 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
   const Region &largest = regs.front();
   const cv::Rect box = cv::boundingRect(largest.chain);
   const double maxGap = joinedMaxGap() * std::hypot(double(box.width), double(box.height));
-  std::vector<const Region *> group{&largest}, pieces;
+  std::vector<const Region *> pieces;
   for (std::size_t k = 1; k < regs.size(); ++k)
     if (regs[k].area >= joinedMinShare() * largest.area)
       pieces.push_back(&regs[k]);
@@ -361,35 +369,51 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
   fill(largest.chain, false);
   // Nearest piece first, each gap bridged by the convex hull of both sides' pixels near it (within 1.5 gaps): a
   // cut straight across a limb is closed by the limb's own width, a bite out of a side is not filled beyond it.
+  // Each piece keeps its nearest link to the group, updated as pieces join (one chain-to-chain search per pair at
+  // most, none for pairs whose boxes are already farther apart: a noisy frame can hold many pieces).
+  struct Link
+  {
+    double d = INFINITY;
+    const Region *g = nullptr;
+    cv::Point pg, pp;
+  };
+  std::vector<Link> links(pieces.size());
+  std::vector<cv::Rect> boxes;
+  for (const Region *p : pieces)
+    boxes.push_back(cv::boundingRect(p->chain));
+  auto linkTo = [&](const Region *g) {
+    const cv::Rect gb = cv::boundingRect(g->chain);
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      if (rectGap(gb, boxes[k]) > std::min(links[k].d, maxGap))
+        continue;
+      cv::Point a, b;
+      const double d = closestPair(g->chain, pieces[k]->chain, a, b);
+      if (d < links[k].d)
+        links[k] = Link{d, g, a, b};
+    }
+  };
+  linkTo(&largest);
   bool any = false;
   while (!pieces.empty()) {
-    double best = INFINITY;
     std::size_t bestPiece = 0;
-    cv::Point pg, pp;
-    const Region *bestGroup = nullptr;
-    for (std::size_t k = 0; k < pieces.size(); ++k)
-      for (const Region *g : group) {
-        cv::Point a, b;
-        const double d = closestPair(g->chain, pieces[k]->chain, a, b);
-        if (d < best) {
-          best = d;
-          bestPiece = k;
-          bestGroup = g;
-          pg = a;
-          pp = b;
-        }
-      }
-    if (!(best <= maxGap))
+    for (std::size_t k = 1; k < pieces.size(); ++k)
+      if (links[k].d < links[bestPiece].d)
+        bestPiece = k;
+    const Link best = links[bestPiece];
+    if (!(best.d <= maxGap))
       break;
-    const double r = std::max(1.5 * best, 3.0);
+    const double r = std::max(1.5 * best.d, 3.0);
     std::vector<cv::Point> bridge, hull;
-    near(bestGroup->chain, pg, r, bridge);
-    near(pieces[bestPiece]->chain, pp, r, bridge);
+    near(best.g->chain, best.pg, r, bridge);
+    near(pieces[bestPiece]->chain, best.pp, r, bridge);
     cv::convexHull(bridge, hull);
     fill(pieces[bestPiece]->chain, false);
     fill(hull, true);
-    group.push_back(pieces[bestPiece]);
+    const Region *joinedPiece = pieces[bestPiece];
     pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(bestPiece));
+    links.erase(links.begin() + static_cast<std::ptrdiff_t>(bestPiece));
+    boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(bestPiece));
+    linkTo(joinedPiece);
     any = true;
   }
   if (!any)
