@@ -23,15 +23,15 @@ const double kMinDepth = 0.15, kMaxDepth = 1.5; // m: outside, the camera has di
 
 void badParameter(const std::string &msg) { throw vpMorphException(vpMorphException::badParameterError, msg); }
 
-//! The taught view of an object: rendered at its desired pose, tag masked, silhouette extracted; the tag's
-//! detected corners and pose in that view go to \e corners and \e cMo.
-vpMorphTemplate teach(const std::string &name, const std::string &image, std::vector<vpImagePoint> &corners,
-                      vpHomogeneousMatrix &cMo)
+//! The taught view of an object: rendered at its desired pose, tag masked, silhouette extracted.
+vpMorphTemplate teach(const std::string &name, const std::string &image)
 {
   vpMorphPlanarScene scene(image);
   const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose(name);
   vpImage<unsigned char> I;
   scene.render(cdMo, I);
+  vpHomogeneousMatrix cMo;
+  std::vector<vpImagePoint> corners;
   if (!scene.tagPoseEstimator().estimate(I, cMo, &corners))
     throw vpMorphException(vpMorphException::badImageError,
                            "vpMorphBench: tag not found in the taught view of " + name);
@@ -67,10 +67,8 @@ vpMorphBench::vpMorphBench(const std::string &dataDir, const Settings &settings)
     badParameter("vpMorphBench: the iteration budget must be > 0");
   if (!(settings.successTranslation > 0) || !(settings.successRotationDeg > 0))
     badParameter("vpMorphBench: success thresholds must be > 0");
-  for (const std::string &name : vpMorphBenchScenario::objectNames()) {
-    TaughtTag &tag = m_taughtTags[name];
-    m_db.add(teach(name, dataDir + "/objects/" + name + ".png", tag.corners, tag.cdMo));
-  }
+  for (const std::string &name : vpMorphBenchScenario::objectNames())
+    m_db.add(teach(name, dataDir + "/objects/" + name + ".png"));
   m_db.calibrate(1);
 }
 
@@ -98,11 +96,17 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   ctx.cam = sc.estimatedCamera(camTrue);
   ctx.eMc = robot.eMcTrue() * sc.eMcError;
   ctx.cdMo = sc.cdMo;
-  const auto taught = m_taughtTags.find(sc.object);
-  if (taught == m_taughtTags.end())
-    badParameter("vpMorphBench::run: no taught view of '" + sc.object + "'");
-  ctx.taughtTagCorners = taught->second.corners;
-  ctx.taughtTagPose = taught->second.cdMo;
+  {
+    // The tag controllers' taught view: this scene (its object, so its tag placement) at the desired pose, without
+    // the faults, measured by the detector as their current features are.
+    vpMorphPlanarScene taught = sc.scene();
+    taught.setFaults(vpMorphPlanarScene::Faults());
+    vpImage<unsigned char> Id;
+    taught.render(sc.cdMo, Id);
+    if (!taught.tagPoseEstimator().estimate(Id, ctx.taughtTagPose, &ctx.taughtTagCorners))
+      throw vpMorphException(vpMorphException::badImageError,
+                             "vpMorphBench::run: tag not found in the taught view of " + sc.object);
+  }
   ctx.tagCorners3D = scene.tagCorners3D();
   ctx.tagId = scene.tagId();
   ctx.tagSize = scene.tagSize();

@@ -6,12 +6,9 @@
 #define VP_MORPH_BENCH_H
 
 #include <functional>
-#include <map>
 #include <string>
 #include <vector>
 
-#include <visp3/core/vpHomogeneousMatrix.h>
-#include <visp3/core/vpImagePoint.h>
 #include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph_bench/vpMorphBenchResult.h>
 #include <visp3/morph_bench/vpMorphBenchScenario.h>
@@ -78,16 +75,9 @@ public:
                                          const Progress &progress = Progress()) const;
 
 private:
-  //! The tag seen in an object's taught view.
-  struct TaughtTag
-  {
-    std::vector<vpImagePoint> corners;
-    vpHomogeneousMatrix cdMo;
-  };
   std::string m_dataDir;
   Settings m_settings;
   vpMorphDatabase m_db;
-  std::map<std::string, TaughtTag> m_taughtTags; // by object name
 };
 
 #endif
