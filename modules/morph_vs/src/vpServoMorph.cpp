@@ -355,9 +355,8 @@ void vpServoMorph::start(const vpMorphContour &current)
     m_subGoals = morph.sequence(m_nSub);
     // Whether the two regions are one shape seen twice is a property of the current object against the target
     // (the sub-goals before the deformation frames are views of the current contour itself): see fitToSubGoal().
-    if (current.hasRegion() && m_target.hasRegion())
-      m_regionsAlike =
-          regionsAlike(m_target, current, morph.rigidTransform().scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
+    m_regionsAlike =
+        regionsAlike(m_target, current, morph.rigidTransform().scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
     const std::size_t nr = morph.rigidFrameCount(m_nSub);
     if (m_rigidPath == CAMERA_STRAIGHT_LINE && nr > 1) {
       // The rigid transform (pixels) as a camera displacement cMc' = [Rz(-theta), d] at the current depth; the
