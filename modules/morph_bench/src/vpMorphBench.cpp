@@ -99,7 +99,7 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   {
     // The tag controllers' taught view: this scene (its object, so its tag placement) at the desired pose, without
     // the faults, measured by the detector as their current features are.
-    vpMorphPlanarScene taught = sc.scene();
+    vpMorphPlanarScene taught = scene; // a copy: the object image is not read again
     taught.setFaults(vpMorphPlanarScene::Faults());
     vpImage<unsigned char> Id;
     taught.render(sc.cdMo, Id);
