@@ -260,8 +260,27 @@ void vpMorphContour::regionMoments(double &mu20, double &mu11, double &mu02) con
   mu02 = m_regionMu02;
 }
 
+void vpMorphContour::setOutline(const vpMorphContour &outline)
+{
+  if (outline.empty() || outline.size() < 4 || outline.units() != m_units)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphContour::setOutline: the outline must be a contour of at least 4 vertices in the "
+                           "polygon's units");
+  vpMorphContour o(outline.m_x, outline.m_y, outline.m_units); // without region or outline of its own
+  m_outline = std::make_shared<const vpMorphContour>(std::move(o));
+}
+
 void vpMorphContour::mapRegion(double a11, double a12, double a21, double a22, double b1, double b2)
 {
+  if (m_outline) {
+    vpMorphContour o(*m_outline);
+    for (std::size_t k = 0; k < o.size(); ++k) {
+      const double x = o.m_x[k], y = o.m_y[k];
+      o.m_x[k] = a11 * x + a12 * y + b1;
+      o.m_y[k] = a21 * x + a22 * y + b2;
+    }
+    m_outline = std::make_shared<const vpMorphContour>(std::move(o));
+  }
   if (!hasRegion())
     return;
   const double x = m_regionCx, y = m_regionCy;
@@ -377,6 +396,7 @@ vpMorphContour vpMorphContour::resampled(std::size_t n) const
   vpMorphContour out(x, y, m_units);
   if (hasRegion())
     out.setRegion(m_regionArea, m_regionCx, m_regionCy, m_regionMu20, m_regionMu11, m_regionMu02); // same region
+  out.m_outline = m_outline; // same edge
   return out;
 }
 
@@ -393,6 +413,7 @@ vpMorphContour vpMorphContour::toNormalized(const vpCameraParameters &cam) const
   out.mapRegion(1.0 / cam.get_px(), 0.0, 0.0, 1.0 / cam.get_py(), -cam.get_u0() / cam.get_px(),
                 -cam.get_v0() / cam.get_py());
   out.m_units = NORMALIZED;
+  out.setOutlineUnits(NORMALIZED);
   return out;
 }
 
@@ -408,5 +429,15 @@ vpMorphContour vpMorphContour::toPixels(const vpCameraParameters &cam) const
   }
   out.mapRegion(cam.get_px(), 0.0, 0.0, cam.get_py(), cam.get_u0(), cam.get_v0());
   out.m_units = PIXEL;
+  out.setOutlineUnits(PIXEL);
   return out;
+}
+
+void vpMorphContour::setOutlineUnits(Units units)
+{
+  if (!m_outline || m_outline->m_units == units)
+    return;
+  vpMorphContour o(*m_outline);
+  o.m_units = units;
+  m_outline = std::make_shared<const vpMorphContour>(std::move(o));
 }

@@ -87,15 +87,86 @@ std::vector<Point> sampleOutline(const vpMorphContour &c, unsigned int n)
   return out;
 }
 
-// Signed distance from p to the nearest point of the closed polygon c, and the unit direction m along which it is
-// measured (the edge normal when the nearest point is inside an edge, towards p when it is a vertex).
-double nearestOnPolygon(const vpMorphContour &c, double px, double py, double &mx, double &my)
+/*
+  Signed distance from p to the nearest point of the closed polygon c, and the unit direction m along which it is
+  measured (the edge normal when the nearest point is inside an edge, towards p when it is a vertex). The edges are
+  bucketed in a uniform grid of cells about two mean edges wide, searched in rings around p's cell: a dense outline
+  (a point per boundary pixel) is queried in constant time instead of scanning its hundreds of edges. The result is
+  the exhaustive scan's (equal distances: the lowest edge index).
+*/
+class NearestEdge
 {
-  double best = std::numeric_limits<double>::max(), fx = 0, fy = 0, nx = 0, ny = 1;
-  bool interior = true;
-  const std::size_t n = c.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t l = (k + 1) % n;
+public:
+  explicit NearestEdge(const vpMorphContour &c) : m_c(c)
+  {
+    const std::size_t n = c.size();
+    if (n < 32)
+      return; // a polygon: scanning is as fast
+    m_x0 = *std::min_element(c.xs().begin(), c.xs().end());
+    m_y0 = *std::min_element(c.ys().begin(), c.ys().end());
+    const double x1 = *std::max_element(c.xs().begin(), c.xs().end());
+    const double y1 = *std::max_element(c.ys().begin(), c.ys().end());
+    m_h = std::max(2.0 * c.perimeter() / double(n), 1e-9 * std::max(x1 - m_x0, y1 - m_y0));
+    m_nx = std::min(1024, int((x1 - m_x0) / m_h) + 1);
+    m_ny = std::min(1024, int((y1 - m_y0) / m_h) + 1);
+    m_h = std::max((x1 - m_x0) / m_nx, (y1 - m_y0) / m_ny) * (1.0 + 1e-12) + 1e-300;
+    m_cells.assign(std::size_t(m_nx) * std::size_t(m_ny), {});
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t l = (k + 1) % n;
+      const int i0 = cellX(std::min(c.x(k), c.x(l))), i1 = cellX(std::max(c.x(k), c.x(l)));
+      const int j0 = cellY(std::min(c.y(k), c.y(l))), j1 = cellY(std::max(c.y(k), c.y(l)));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+          m_cells[std::size_t(j) * std::size_t(m_nx) + std::size_t(i)].push_back(k);
+    }
+  }
+
+  double operator()(double px, double py, double &mx, double &my) const
+  {
+    Best b;
+    const std::size_t n = m_c.size();
+    // Outside the grid (or no grid): the exhaustive scan.
+    if (m_cells.empty() || !(px >= m_x0 && py >= m_y0 && px < m_x0 + m_nx * m_h && py < m_y0 + m_ny * m_h)) {
+      for (std::size_t k = 0; k < n; ++k)
+        visit(k, px, py, b);
+      return finish(b, px, py, mx, my);
+    }
+    const int ci = cellX(px), cj = cellY(py);
+    const int maxRing = std::max(m_nx, m_ny);
+    for (int r = 0; r <= maxRing; ++r) {
+      for (int j = cj - r; j <= cj + r; ++j) {
+        if (j < 0 || j >= m_ny)
+          continue;
+        const bool edgeRow = j == cj - r || j == cj + r;
+        for (int i = ci - r; i <= ci + r; i += (edgeRow || r == 0) ? 1 : 2 * r) {
+          if (i < 0 || i >= m_nx)
+            continue;
+          for (std::size_t k : m_cells[std::size_t(j) * std::size_t(m_nx) + std::size_t(i)])
+            visit(k, px, py, b);
+        }
+      }
+      // Every cell outside the (2r + 1)^2 block searched is farther from p than the block's border.
+      const double border = std::min(std::min(px - (m_x0 + (ci - r) * m_h), m_x0 + (ci + r + 1) * m_h - px),
+                                     std::min(py - (m_y0 + (cj - r) * m_h), m_y0 + (cj + r + 1) * m_h - py));
+      if (b.d2 < std::numeric_limits<double>::max() && std::sqrt(b.d2) <= border)
+        break;
+    }
+    return finish(b, px, py, mx, my);
+  }
+
+private:
+  struct Best
+  {
+    double d2 = std::numeric_limits<double>::max(), fx = 0, fy = 0;
+    bool interior = true;
+    std::size_t k = std::numeric_limits<std::size_t>::max();
+  };
+  int cellX(double x) const { return std::min(m_nx - 1, std::max(0, int((x - m_x0) / m_h))); }
+  int cellY(double y) const { return std::min(m_ny - 1, std::max(0, int((y - m_y0) / m_h))); }
+  void visit(std::size_t k, double px, double py, Best &b) const
+  {
+    const vpMorphContour &c = m_c;
+    const std::size_t l = (k + 1) % c.size();
     const double ax = c.x(k), ay = c.y(k), dx = c.x(l) - ax, dy = c.y(l) - ay, l2 = dx * dx + dy * dy;
     double t = l2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / l2 : 0.0;
     bool in = true;
@@ -108,26 +179,35 @@ double nearestOnPolygon(const vpMorphContour &c, double px, double py, double &m
     }
     const double qx = ax + t * dx, qy = ay + t * dy;
     const double d2 = (px - qx) * (px - qx) + (py - qy) * (py - qy);
-    if (d2 < best) {
-      best = d2;
-      fx = qx;
-      fy = qy;
-      interior = in;
-      const double len = std::sqrt(l2);
-      nx = len > 0 ? -dy / len : 0.0;
-      ny = len > 0 ? dx / len : 1.0;
+    if (d2 < b.d2 || (d2 == b.d2 && k < b.k)) {
+      b.d2 = d2;
+      b.k = k;
+      b.fx = qx;
+      b.fy = qy;
+      b.interior = in;
     }
   }
-  const double ex = px - fx, ey = py - fy, e = std::hypot(ex, ey);
-  if (interior || e <= 0.0) {
-    mx = nx;
-    my = ny;
-    return nx * ex + ny * ey;
+  double finish(const Best &b, double px, double py, double &mx, double &my) const
+  {
+    const std::size_t l = (b.k + 1) % m_c.size();
+    const double dx = m_c.x(l) - m_c.x(b.k), dy = m_c.y(l) - m_c.y(b.k), len = std::hypot(dx, dy);
+    const double nx = len > 0 ? -dy / len : 0.0, ny = len > 0 ? dx / len : 1.0; // the edge's normal
+    const double ex = px - b.fx, ey = py - b.fy, e = std::hypot(ex, ey);
+    if (b.interior || e <= 0.0) {
+      mx = nx;
+      my = ny;
+      return nx * ex + ny * ey;
+    }
+    mx = ex / e;
+    my = ey / e;
+    return e;
   }
-  mx = ex / e;
-  my = ey / e;
-  return e;
-}
+
+  const vpMorphContour &m_c;
+  double m_x0 = 0, m_y0 = 0, m_h = 1;
+  int m_nx = 0, m_ny = 0;
+  std::vector<std::vector<std::size_t>> m_cells;
+};
 
 double median(std::vector<double> v)
 {
@@ -204,7 +284,33 @@ bool dlt(const std::vector<Point> &A, const std::vector<Point> &B, const std::ve
 
 [[noreturn]] void degenerate(const std::string &msg)
 {
-  throw vpMorphException(vpMorphException::badContourError, "vpMorphHomography::fit: " + msg);
+  throw vpMorphException(vpMorphException::badContourError, "vpMorphHomography: " + msg);
+}
+
+// The checks shared by fit() and refine(); who names the caller in the messages.
+void checkFitInput(const vpMorphContour &input, const vpMorphContour &target, double minSigma, unsigned int samples,
+                   unsigned int maxIterations, const std::string &who)
+{
+  if (!std::isfinite(minSigma) || minSigma < 0.0) {
+    std::ostringstream os;
+    os << who + ": minSigma must be finite and >= 0, got " << minSigma;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  if (samples < 16 || maxIterations < 1) {
+    std::ostringstream os;
+    os << who + ": need samples >= 16 and maxIterations >= 1, got " << samples << " and " << maxIterations;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  if (input.size() < 4 || target.size() < 4) {
+    std::ostringstream os;
+    os << who + ": a homography needs outlines of at least 4 vertices (a triangle's edges let points slide "
+                "along them), got "
+       << input.size() << " and " << target.size();
+    throw vpMorphException(vpMorphException::badContourError, os.str());
+  }
+  if (input.units() != target.units())
+    throw vpMorphException(vpMorphException::badParameterError,
+                           who + ": the two contours are in different units (pixels and normalised coordinates)");
 }
 } // namespace
 
@@ -264,24 +370,7 @@ vpMorphHomography vpMorphHomography::fit(const vpMorphContour &input, const vpMo
                                          unsigned int maxIterations)
 {
   vpMorphRigidTransform::checkCorrespondence(input, target, corr, "vpMorphHomography::fit");
-  if (!std::isfinite(minSigma) || minSigma < 0.0) {
-    std::ostringstream os;
-    os << "vpMorphHomography::fit: minSigma must be finite and >= 0, got " << minSigma;
-    throw vpMorphException(vpMorphException::badParameterError, os.str());
-  }
-  if (samples < 16 || maxIterations < 1) {
-    std::ostringstream os;
-    os << "vpMorphHomography::fit: need samples >= 16 and maxIterations >= 1, got " << samples << " and "
-       << maxIterations;
-    throw vpMorphException(vpMorphException::badParameterError, os.str());
-  }
-  if (input.size() < 4 || target.size() < 4) {
-    std::ostringstream os;
-    os << "vpMorphHomography::fit: a homography needs outlines of at least 4 vertices (a triangle's edges let "
-          "points slide along them), got "
-       << input.size() << " and " << target.size();
-    degenerate(os.str());
-  }
+  checkFitInput(input, target, minSigma, samples, maxIterations, "vpMorphHomography::fit");
   const double LI = input.perimeter(), LT = target.perimeter();
   // Scale of the coordinates, for the relative floors below.
   const double scale = 0.5 * (LI + LT);
@@ -328,7 +417,17 @@ vpMorphHomography vpMorphHomography::fit(const vpMorphContour &input, const vpMo
     }
   }
   G = normalise(G);
+  return refine(input, target, vpMorphHomography(toVisp(G)), minSigma, samples, maxIterations);
+}
 
+vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const vpMorphContour &target,
+                                            const vpMorphHomography &initial, double minSigma, unsigned int samples,
+                                            unsigned int maxIterations)
+{
+  checkFitInput(input, target, minSigma, samples, maxIterations, "vpMorphHomography::refine");
+  const double scale = 0.5 * (input.perimeter() + target.perimeter());
+  Mat3 G = toEigen(initial.m_G);
+  const NearestEdge nearestInput(input), nearestTarget(target);
   // 2. Gauss-Newton on point-to-segment distances, both ways, nearest points recomputed at each iteration.
   const std::vector<Point> SI = sampleOutline(input, samples), ST = sampleOutline(target, samples);
   const std::size_t N = SI.size() + ST.size();
@@ -338,6 +437,7 @@ vpMorphHomography vpMorphHomography::fit(const vpMorphContour &input, const vpMo
   unsigned int it = 0;
   bool converged = false;
   const unsigned int huberIterations = std::min(4u, std::max(1u, maxIterations / 2));
+  Mat8 Minv = Mat8::Zero(); // inverse of the last normal matrix, for the covariance
   for (it = 0; it < maxIterations && !converged; ++it) {
     const Mat3 Gi = G.inverse();
     bool ok = true;
@@ -351,7 +451,7 @@ vpMorphHomography vpMorphHomography::fit(const vpMorphContour &input, const vpMo
       }
       const double x = u[0] / u[2], y = u[1] / u[2];
       double mx, my;
-      r[k] = nearestOnPolygon(fwd ? target : input, x, y, mx, my);
+      r[k] = (fwd ? nearestTarget : nearestInput)(x, y, mx, my);
       // d(residual) = m^T dpi, dpi = (1/u3) [1 0 -x; 0 1 -y] du; forward du = G D p, backward du = -D u.
       Eigen::Matrix<double, 1, 3> g;
       g << mx / u[2], my / u[2], -(mx * x + my * y) / u[2];
@@ -391,6 +491,7 @@ vpMorphHomography vpMorphHomography::fit(const vpMorphContour &input, const vpMo
     if (!(dg.minCoeff() > 0) || !(es.eigenvalues()[0] > 1e-10 * es.eigenvalues()[7]))
       degenerate("the outlines leave the homography undetermined (ill-conditioned normal equations)");
     const Vec8 d = dg.asDiagonal() * Ms.ldlt().solve(dg.asDiagonal() * b);
+    Minv = dg.asDiagonal() * Ms.ldlt().solve(Mat8::Identity()) * dg.asDiagonal();
     if (!d.allFinite())
       degenerate("non-finite update");
     Mat3 D;
@@ -412,19 +513,29 @@ vpMorphHomography vpMorphHomography::fit(const vpMorphContour &input, const vpMo
       double x, y, mx, my;
       if (!project(fwd ? G : Gi, p.x, p.y, x, y))
         degenerate("the homography maps part of an outline to infinity");
-      r[k] = nearestOnPolygon(fwd ? target : input, x, y, mx, my);
+      r[k] = (fwd ? nearestTarget : nearestInput)(x, y, mx, my);
       ar.push_back(std::fabs(r[k]));
     }
     const double sigma = std::max({minSigma, 1.4826 * median(ar), 1e-13 * scale});
-    double s2 = 0;
+    double s2 = 0, ws2 = 0, sw = 0;
     std::size_t n = 0;
-    for (std::size_t k = 0; k < N; ++k)
-      if (robustWeight(r[k], sigma, true) > 0) {
+    for (std::size_t k = 0; k < N; ++k) {
+      const double w = robustWeight(r[k], sigma, true);
+      if (w > 0) {
         s2 += r[k] * r[k];
         ++n;
+        ws2 += w * r[k] * r[k];
+        sw += w;
       }
+    }
     out.m_residual = n > 0 ? std::sqrt(s2 / n) : 0.0;
     out.m_inlierShare = double(n) / double(N);
+    // sigma^2 (J^T W J)^-1, sigma^2 from the weighted residuals over the degrees of freedom left.
+    const Mat8 C = (sw > 8.0 ? ws2 / (sw - 8.0) : 0.0) * Minv;
+    out.m_covariance.resize(8, 8);
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < 8; ++j)
+        out.m_covariance[i][j] = C(i, j);
   }
   out.m_G = toVisp(G);
   out.m_iterations = it;

@@ -207,11 +207,15 @@ vpMorphContour vpMorphRigidTransform::apply(const vpMorphContour &contour) const
   for (std::size_t k = 0; k < contour.size(); ++k)
     apply(contour.x(k), contour.y(k), x[k], y[k]);
   vpMorphContour out(x, y, contour.units());
-  if (contour.hasRegion()) { // the measured region moves with its polygon: x' = s R (x - c) + c + t
-    double cx, cy, mu20, mu11, mu02;
-    contour.regionCentroid(cx, cy);
-    contour.regionMoments(mu20, mu11, mu02);
-    out.setRegion(contour.regionArea(), cx, cy, mu20, mu11, mu02);
+  if (contour.hasRegion() || contour.hasOutline()) { // they move with their polygon: x' = s R (x - c) + c + t
+    if (contour.hasRegion()) {
+      double cx, cy, mu20, mu11, mu02;
+      contour.regionCentroid(cx, cy);
+      contour.regionMoments(mu20, mu11, mu02);
+      out.setRegion(contour.regionArea(), cx, cy, mu20, mu11, mu02);
+    }
+    if (contour.hasOutline())
+      out.setOutline(contour.outline());
     const double a = m_scale * std::cos(m_theta), b = m_scale * std::sin(m_theta);
     out.mapRegion(a, -b, b, a, m_cx + m_tx - a * m_cx + b * m_cy, m_cy + m_ty - b * m_cx - a * m_cy);
   }

@@ -220,3 +220,57 @@ TEST_CASE("contour: coordinates too close or too large for double precision thro
   CHECK_NOTHROW(rectangle(1e70, -1e70, 1e70, 3e70));
   CHECK(rectangle(0, 0, 1e-100, 2e-100).area() > 0);
 }
+
+TEST_CASE("vpMorphContour: the measured edge outline follows its polygon", "[contour][outline]")
+{
+  const vpMorphContour square({0.0, 40.0, 40.0, 0.0}, {0.0, 0.0, 40.0, 40.0});
+  CHECK(!square.hasOutline());
+  CHECK(&square.outline() == &square); // none measured: the polygon itself
+  const vpMorphContour dense = square.resampled(160).transformed(0.0, 0.3, -0.2);
+  vpMorphContour c = square;
+  c.setOutline(dense);
+  REQUIRE(c.hasOutline());
+  CHECK(c.outline().size() == 160);
+  // Bad outlines throw and leave the contour unchanged.
+  CHECK_THROWS_AS(c.setOutline(vpMorphContour()), vpMorphException);
+  CHECK_THROWS_AS(c.setOutline(vpMorphContour({0.0, 1.0, 0.0}, {0.0, 0.0, 1.0})), vpMorphException);
+  CHECK_THROWS_AS(c.setOutline(dense.toNormalized(vpCameraParameters(800, 800, 320, 240))), vpMorphException);
+  CHECK(c.outline().size() == 160);
+
+  // Every geometric operation moves the outline with the polygon: compare with the same operation on it alone.
+  auto same = [](const vpMorphContour &a, const vpMorphContour &b) {
+    REQUIRE(a.size() == b.size());
+    REQUIRE(a.units() == b.units());
+    double e = 0;
+    for (std::size_t k = 0; k < a.size(); ++k)
+      e = std::max(e, std::hypot(a.x(k) - b.x(k), a.y(k) - b.y(k)));
+    return e;
+  };
+  const vpCameraParameters cam(800, 780, 320, 240);
+  const vpMorphContour n = c.toNormalized(cam);
+  REQUIRE(n.hasOutline());
+  CHECK(same(n.outline(), dense.toNormalized(cam)) < 1e-12);
+  CHECK(same(n.toPixels(cam).outline(), dense) < 1e-9);
+  CHECK(c.resampled(30).outline().size() == 160);
+  CHECK(c.reversed().hasOutline());
+  CHECK(c.rotatedStart(2).hasOutline());
+  // transformed() turns about the polygon's centroid: the outline turns about the same point.
+  const vpMorphContour t = c.transformed(0.4, 5.0, -3.0, 1.5);
+  double cx, cy;
+  c.centroid(cx, cy);
+  std::vector<double> x, y;
+  for (std::size_t k = 0; k < dense.size(); ++k) {
+    const double dx = dense.x(k) - cx, dy = dense.y(k) - cy;
+    x.push_back(cx + 1.5 * (std::cos(0.4) * dx - std::sin(0.4) * dy) + 5.0);
+    y.push_back(cy + 1.5 * (std::sin(0.4) * dx + std::cos(0.4) * dy) - 3.0);
+  }
+  CHECK(same(t.outline(), vpMorphContour(x, y)) < 1e-9);
+  const vpMorphContour m = c.mirrored();
+  REQUIRE(m.hasOutline());
+  CHECK(m.outline().x(0) == Approx(2 * cx - dense.x(0)));
+  // A copy shares the outline; changing the copy's outline leaves the original's.
+  vpMorphContour d = c;
+  d.setOutline(square.resampled(8));
+  CHECK(c.outline().size() == 160);
+  CHECK(d.outline().size() == 8);
+}

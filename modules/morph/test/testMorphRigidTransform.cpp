@@ -396,3 +396,22 @@ TEST_CASE("vpMorphRigidTransform: refineOnOutline aligns a cut outline to the wh
   CHECK_THROWS_AS(vpMorphRigidTransform::refineOnOutline(B, B, vpMorphRigidTransform(), true, 0.0, 0),
                   vpMorphException);
 }
+
+TEST_CASE("vpMorphRigidTransform::apply moves a contour's measured edge outline with it", "[morph][rigid][outline]")
+{
+  vpMorphContour c({0.0, 40.0, 40.0, 0.0}, {0.0, 0.0, 40.0, 40.0});
+  const vpMorphContour dense = c.resampled(80);
+  c.setOutline(dense);
+  const vpMorphRigidTransform T(0.7, 3.0, -2.0, 1.3, 20.0, 20.0);
+  const vpMorphContour m = T.apply(c);
+  REQUIRE(m.hasOutline());
+  REQUIRE(m.outline().size() == dense.size());
+  double e = 0;
+  for (std::size_t k = 0; k < dense.size(); ++k) {
+    double x, y;
+    T.apply(dense.x(k), dense.y(k), x, y);
+    e = std::max(e, std::hypot(m.outline().x(k) - x, m.outline().y(k) - y));
+  }
+  CHECK(e < 1e-9);
+  CHECK(!m.hasRegion()); // none was measured: none is made up
+}

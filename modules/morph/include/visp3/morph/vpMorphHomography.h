@@ -77,6 +77,15 @@ public:
   double inlierShare() const { return m_inlierShare; }
   //! Gauss-Newton iterations run by fit().
   unsigned int iterations() const { return m_iterations; }
+  /*!
+    Covariance (8x8) of the parameters d of a perturbation G (I + D), D = [d0 d1 d2; d3 d4 d5; d6 d7 0], after fit()
+    or refine(): sigma^2 (J^T W J)^-1 at the last iteration, sigma^2 the weighted squared residuals over the degrees
+    of freedom left. Why: how well the outlines fix each part of G, the perspective part (d6, d7: about the tilt in
+    radians when G is near the identity in normalised coordinates) above all, which a thin object barely fixes.
+    The samples along an outline are not independent (neighbouring edge points share pixels), so it is optimistic
+    by the number of samples per independent one. Zero for a constructed or inverted homography.
+  */
+  const vpMatrix &covariance() const { return m_covariance; }
 
   /*!
     Robust homography from \e input to \e target (same units; normalised coordinates for inputMtarget()),
@@ -91,6 +100,18 @@ public:
                                unsigned int samples = 200, unsigned int maxIterations = 20);
 
   /*!
+    Robust refinement of \e initial (step 2 of fit() alone: two-way point-to-segment Gauss-Newton, Huber then
+    Tukey weights). Why: a homography known closely, from fit() on the polygons or from the previous image of a
+    servo, refined on dense outlines (vpMorphContour::outline(): a point per boundary pixel), is measured to a few
+    hundredths of a pixel, where polygons leave tenths. Nearest edges are found through a grid, so the cost grows
+    with the samples, not with the outlines' sizes.
+    \throw vpMorphException as fit() (no correspondence is involved).
+  */
+  static vpMorphHomography refine(const vpMorphContour &input, const vpMorphContour &target,
+                                  const vpMorphHomography &initial, double minSigma = 0.0, unsigned int samples = 200,
+                                  unsigned int maxIterations = 20);
+
+  /*!
     The pose of the target camera in the input camera frame, iMt (for a servo whose input is the current view and
     whose target is the desired one: cMcd, the displacement that reaches the goal), for a homography between
     normalised coordinates and the plane z = d of the target camera frame (fronto-parallel at depth d).
@@ -101,6 +122,7 @@ public:
 
 private:
   vpMatrix m_G;
+  vpMatrix m_covariance = vpMatrix(8, 8, 0.0);
   double m_residual = 0.0, m_inlierShare = 1.0;
   unsigned int m_iterations = 0;
 };
