@@ -4,7 +4,7 @@
 
   \code
   vispmorph-bench --set planar|planar-hard|6dof|calib|noise|occlusion|deformable|faults|all[,...]
-                  [--controllers morph,morph-tilt,morph-vpservo,ibvs-current,ibvs-desired,ibvs-mean,pbvs,moments]
+                  [--controllers morph,morph-planar,morph-vpservo,ibvs-current,ibvs-desired,ibvs-mean,pbvs,moments]
                   [--robot camera|viper850|afma6] [--count N] [--seed S] --out DIR
                   [--threads T] [--max-iterations N] [--lambda L] [--no-curves] [--no-plots]
   \endcode
@@ -44,7 +44,7 @@ void usage(std::ostream &os)
   os << "Usage: vispmorph-bench --set SETS --out DIR [options]\n"
         "  --set SETS         comma-separated: planar, planar-hard, 6dof, calib, noise, occlusion, deformable,\n"
         "                     faults (timed faults, 5 kinds in turn), all\n"
-        "  --controllers L    comma-separated (default all): morph, morph-tilt, morph-vpservo, ibvs-current, ibvs-desired,\n"
+        "  --controllers L    comma-separated (default all): morph, morph-planar, morph-vpservo, ibvs-current, ibvs-desired,\n"
         "                     ibvs-mean, pbvs, moments\n"
         "  --robot R          camera (default), viper850 or afma6\n"
         "  --count N          scenarios per set (default 10)\n"

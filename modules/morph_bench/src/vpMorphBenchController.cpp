@@ -229,14 +229,15 @@ protected:
 };
 
 /*!
-  VISPMorph's controller: vpServoMorph through 10 sub-goals, Eq. 5-11, online hand-eye estimation ("morph"); with
-  the out-of-plane (tilt) correction from the contour's homography on the final approach ("morph-tilt",
-  vpServoMorph::TILT_FINAL_APPROACH, default dead zone).
+  VISPMorph's controller: vpServoMorph through 10 sub-goals, Eq. 5-11, online hand-eye estimation, and the
+  out-of-plane (tilt) correction on the final approach (vpServoMorph::TILT_FINAL_APPROACH: the contour's homography
+  refined on the measured edge outlines, default dead zones) ("morph"); or the paper's planar law alone, no tilt
+  command ("morph-planar").
 */
 class MorphController : public MorphBase
 {
 public:
-  explicit MorphController(bool tilt = false) : m_tilt(tilt), m_name(tilt ? "morph-tilt" : "morph") {}
+  explicit MorphController(bool tilt = true) : m_tilt(tilt), m_name(tilt ? "morph" : "morph-planar") {}
   std::string name() const override { return m_name; }
   Command step(const vpImage<unsigned char> &I, const vpMatrix &) override
   {
@@ -618,15 +619,15 @@ vpMorphBenchController::Command vpMorphBenchController::missingFrame()
 
 std::vector<std::string> vpMorphBenchController::names()
 {
-  return {"morph", "morph-tilt", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments"};
+  return {"morph", "morph-planar", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments"};
 }
 
 std::unique_ptr<vpMorphBenchController> vpMorphBenchController::create(const std::string &name)
 {
   if (name == "morph")
     return std::unique_ptr<vpMorphBenchController>(new MorphController);
-  if (name == "morph-tilt")
-    return std::unique_ptr<vpMorphBenchController>(new MorphController(true));
+  if (name == "morph-planar")
+    return std::unique_ptr<vpMorphBenchController>(new MorphController(false));
   if (name == "morph-vpservo")
     return std::unique_ptr<vpMorphBenchController>(new MorphVpServoController);
   if (name == "ibvs-current")
@@ -641,5 +642,5 @@ std::unique_ptr<vpMorphBenchController> vpMorphBenchController::create(const std
     return std::unique_ptr<vpMorphBenchController>(new MomentsController);
   throw vpMorphException(vpMorphException::notFoundError,
                          "vpMorphBenchController: unknown controller '" + name +
-                             "' (morph, morph-tilt, morph-vpservo, ibvs-current, ibvs-desired, ibvs-mean, pbvs, moments)");
+                             "' (morph, morph-planar, morph-vpservo, ibvs-current, ibvs-desired, ibvs-mean, pbvs, moments)");
 }

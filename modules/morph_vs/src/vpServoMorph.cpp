@@ -14,6 +14,13 @@
 
 namespace
 {
+// Multiples of the tilt's standard deviation (from the outlines' homography) within which it is not commanded.
+const double kTiltSigmas = 2.0;
+// Acceptance of the homography refined on edge outlines: inlier share and RMS residual (pixels).
+const double kOutlineMinInliers = 0.9, kOutlineMaxResidualPx = 0.5;
+// Inlier share the homography needs when the regions are not alike (see estimateTilt()).
+const double kNotAlikeMinInliers = 0.99;
+
 void checkPositive(double v, const char *what)
 {
   if (!std::isfinite(v) || v <= 0.0) {
@@ -330,6 +337,7 @@ void vpServoMorph::restart()
   m_haveMove = m_haveWork = false;
   m_tracker.reset();
   m_tiltTracker.reset();
+  m_tiltWarm = false;
   m_tiltOk = false;
   m_tiltLatched = false;
   m_tiltRes = 0;
@@ -384,6 +392,7 @@ void vpServoMorph::start(const vpMorphContour &current)
   m_k = 0;
   m_tracker.reset();
   m_tiltTracker.reset();
+  m_tiltWarm = false;
   m_tiltLatched = false;
   m_haveWork = false;
   m_started = true;
@@ -602,7 +611,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     double Zp = Z;
     const bool tilt = estimateTilt(currentN, cMct, Zp);
     if (m_k == last && m_rotRes < m_rotFine && m_transRes < m_pxFine && m_scaleRes < m_pxFine &&
-        (!tilt || m_tiltRes < std::max(m_tiltFine, m_tiltDeadZone))) {
+        (!tilt || m_tiltRes < std::max(m_tiltFine, m_tiltDeadZoneUsed))) {
       m_prevWork = m_work;
       m_haveWork = true;
       if (targetMismatch(current)) { // aligned, but not the target's shape: never report CONVERGED on it
@@ -644,7 +653,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     m_haveWork = true;
     // A tilt orbit executed through a wrong eMc moves the image in ways the planar calibration model cannot tell
     // from a planar error: no calibration observation spans a tilt command (re-anchored at the next iteration).
-    m_haveMove = !(tilt && m_tiltRes > m_tiltDeadZone);
+    m_haveMove = !(tilt && m_tiltRes > m_tiltDeadZoneUsed);
     record();
     return m_ve;
   } catch (const vpException &) {
@@ -674,6 +683,12 @@ void vpServoMorph::setTiltDeadZone(double rad)
   m_tiltDeadZone = rad;
 }
 
+void vpServoMorph::setOutlineTiltDeadZone(double rad)
+{
+  checkNonNegative(rad, "the outline tilt dead zone");
+  m_outlineTiltDeadZone = rad;
+}
+
 bool vpServoMorph::tiltActive() const
 {
   return m_tiltMode == TILT_ALWAYS || (m_tiltMode == TILT_FINAL_APPROACH && m_k + 1 == m_subGoals.size());
@@ -691,16 +706,60 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
   m_tiltRes = 0;
   m_cMcdH.eye();
   cMct.eye();
-  if (!tiltActive() || m_tiltLatched)
+  // A target measured on its image, a current contour not (vpMorphContourExtractor::extractJoined() bridged pieces
+  // an occluder cut: part of that outline was never seen): no perspective to read in it.
+  if (!tiltActive() || m_tiltLatched || (m_target.hasRegion() && !currentN.hasRegion()))
     return false;
   try {
     const vpMorphContour targetN = m_target.toNormalized(m_cam);
-    const vpMorphCorrespondence &corr = m_tiltTracker.update(currentN, targetN);
     const double pixel = 1.0 / std::max(m_cam.get_px(), m_cam.get_py());
-    const vpMorphHomography G = vpMorphHomography::fit(currentN, targetN, corr, 0.5 * pixel, 120, 12);
-    // A wrong correspondence ends in a local minimum that leaves much of the outline unexplained: ignore it.
-    if (G.inlierShare() < m_tiltMinInliers || G.residual() > m_tiltMaxResidualPx * pixel)
-      return false;
+    const bool dense = currentN.hasOutline() && targetN.hasOutline();
+    // Regions not alike (see start()): a tilted view, or a part hidden or bent. Only a homography that explains the
+    // whole outline tells the first: an occluder's edge or a bent limb fitted away by the robust weights still
+    // pulls the perspective part (measured: an occluded hammer ending 7.9 deg off).
+    const double minInliers = m_regionsAlike == NOT_ALIKE ? kNotAlikeMinInliers : 0.0;
+    // Measured edges of one plane's outline meet within hundredths of a pixel (tenths under noise): a fit on them
+    // that leaves a tenth out, or half a pixel RMS, is of an outline that changed (bent, partly hidden).
+    auto denseFit = [&](const vpMorphHomography &start, unsigned int iterations, vpMorphHomography &G) {
+      G = vpMorphHomography::refine(currentN.outline(), targetN.outline(), start, 0.1 * pixel, 400, iterations);
+      return G.inlierShare() >= std::max(kOutlineMinInliers, minInliers) &&
+             G.residual() <= kOutlineMaxResidualPx * pixel;
+    };
+    vpMorphHomography G;
+    // Outlines: from the previous period's homography (the camera moved by a fraction of its error since), which
+    // follows the view smoothly and saves the polygons' correspondence and fit; from the polygons otherwise.
+    const bool warm = dense && m_tiltWarm;
+    m_tiltWarm = false;
+    bool fitted = false;
+    if (warm) {
+      try {
+        fitted = denseFit(m_tiltG, 6, G);
+      } catch (const vpException &) {
+        fitted = false; // from the polygons, below
+      }
+    }
+    if (!fitted) {
+      const vpMorphCorrespondence &corr = m_tiltTracker.update(currentN, targetN);
+      G = vpMorphHomography::fit(currentN, targetN, corr, 0.5 * pixel, 120, 12);
+      // A wrong correspondence ends in a local minimum that leaves much of the outline unexplained: ignore it.
+      if (G.inlierShare() < std::max(m_tiltMinInliers, minInliers) || G.residual() > m_tiltMaxResidualPx * pixel)
+        return false;
+      // Refined on the measured edges: tenths of a pixel -> hundredths.
+      if (dense && !denseFit(vpMorphHomography(G), 8, G))
+        return false;
+    }
+    m_tiltDeadZoneUsed = m_tiltDeadZone;
+    if (dense) {
+      m_tiltG = G;
+      m_tiltWarm = true;
+      // The tilt's uncertainty: the largest standard deviation of the perspective part (d6, d7 of the covariance,
+      // radians of tilt near the goal). Noise, blur, or a thin object (whose tilt about its long axis barely
+      // changes its outline) widen it; the estimate is not followed within kTiltSigmas of it.
+      const vpMatrix &C = G.covariance();
+      const double a = C[6][6], b = C[6][7], d = C[7][7];
+      const double sd = std::sqrt(std::max(0.0, 0.5 * (a + d) + std::sqrt(0.25 * (a - d) * (a - d) + b * b)));
+      m_tiltDeadZoneUsed = std::max(m_outlineTiltDeadZone, kTiltSigmas * sd);
+    }
     const vpHomogeneousMatrix cMcd = G.inputMtarget(m_Zd);
     const vpColVector n = cMcd.getRotationMatrix().getCol(2); // plane normal in the current camera frame
     const vpTranslationVector t = cMcd.getTranslationVector();
@@ -713,15 +772,18 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
     const double lambda = dc / nr; // depth of P
     const vpColVector P = vpColVector({lambda * cx, lambda * cy, lambda});
     const double angle = std::acos(std::max(-1.0, std::min(1.0, n[2])));
-    if (m_tiltDeadZone > 0.0 && angle <= m_tiltDeadZone && m_k + 1 == m_subGoals.size()) {
-      // Within the dead zone on the final approach: what the contour shows below it is the polygonisation, and
+    if (!dense && m_tiltDeadZoneUsed > 0.0 && angle <= m_tiltDeadZoneUsed && m_k + 1 == m_subGoals.size()) {
+      // Within the dead zone on the final approach: what polygons show below it is the polygonisation, and
       // following it would random-walk the camera; the planar law finishes alone (latched until restart()).
+      // Outlines are not latched: their estimate, still read, commands nothing within the dead zone, but a tilt
+      // the planar moves bring back (through a wrong eMc) or a dead zone that narrows as the view settles is
+      // corrected again.
       m_tiltLatched = true;
       m_tiltRes = angle;
       return false;
     }
     // Only the part beyond the dead zone is commanded: below it the estimate is not trusted (see setTiltDeadZone()).
-    const double cmd = std::max(0.0, angle - m_tiltDeadZone);
+    const double cmd = std::max(0.0, angle - m_tiltDeadZoneUsed);
     const double ax = -n[1], ay = n[0], sa = std::hypot(ax, ay);
     vpRotationMatrix Rt; // identity when already aligned
     if (sa > 1e-12 && cmd > 0.0)

@@ -34,6 +34,29 @@ vpHomogeneousMatrix tiltedStart(double tiltDeg, double phiDeg, double depthChang
   return cdMc.inverse() * cdMo;
 }
 
+// The projected polygon with a dense edge outline attached, as vpMorphContourExtractor measures it on images: the
+// object's outline sampled every 2 mm in its plane, projected exactly.
+vpMorphContour withOutline(const vpMorphContour &polygon, const vpHomogeneousMatrix &cMo)
+{
+  const std::vector<vpColVector> P = objectPoints();
+  std::vector<double> X, Y;
+  for (const vpColVector &p : P) {
+    X.push_back(p[0]);
+    Y.push_back(p[1]);
+  }
+  const vpMorphContour plane = vpMorphContour(X, Y).resampled(340);
+  std::vector<double> x, y;
+  const vpCameraParameters cam = camera();
+  for (std::size_t k = 0; k < plane.size(); ++k) {
+    const vpColVector Q = cMo * vpColVector({plane.x(k), plane.y(k), 0.0, 1.0});
+    x.push_back(cam.get_u0() + cam.get_px() * Q[0] / Q[2]);
+    y.push_back(cam.get_v0() + cam.get_py() * Q[1] / Q[2]);
+  }
+  vpMorphContour c = polygon;
+  c.setOutline(vpMorphContour(x, y));
+  return c;
+}
+
 struct Outcome
 {
   bool converged = false;
@@ -43,7 +66,8 @@ struct Outcome
 };
 
 Outcome run(const vpHomogeneousMatrix &cMo0, vpServoMorph::TiltCorrection mode, const vpHomogeneousMatrix &eMcEstimate,
-            const vpCameraParameters &camEstimate = camera(), double noisePx = 0.0, int maxIterations = 300)
+            const vpCameraParameters &camEstimate = camera(), double noisePx = 0.0, int maxIterations = 300,
+            bool outlines = false, bool defaultDeadZones = false)
 {
   vpServoMorph servo;
   servo.setCameraParameters(camEstimate);
@@ -52,11 +76,12 @@ Outcome run(const vpHomogeneousMatrix &cMo0, vpServoMorph::TiltCorrection mode, 
   servo.setSamplingTime(0.1);
   servo.setGain(0.5);
   servo.setTiltCorrection(mode);
-  servo.setTiltDeadZone(0.0); // exact (or vertex-noise) projected contours: every estimated tilt is commanded
-  servo.setTarget(projectPixels(cdMo), Zd);
+  if (!defaultDeadZones)
+    servo.setTiltDeadZone(0.0); // exact (or vertex-noise) projected contours: every estimated tilt is commanded
+  servo.setTarget(outlines ? withOutline(projectPixels(cdMo), cdMo) : projectPixels(cdMo), Zd);
   if (noisePx > 0) {
     servo.setFinalThresholds(0.004, 0.6);
-    servo.setFinalTiltThreshold(0.006);
+    servo.setFinalTiltThreshold(outlines ? 0.002 : 0.006); // exact outlines: the tilt is seen exactly
   }
   std::mt19937 rng(11);
   std::normal_distribution<double> noise(0.0, noisePx > 0 ? noisePx : 1.0);
@@ -83,6 +108,8 @@ Outcome run(const vpHomogeneousMatrix &cMo0, vpServoMorph::TiltCorrection mode, 
       }
       c = vpMorphContour(x, y);
     }
+    if (outlines)
+      c = withOutline(c, cMo);
     const vpColVector ve = servo.computeControlLaw(c);
     for (unsigned int i = 0; i < ve.size(); ++i)
       REQUIRE(std::isfinite(ve[i]));
@@ -192,6 +219,23 @@ TEST_CASE("vpServoMorph tilt correction keeps the planar paths and copes with ve
   CHECK(noisy.rDeg < 1.0);
 }
 
+TEST_CASE("vpServoMorph tilt correction refines on measured edge outlines, with their finer dead zone", "[servo][tilt]")
+{
+  // Polygons with 0.25 px vertex noise (as polygonisations of extracted silhouettes differ) and the default dead
+  // zones: from the polygons alone the tilt is left within the 4 deg dead zone; with the edge outlines attached
+  // (exact here), the homography is refined on them and the 0.15 deg dead zone applies.
+  const vpHomogeneousMatrix cMo0 = tiltedStart(3.5, 40, 0.1, 60, 0.02, -0.01);
+  const Outcome poly =
+      run(cMo0, vpServoMorph::TILT_FINAL_APPROACH, eMcTrue, camera(), 0.25, 300, false, true);
+  const Outcome edge = run(cMo0, vpServoMorph::TILT_FINAL_APPROACH, eMcTrue, camera(), 0.25, 300, true, true);
+  print("tilt 3.5 deg, 0.25 px vertex noise, final approach, polygons", poly);
+  print("tilt 3.5 deg, 0.25 px vertex noise, final approach, edge outlines", edge);
+  CHECK(poly.tiltDeg > 1.0);
+  CHECK(edge.converged);
+  CHECK(edge.tiltDeg < 0.3);
+  CHECK(edge.tErr < 2e-3);
+}
+
 TEST_CASE("vpServoMorph tilt correction: settings and a contour without a homography", "[servo][tilt][safety]")
 {
   vpServoMorph servo;
@@ -205,6 +249,11 @@ TEST_CASE("vpServoMorph tilt correction: settings and a contour without a homogr
   CHECK_THROWS_AS(servo.setFinalTiltThreshold(std::nan("")), vpMorphException);
   servo.setFinalTiltThreshold(0.01);
   CHECK(servo.finalTiltThreshold() == 0.01);
+  CHECK(servo.outlineTiltDeadZone() == Approx(0.0026));
+  CHECK_THROWS_AS(servo.setOutlineTiltDeadZone(-0.01), vpMorphException);
+  CHECK_THROWS_AS(servo.setOutlineTiltDeadZone(std::nan("")), vpMorphException);
+  servo.setOutlineTiltDeadZone(0.001);
+  CHECK(servo.outlineTiltDeadZone() == 0.001);
   // A triangle has no homography: the planar law runs alone (finite velocity, no tilt estimate).
   const vpMorphContour tri({200.0, 420.0, 260.0}, {150.0, 190.0, 330.0});
   servo.setTarget(tri, 0.5);

@@ -80,23 +80,34 @@
   which gives the plane normal n in the current camera frame and the depth of the plane point P seen at the current
   centroid. The tilt displacement turns the optical axis onto n about P, \f${}^cM_{c'} = [R_t,\ P - R_t P]\f$ (an
   orbit that keeps the object where it is in the image, so it does not fight the planar law, whose sub-goals and
-  paths are unchanged); only the part of the tilt beyond tiltDeadZone() is commanded (and none once it has been
-  within it on the final approach), its twist scaled by gain() and
-  added to the planar one, and the depth of P replaces the area depth in the planar displacement (the area shrinks
-  by cos(tilt)). The final goal also needs the tilt below max(finalTiltThreshold(), tiltDeadZone()). No hand-eye
-  observation spans a tilt command (an orbit executed through a wrong eMc moves the image in ways the planar model
-  would misread). When the homography cannot be estimated (a triangle, a poor fit: under 60 % inliers or 2 px RMS)
-  the planar law runs alone for that iteration. TILT_FINAL_APPROACH corrects on the last sub-goal only, TILT_ALWAYS
-  from the first iteration.
+  paths are unchanged); only the part of the tilt beyond the dead zone is commanded (and none once it has been
+  within it on the final approach), its twist scaled by gain() and added to the planar one, and the depth of P
+  replaces the area depth in the planar displacement (the area shrinks by cos(tilt)). The final goal also needs the
+  tilt below max(finalTiltThreshold(), dead zone). No hand-eye observation spans a tilt command (an orbit executed
+  through a wrong eMc moves the image in ways the planar model would misread). TILT_FINAL_APPROACH corrects on the
+  last sub-goal only, TILT_ALWAYS from the first iteration.
 
-  Why off by default: on exactly projected contours the correction is exact (tilted starts up to 30 deg with 30 %
-  depth changes and an 8 deg hand-eye tilt error converge to 0.1-0.8 mm, under 0.1 deg, where the planar law ends
-  10-30 deg off), but 0.5 deg of tilt moves the outline of a 15 cm object at 0.5 m by at most 0.16 px, and two
-  polygonisations of one silhouette extracted from two images differ by tenths of a pixel to a pixel: from such
-  contours the homography sees the tilt only to 1-6 deg. On the benchmark (rendered images) it brings the large
-  tilts of the 6dof set down to a few degrees, but spurious estimates on planar starts cost their 0.5 deg success.
+  How well the tilt is seen decides everything: 0.5 deg of tilt moves the outline of a 15 cm object at 0.5 m by at
+  most 0.16 px. Polygons see it to 1-6 deg (two polygonisations of one silhouette differ by tenths of a pixel), hence
+  their dead zone tiltDeadZone() (4 deg). When both contours carry the edge outline measured by
+  vpMorphContourExtractor (vpMorphContour::outline(): a point per boundary pixel, to a few hundredths of a pixel),
+  the polygons' homography is refined on the outlines (vpMorphHomography::refine(), robust scale floored at a tenth
+  of a pixel), which see the tilt of a compact object to about a tenth of a degree; the dead zone is then
+  outlineTiltDeadZone() (0.15 deg), widened to twice the tilt's standard deviation from the fit's covariance
+  (vpMorphHomography::covariance(): noise, blur, or a thin object whose tilt about its long axis barely changes its
+  outline). The planar law runs alone for an iteration when the homography is not trusted: a triangle, a poor
+  polygon fit (under 60 % inliers or 2 px RMS), a poor outline fit (under 90 % inliers or 0.5 px RMS), regions that
+  are not alike (see above: a tilted view, or a part hidden or bent) unless the homography explains the whole
+  outline (99 % inliers: an occluder's edge fitted away by the robust weights still pulls the perspective part), or
+  a current contour without a measured region towards a target with one (an outline joined across a cut: part of it
+  was bridged, not seen).
 
-  <b>Safety.</b>  <b>Safety.</b> The velocity is zero, never NaN, and status() says why when the target is lost (empty
+  Why off by default: it is not the paper's law, and on polygons alone (contours built by hand, or stored without
+  their outlines) it removes large tilts but stops within its 4 deg dead zone. With extracted contours on the
+  benchmark's free camera ("morph", final approach), the calib set goes from 2/10 to 9/10 and the other sets are
+  unchanged (README).
+
+  <b>Safety.</b> The velocity is zero, never NaN, and status() says why when the target is lost (empty
   contour), the contour degenerates (area below minArea(), non-finite values, a failed morph), or the
   correspondence is unreliable: a distance jump (work above jumpFactor() * previous work + workFloor() to the
   same sub-goal) together with a jump of the fitted rotation (more than gain() x the previous rotation residual +
@@ -273,6 +284,15 @@ public:
   */
   void setTiltDeadZone(double rad);
   double tiltDeadZone() const { return m_tiltDeadZone; }
+  /*!
+    The dead zone (rad, >= 0) that replaces tiltDeadZone() when both the current contour and the target carry a
+    measured edge outline (vpMorphContour::outline(), from vpMorphContourExtractor): the homography found on the
+    polygons is then refined on the outlines (vpMorphHomography::refine()), which give the tilt of a compact
+    object to a tenth of a degree. Widened to twice the tilt's standard deviation when the fit is less sure (see
+    the class description). Default 0.0026 rad (0.15 deg).
+  */
+  void setOutlineTiltDeadZone(double rad);
+  double outlineTiltDeadZone() const { return m_outlineTiltDeadZone; }
   //! Successive calls without a contour (TARGET_LOST, holding) before LOST_TOO_LONG (default 25).
   void setMaxLostIterations(unsigned int n) { m_maxLost = n; }
   unsigned int maxLostIterations() const { return m_maxLost; }
@@ -373,6 +393,8 @@ private:
   TiltCorrection m_tiltMode = TILT_OFF;
   double m_tiltFine = 0.002;
   double m_tiltDeadZone = 0.07;
+  double m_outlineTiltDeadZone = 0.0026;
+  double m_tiltDeadZoneUsed = 0.07; // the dead zone of the last estimate (outlines or polygons)
   double m_tiltMinInliers = 0.6, m_tiltMaxResidualPx = 2.0; // a homography fit worse than this is not used
   unsigned int m_maxLost = 25, m_maxReplans = 3;
   double m_jumpPx = 20.0;
@@ -385,6 +407,8 @@ private:
   vpMorphHandEyeEstimator m_estimator;
   vpMorphCorrespondenceTracker m_tracker;
   vpMorphCorrespondenceTracker m_tiltTracker; // current -> target, for the homography
+  vpMorphHomography m_tiltG;                  // the last homography refined on outlines (warm start)
+  bool m_tiltWarm = false;
   vpFeatureMorph m_s, m_sd;
   vpServo m_task;
 
