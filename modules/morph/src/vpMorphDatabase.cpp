@@ -455,6 +455,8 @@ std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
       o["region"] = {{"area", t.contour().regionArea()}, {"cx", cx}, {"cy", cy},
                      {"mu20", mu20},                   {"mu11", mu11}, {"mu02", mu02}};
     }
+    if (t.contour().hasOutline()) // the measured edge, for the out-of-plane estimate of vpServoMorph
+      o["outline"] = {{"x", t.contour().outline().xs()}, {"y", t.contour().outline().ys()}};
     o["cdMo"] = poseToJson(t.cdMo());
     o["metadata"] = t.metadata();
     ts.push_back(o);
@@ -573,6 +575,20 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
         if (e.getCode() == vpMorphException::ioError)
           throw;
         throw ioError("vpMorphDatabase: " + w + ": " + e.getStringMessage());
+      }
+    }
+    if (o.contains("outline")) { // optional: the edge measured on the template image
+      const json &e = o["outline"];
+      if (!e.is_object())
+        throw ioError("vpMorphDatabase: " + where.str() + ": \"outline\" must be an object {x, y}");
+      const std::string w = where.str() + " \"outline\"";
+      try {
+        c.setOutline(vpMorphContour(field<std::vector<double>>(e, "x", w), field<std::vector<double>>(e, "y", w),
+                                    c.units()));
+      } catch (const vpMorphException &ex) {
+        if (ex.getCode() == vpMorphException::ioError)
+          throw;
+        throw ioError("vpMorphDatabase: " + w + ": " + ex.getStringMessage());
       }
     }
     const std::vector<double> m = field<std::vector<double>>(o, "cdMo", where.str());

@@ -130,9 +130,14 @@ TEST_CASE("database: JSON round trip keeps every field", "[database]")
       CHECK(b11 == a11);
       CHECK(b02 == a02);
     }
+    // So does the measured edge outline.
+    REQUIRE(back[k].contour().hasOutline() == db[k].contour().hasOutline());
+    CHECK(back[k].contour().outline().xs() == db[k].contour().outline().xs());
+    CHECK(back[k].contour().outline().ys() == db[k].contour().outline().ys());
     CHECK(back[k].metadata() == db[k].metadata());
   }
   CHECK(db["pliers"].contour().hasRegion());
+  CHECK(db["pliers"].contour().hasOutline());
   CHECK_FALSE(back["square"].contour().hasRegion());
   const vpMorphTemplate &s = back["square"];
   CHECK(s.metadata("grasp") == "centre");
@@ -193,6 +198,14 @@ TEST_CASE("database: bad files give clear errors", "[database]")
   std::string badRegion = text;
   badRegion.replace(badRegion.find("\"region\": {"), 11, "\"region\": 3, \"was\": {");
   expectIo(loadText(badRegion), "\"region\" must be an object");
+  REQUIRE(text.find("\"outline\": {") != std::string::npos);
+  std::string badOutline = text;
+  badOutline.replace(badOutline.find("\"outline\": {"), 12, "\"outline\": [], \"was\": {");
+  expectIo(loadText(badOutline), "\"outline\" must be an object");
+  std::string shortOutline = text;
+  const std::size_t ox = shortOutline.find("\"x\": [", shortOutline.find("\"outline\": {"));
+  shortOutline.replace(ox, 6, "\"x\": [1, 2], \"z\": [");
+  expectIo(loadText(shortOutline), "\"outline\"");
   std::string negArea = text;
   negArea.replace(negArea.find("\"area\": "), 8, "\"area\": -");
   expectIo(loadText(negArea), "finite positive area");
