@@ -1,5 +1,7 @@
 #include <visp3/morph/vpMorphRigidTransform.h>
 
+#include "vpMorphNearestEdge.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -393,31 +395,6 @@ vpMorphRigidTransform vpMorphRigidTransform::fitLeastSquares(const vpMorphContou
   return toTransform(T, input);
 }
 
-namespace
-{
-// Closest point q to p on the closed polygon c, and the unit normal there (of the edge, or from q to p at a vertex).
-void closestOnOutline(const vpMorphContour &c, const Eigen::Vector2d &p, Eigen::Vector2d &q, Eigen::Vector2d &normal)
-{
-  const std::size_t n = c.size();
-  double bestD2 = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < n; ++k) {
-    const Eigen::Vector2d a(c.x(k), c.y(k)), b(c.x((k + 1) % n), c.y((k + 1) % n));
-    const Eigen::Vector2d ab = b - a;
-    const double l2 = ab.squaredNorm();
-    const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, (p - a).dot(ab) / l2)) : 0.0;
-    const Eigen::Vector2d qk = a + t * ab;
-    const double d2 = (qk - p).squaredNorm();
-    if (d2 < bestD2) {
-      bestD2 = d2;
-      q = qk;
-      const Eigen::Vector2d edgeNormal =
-          l2 > 0.0 ? Eigen::Vector2d(-ab.y(), ab.x()) / std::sqrt(l2) : Eigen::Vector2d(1, 0);
-      normal = (t > 0.0 && t < 1.0) || d2 == 0.0 ? edgeNormal : Eigen::Vector2d((p - qk) / std::sqrt(d2));
-    }
-  }
-}
-} // namespace
-
 vpMorphRigidTransform vpMorphRigidTransform::refineOnOutline(const vpMorphContour &input, const vpMorphContour &target,
                                                              const vpMorphRigidTransform &initial, bool withScale,
                                                              double minSigma, unsigned int maxIterations)
@@ -458,13 +435,19 @@ vpMorphRigidTransform vpMorphRigidTransform::refineOnOutline(const vpMorphContou
     spread = std::max(spread, (Eigen::Vector2d(target.x(k), target.y(k)) - x.tail<2>()).norm());
   const double sigmaMin = std::max(1e-9 * std::max(spread, 1e-300), minSigma);
 
+  const vpMorphNearestEdge nearest(target); // a grid over a dense target's edges
   std::vector<Eigen::Vector2d> Q(P.size()), N(P.size());
   std::vector<double> d(P.size());
   for (unsigned int it = 0; it < maxIterations; ++it) {
     for (std::size_t k = 0; k < P.size(); ++k) {
       const Eigen::Vector2d p(x[0] * P[k].x() - x[1] * P[k].y() + x[2], x[1] * P[k].x() + x[0] * P[k].y() + x[3]);
-      closestOnOutline(target, p, Q[k], N[k]);
-      d[k] = (p - Q[k]).norm();
+      // The nearest point q = p - r m of the target's edges: r the signed distance, m the edge's normal (towards p
+      // at a vertex).
+      double mx, my;
+      const double r = nearest(p.x(), p.y(), mx, my);
+      N[k] = Eigen::Vector2d(mx, my);
+      Q[k] = p - r * N[k];
+      d[k] = std::fabs(r);
     }
     // Distances are norms (>= 0): their median stands for the MAD of a residual centred on 0. Tukey weights
     // from the distance trim what the target does not have; the fit itself is point-to-edge, which slides

@@ -1,0 +1,137 @@
+/*
+  \file vpMorphNearestEdge.h
+  \brief Internal to the morph module (not installed): the nearest point of a closed polygon, through a grid.
+*/
+#ifndef VP_MORPH_NEAREST_EDGE_H
+#define VP_MORPH_NEAREST_EDGE_H
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <visp3/morph/vpMorphContour.h>
+
+/*
+  Signed distance from p to the nearest point of the closed polygon c, and the unit direction m along which it is
+  measured (the edge normal when the nearest point is inside an edge, towards p when it is a vertex). The edges are
+  bucketed in a uniform grid of cells about two mean edges wide, searched in rings around p's cell: a dense outline
+  (a point per boundary pixel) is queried in constant time instead of scanning its hundreds of edges. The result is
+  the exhaustive scan's (equal distances: the lowest edge index).
+*/
+class vpMorphNearestEdge
+{
+public:
+  explicit vpMorphNearestEdge(const vpMorphContour &c) : m_c(c)
+  {
+    const std::size_t n = c.size();
+    if (n < 32)
+      return; // a polygon: scanning is as fast
+    m_x0 = *std::min_element(c.xs().begin(), c.xs().end());
+    m_y0 = *std::min_element(c.ys().begin(), c.ys().end());
+    const double x1 = *std::max_element(c.xs().begin(), c.xs().end());
+    const double y1 = *std::max_element(c.ys().begin(), c.ys().end());
+    m_h = std::max(2.0 * c.perimeter() / double(n), 1e-9 * std::max(x1 - m_x0, y1 - m_y0));
+    m_nx = std::min(1024, int((x1 - m_x0) / m_h) + 1);
+    m_ny = std::min(1024, int((y1 - m_y0) / m_h) + 1);
+    m_h = std::max((x1 - m_x0) / m_nx, (y1 - m_y0) / m_ny) * (1.0 + 1e-12) + 1e-300;
+    m_cells.assign(std::size_t(m_nx) * std::size_t(m_ny), {});
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t l = (k + 1) % n;
+      const int i0 = cellX(std::min(c.x(k), c.x(l))), i1 = cellX(std::max(c.x(k), c.x(l)));
+      const int j0 = cellY(std::min(c.y(k), c.y(l))), j1 = cellY(std::max(c.y(k), c.y(l)));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+          m_cells[std::size_t(j) * std::size_t(m_nx) + std::size_t(i)].push_back(k);
+    }
+  }
+
+  double operator()(double px, double py, double &mx, double &my) const
+  {
+    Best b;
+    const std::size_t n = m_c.size();
+    // Outside the grid (or no grid): the exhaustive scan.
+    if (m_cells.empty() || !(px >= m_x0 && py >= m_y0 && px < m_x0 + m_nx * m_h && py < m_y0 + m_ny * m_h)) {
+      for (std::size_t k = 0; k < n; ++k)
+        visit(k, px, py, b);
+      return finish(b, px, py, mx, my);
+    }
+    const int ci = cellX(px), cj = cellY(py);
+    const int maxRing = std::max(m_nx, m_ny);
+    for (int r = 0; r <= maxRing; ++r) {
+      for (int j = cj - r; j <= cj + r; ++j) {
+        if (j < 0 || j >= m_ny)
+          continue;
+        const bool edgeRow = j == cj - r || j == cj + r;
+        for (int i = ci - r; i <= ci + r; i += (edgeRow || r == 0) ? 1 : 2 * r) {
+          if (i < 0 || i >= m_nx)
+            continue;
+          for (std::size_t k : m_cells[std::size_t(j) * std::size_t(m_nx) + std::size_t(i)])
+            visit(k, px, py, b);
+        }
+      }
+      // Every cell outside the (2r + 1)^2 block searched is farther from p than the block's border.
+      const double border = std::min(std::min(px - (m_x0 + (ci - r) * m_h), m_x0 + (ci + r + 1) * m_h - px),
+                                     std::min(py - (m_y0 + (cj - r) * m_h), m_y0 + (cj + r + 1) * m_h - py));
+      if (b.d2 < std::numeric_limits<double>::max() && std::sqrt(b.d2) <= border)
+        break;
+    }
+    return finish(b, px, py, mx, my);
+  }
+
+private:
+  struct Best
+  {
+    double d2 = std::numeric_limits<double>::max(), fx = 0, fy = 0;
+    bool interior = true;
+    std::size_t k = std::numeric_limits<std::size_t>::max();
+  };
+  int cellX(double x) const { return std::min(m_nx - 1, std::max(0, int((x - m_x0) / m_h))); }
+  int cellY(double y) const { return std::min(m_ny - 1, std::max(0, int((y - m_y0) / m_h))); }
+  void visit(std::size_t k, double px, double py, Best &b) const
+  {
+    const vpMorphContour &c = m_c;
+    const std::size_t l = (k + 1) % c.size();
+    const double ax = c.x(k), ay = c.y(k), dx = c.x(l) - ax, dy = c.y(l) - ay, l2 = dx * dx + dy * dy;
+    double t = l2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / l2 : 0.0;
+    bool in = true;
+    if (t <= 0.0) {
+      t = 0.0;
+      in = false;
+    } else if (t >= 1.0) {
+      t = 1.0;
+      in = false;
+    }
+    const double qx = ax + t * dx, qy = ay + t * dy;
+    const double d2 = (px - qx) * (px - qx) + (py - qy) * (py - qy);
+    if (d2 < b.d2 || (d2 == b.d2 && k < b.k)) {
+      b.d2 = d2;
+      b.k = k;
+      b.fx = qx;
+      b.fy = qy;
+      b.interior = in;
+    }
+  }
+  double finish(const Best &b, double px, double py, double &mx, double &my) const
+  {
+    const std::size_t l = (b.k + 1) % m_c.size();
+    const double dx = m_c.x(l) - m_c.x(b.k), dy = m_c.y(l) - m_c.y(b.k), len = std::hypot(dx, dy);
+    const double nx = len > 0 ? -dy / len : 0.0, ny = len > 0 ? dx / len : 1.0; // the edge's normal
+    const double ex = px - b.fx, ey = py - b.fy, e = std::hypot(ex, ey);
+    if (b.interior || e <= 0.0) {
+      mx = nx;
+      my = ny;
+      return nx * ex + ny * ey;
+    }
+    mx = ex / e;
+    my = ey / e;
+    return e;
+  }
+
+  const vpMorphContour &m_c;
+  double m_x0 = 0, m_y0 = 0, m_h = 1;
+  int m_nx = 0, m_ny = 0;
+  std::vector<std::vector<std::size_t>> m_cells;
+};
+
+#endif
