@@ -406,6 +406,7 @@ vpMorphContour vpMorphContour::toNormalized(const vpCameraParameters &cam) const
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphContour::toNormalized: the contour is already in normalised coordinates");
   vpMorphContour out(*this);
+  out.m_outline.reset(); // converted below
   for (std::size_t k = 0; k < size(); ++k) {
     out.m_x[k] = (m_x[k] - cam.get_u0()) / cam.get_px();
     out.m_y[k] = (m_y[k] - cam.get_v0()) / cam.get_py();
@@ -413,7 +414,8 @@ vpMorphContour vpMorphContour::toNormalized(const vpCameraParameters &cam) const
   out.mapRegion(1.0 / cam.get_px(), 0.0, 0.0, 1.0 / cam.get_py(), -cam.get_u0() / cam.get_px(),
                 -cam.get_v0() / cam.get_py());
   out.m_units = NORMALIZED;
-  out.setOutlineUnits(NORMALIZED);
+  if (m_outline) // mapped once, its units changed with it
+    out.m_outline = std::make_shared<const vpMorphContour>(m_outline->toNormalized(cam));
   return out;
 }
 
@@ -423,21 +425,14 @@ vpMorphContour vpMorphContour::toPixels(const vpCameraParameters &cam) const
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphContour::toPixels: the contour is already in pixel coordinates");
   vpMorphContour out(*this);
+  out.m_outline.reset(); // converted below
   for (std::size_t k = 0; k < size(); ++k) {
     out.m_x[k] = cam.get_u0() + m_x[k] * cam.get_px();
     out.m_y[k] = cam.get_v0() + m_y[k] * cam.get_py();
   }
   out.mapRegion(cam.get_px(), 0.0, 0.0, cam.get_py(), cam.get_u0(), cam.get_v0());
   out.m_units = PIXEL;
-  out.setOutlineUnits(PIXEL);
+  if (m_outline) // mapped once, its units changed with it
+    out.m_outline = std::make_shared<const vpMorphContour>(m_outline->toPixels(cam));
   return out;
-}
-
-void vpMorphContour::setOutlineUnits(Units units)
-{
-  if (!m_outline || m_outline->m_units == units)
-    return;
-  vpMorphContour o(*m_outline);
-  o.m_units = units;
-  m_outline = std::make_shared<const vpMorphContour>(std::move(o));
 }

@@ -135,17 +135,22 @@ template <typename T> double bilinear(const cv::Mat &m, double x, double y)
          a * b * m.at<T>(y1, x1);
 }
 
+// The gradient of g in grey levels per pixel (3x3 Sobel), for edgeProfile() and edgeOutline().
+void gradient(const cv::Mat &g, cv::Mat &gx, cv::Mat &gy)
+{
+  cv::Sobel(g, gx, CV_32F, 1, 0, 3, 1.0 / 8.0, 0.0, cv::BORDER_REPLICATE);
+  cv::Sobel(g, gy, CV_32F, 0, 1, 3, 1.0 / 8.0, 0.0, cv::BORDER_REPLICATE);
+}
+
 /*
   Grey level and slope (grey levels per pixel) of an edge at its gradient maxima: the medians over the
   band's pixels that are a maximum of the gradient magnitude along the gradient direction, each refined to the
   parabola's vertex. A blurred step is antisymmetric about its edge, so the gradient peaks on the edge whatever
-  clips its far side. False when too few maxima (under 16) are found.
+  clips its far side. False when too few maxima (under 16) are found. gx, gy: the gradient of g (see gradient()).
 */
-bool edgeProfile(const cv::Mat &g, const cv::Mat &band, double minSlope, double &level, double &slope)
+bool edgeProfile(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy, const cv::Mat &band, double minSlope,
+                 double &level, double &slope)
 {
-  cv::Mat gx, gy;
-  cv::Sobel(g, gx, CV_32F, 1, 0, 3, 1.0 / 8.0, 0.0, cv::BORDER_REPLICATE);
-  cv::Sobel(g, gy, CV_32F, 0, 1, 3, 1.0 / 8.0, 0.0, cv::BORDER_REPLICATE);
   cv::Mat mag;
   cv::magnitude(gx, gy, mag);
   auto at = [&mag](double x, double y) { return bilinear<float>(mag, x, y); };
@@ -188,8 +193,9 @@ bool edgeProfile(const cv::Mat &g, const cv::Mat &band, double minSlope, double 
     pixel and interpolated linearly.
   Pixels without a clear gradient (under contrast / 16 per pixel) or without a crossing are skipped.
 */
-std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const std::vector<cv::Point> &chain, const cv::Point &tl,
-                                     double fg, double bg, bool whole, double level)
+std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy,
+                                     const std::vector<cv::Point> &chain, const cv::Point &tl, double fg, double bg,
+                                     bool whole, double level)
 {
   const double contrast = std::fabs(fg - bg);
   // The object's extent along a row (alongRow) or column through pixel p: false where the 7 pixels do not hold one
@@ -214,12 +220,13 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const std::vector<cv::Poi
     return std::fabs(pos - i0) <= 1.5;
   };
 
-  cv::Mat gx, gy;
-  cv::Sobel(g, gx, CV_32F, 1, 0, 3, 1.0 / 8.0, 0.0, cv::BORDER_REPLICATE);
-  cv::Sobel(g, gy, CV_32F, 0, 1, 3, 1.0 / 8.0, 0.0, cv::BORDER_REPLICATE);
   auto at = [&g](double x, double y) { return bilinear<unsigned char>(g, x, y); };
   std::vector<cv::Point2d> out;
   out.reserve(chain.size());
+  auto add = [&out](const cv::Point2d &q) { // neighbouring pixels may give the same point
+    if (out.empty() || q != out.back())
+      out.push_back(q);
+  };
   const int steps = 8;
   const double h = 0.25;
   for (const cv::Point &p0 : chain) {
@@ -232,9 +239,7 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const std::vector<cv::Poi
     const bool alongRow = std::fabs(ex) >= std::fabs(ey);
     double pos;
     if (whole && integral(p, alongRow, pos)) {
-      const cv::Point2d q = alongRow ? cv::Point2d(pos + tl.x, p0.y) : cv::Point2d(p0.x, pos + tl.y);
-      if (out.empty() || q != out.back())
-        out.push_back(q);
+      add(alongRow ? cv::Point2d(pos + tl.x, p0.y) : cv::Point2d(p0.x, pos + tl.y));
       continue;
     }
     const double nx = ex / m, ny = ey / m;
@@ -251,9 +256,7 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const std::vector<cv::Poi
     }
     if (!std::isfinite(best))
       continue;
-    const cv::Point2d q(p0.x + best * nx, p0.y + best * ny);
-    if (out.empty() || q != out.back())
-      out.push_back(q);
+    add(cv::Point2d(p0.x + best * nx, p0.y + best * ny));
   }
   if (out.size() > 1 && out.front() == out.back())
     out.pop_back();
@@ -303,9 +306,12 @@ void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg)
   // (level - g) / slope, the edge's level and slope read where the gradient peaks, which clipping beyond the
   // middle of the step does not move. A quarter of the far level's pixels at the limit marks it as clipped.
   double edgeLevel = 0.0, edgeSlope = 0.0;
+  cv::Mat gx, gy; // computed once for the edge's profile and outline
+  if (grades)
+    gradient(g, gx, gy);
   const unsigned char far = fg < bg ? 255 : 0, near = fg < bg ? 0 : 255;
   const bool clipped = grades && (shareAt(g, ring, far) >= 0.25 || shareAt(g, inner, near) >= 0.25) &&
-                       edgeProfile(g, band, std::fabs(fg - bg) / 8.0, edgeLevel, edgeSlope) &&
+                       edgeProfile(g, gx, gy, band, std::fabs(fg - bg) / 8.0, edgeLevel, edgeSlope) &&
                        (edgeLevel - fg) * (bg - edgeLevel) > 0.0;
   const double toward = fg < bg ? -1.0 : 1.0; // sign of g - edgeLevel inside the object
   const cv::Mat &full = grades ? inner : region;
@@ -333,7 +339,8 @@ void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg)
   if (!(m00 > 0.0))
     return; // left unmeasured: the contour falls back to its polygon
   if (grades)
-    reg.outline = edgeOutline(g, reg.chain, box.tl(), fg, bg, !clipped, clipped ? edgeLevel : 0.5 * (fg + bg));
+    reg.outline =
+        edgeOutline(g, gx, gy, reg.chain, box.tl(), fg, bg, !clipped, clipped ? edgeLevel : 0.5 * (fg + bg));
   const double xc = m10 / m00, yc = m01 / m00;
   reg.subArea = m00;
   reg.cx = box.x + xc;

@@ -370,8 +370,9 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     const Eigen::SelfAdjointEigenSolver<Mat8> es(Ms, Eigen::EigenvaluesOnly);
     if (!(dg.minCoeff() > 0) || !(es.eigenvalues()[0] > 1e-10 * es.eigenvalues()[7]))
       degenerate("the outlines leave the homography undetermined (ill-conditioned normal equations)");
-    const Vec8 d = dg.asDiagonal() * Ms.ldlt().solve(dg.asDiagonal() * b);
-    Minv = dg.asDiagonal() * Ms.ldlt().solve(Mat8::Identity()) * dg.asDiagonal();
+    const Eigen::LDLT<Mat8> ldlt(Ms);
+    const Vec8 d = dg.asDiagonal() * ldlt.solve(dg.asDiagonal() * b);
+    Minv = dg.asDiagonal() * ldlt.solve(Mat8::Identity()) * dg.asDiagonal();
     if (!d.allFinite())
       degenerate("non-finite update");
     Mat3 D;

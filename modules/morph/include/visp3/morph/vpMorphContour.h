@@ -85,12 +85,12 @@ public:
   //! The measured region's central moments mu20, mu11, mu02 divided by its area (zeros when none was measured).
   void regionMoments(double &mu20, double &mu11, double &mu02) const;
   /*!
-    The object's edge as measured on the image, densely (about a point per boundary pixel, each where the grey
-    level crosses the edge's mid level, to a few hundredths of a pixel on a clean image), when
-    vpMorphContourExtractor measured it. Why: the out-of-plane tilt shows only in the perspective distortion of the
-    outline, 0.16 px for half a degree on a 15 cm object at 0.5 m, below what a polygon keeps (two polygonisations
-    of one silhouette differ by tenths of a pixel); vpServoMorph's tilt estimate reads it here. Geometric
-    operations carry it along as they carry the region; constructors leave it unset.
+    The object's edge as measured on the image, densely (about a point per boundary pixel, each from the grey
+    levels across the edge, to a few hundredths of a pixel on a clean image), when vpMorphContourExtractor
+    measured it. Why: the out-of-plane tilt shows only in the perspective distortion of the outline, 0.16 px for
+    half a degree on a 15 cm object at 0.5 m, below what a polygon keeps (two polygonisations of one silhouette
+    differ by tenths of a pixel); vpServoMorph's tilt estimate reads it here. Geometric operations carry it along
+    as they carry the region; constructors leave it unset.
   */
   bool hasOutline() const { return static_cast<bool>(m_outline); }
   //! The measured edge outline, or this polygon when none was measured.
@@ -142,7 +142,6 @@ public:
 
 private:
   void validate() const;
-  void setOutlineUnits(Units units); // after a change of units (the outline's coordinates are already mapped)
 
 
   std::vector<double> m_x, m_y;
