@@ -32,8 +32,8 @@
 
   Names (create()): "morph" (vpServoMorph: the paper's Eq. 5-11 through 10 sub-goals, online hand-eye
   estimation, and the out-of-plane correction on the final approach from the homography refined on the edge
-  outlines), "morph-planar" (the same without the out-of-plane correction: the paper's planar law), "morph-vpservo" (vpFeatureMorph to the final goal in a stock vpServo, EYEINHAND_L_cVe_eJe,
-  current L), "ibvs-current", "ibvs-desired", "ibvs-mean" (4 tag corners, vpFeaturePoint, depth from the tag
+  outlines), "morph-planar" (the same without the out-of-plane correction: the paper's planar law),
+  "morph-vpservo" (vpFeatureMorph to the final goal in a stock vpServo, EYEINHAND_L_cVe_eJe, current L), "ibvs-current", "ibvs-desired", "ibvs-mean" (4 tag corners, vpFeaturePoint, depth from the tag
   pose), "pbvs" (vpFeatureTranslation(cdMc) + vpFeatureThetaU(cdRc) from the tag pose), "moments"
   (vpFeatureMomentCommon on the silhouette polygon: normalised centre of gravity, area, c-invariants and alpha,
   as ViSP's servoMomentPolygon example, plane from the tag pose). Every stock one runs
