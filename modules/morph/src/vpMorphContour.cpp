@@ -1,5 +1,8 @@
 #include <visp3/morph/vpMorphContour.h>
 
+#include "vpMorphRegionOverlap.h"
+
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -139,6 +142,22 @@ double vpMorphContour::perimeter() const
   for (std::size_t k = 0; k < size(); ++k)
     l += edgeLength(k);
   return l;
+}
+
+double vpMorphContour::overlapArea(const vpMorphContour &other) const
+{
+  if (empty() || other.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpMorphContour::overlapArea: empty contour");
+  if (units() != other.units())
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphContour::overlapArea: the two contours have different units");
+  auto polygon = [](const vpMorphContour &c) {
+    std::vector<Eigen::Vector2d> p(c.size());
+    for (std::size_t k = 0; k < c.size(); ++k)
+      p[k] = Eigen::Vector2d(c.x(k), c.y(k));
+    return vpMorphOverlapPolygon(std::move(p));
+  };
+  return vpMorphOverlapArea(polygon(*this), polygon(other));
 }
 
 double vpMorphContour::edgeLength(std::size_t k) const

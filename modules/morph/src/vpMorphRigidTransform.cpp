@@ -1,6 +1,7 @@
 #include <visp3/morph/vpMorphRigidTransform.h>
 
 #include "vpMorphNearestEdge.h"
+#include "vpMorphRegionOverlap.h"
 
 #include <algorithm>
 #include <cmath>
@@ -490,4 +491,115 @@ vpMorphRigidTransform vpMorphRigidTransform::refineOnOutline(const vpMorphContou
     return initial;
   // x' = s R (x - c) + t = s R (x - c) + c + (t - c).
   return vpMorphRigidTransform(std::atan2(x[1], x[0]), x[2] - cx, x[3] - cy, scale, cx, cy);
+}
+
+vpMorphRigidTransform vpMorphRigidTransform::refineOnOverlap(const vpMorphContour &input, const vpMorphContour &target,
+                                                             const vpMorphRigidTransform &initial,
+                                                             unsigned int maxIterations, double initialStep)
+{
+  const char *who = "vpMorphRigidTransform::refineOnOverlap";
+  if (!(initialStep > 0.0 && initialStep <= 1.0))
+    badParameter(std::string(who) + ": initialStep must be in (0, 1]");
+  if (input.empty() || target.empty())
+    throw vpMorphException(vpMorphException::badContourError, std::string(who) + ": empty contour");
+  if (input.units() != target.units())
+    badParameter(std::string(who) + ": the two contours have different units");
+  if (maxIterations < 1)
+    badParameter(std::string(who) + ": maxIterations must be >= 1");
+
+  // The input moved by initial, about its centroid c; z = (r theta, tx, ty) is the further motion x -> R(theta)
+  // (x - c) + c + t, with the angle scaled by the radius of gyration r so that all three are lengths (a
+  // well-conditioned start for the quasi-Newton metric).
+  const vpMorphContour moved = initial.apply(input);
+  std::vector<Eigen::Vector2d> P(moved.size());
+  for (std::size_t k = 0; k < moved.size(); ++k)
+    P[k] = Eigen::Vector2d(moved.x(k), moved.y(k));
+  double cx, cy;
+  moved.centroid(cx, cy);
+  const Eigen::Vector2d c(cx, cy);
+  double r2 = 0.0;
+  for (const Eigen::Vector2d &p : P)
+    r2 += (p - c).squaredNorm();
+  const double r = std::sqrt(r2 / double(P.size()));
+  if (!(r > 0.0) || !std::isfinite(r))
+    return initial;
+  std::vector<Eigen::Vector2d> Bp(target.size());
+  for (std::size_t k = 0; k < target.size(); ++k)
+    Bp[k] = Eigen::Vector2d(target.x(k), target.y(k));
+  const vpMorphOverlapPolygon B(std::move(Bp));
+
+  auto evaluate = [&](const Eigen::Vector3d &z, Eigen::Vector3d &g) {
+    const Eigen::Rotation2Dd R(z[0] / r);
+    std::vector<Eigen::Vector2d> Q(P.size());
+    for (std::size_t k = 0; k < P.size(); ++k)
+      Q[k] = R * (P[k] - c) + c + z.tail<2>();
+    const double f = vpMorphOverlapArea(vpMorphOverlapPolygon(std::move(Q)), B, c + z.tail<2>(), &g);
+    g[0] /= r;
+    return f;
+  };
+
+  // Pattern search with an adaptive step, trying the gradient's direction first: the overlap is piecewise smooth,
+  // and its local maxima often sit on a kink (edges that coincide, a vertex crossing an edge), where the gradient
+  // changes abruptly and a quasi-Newton step or a line search stalls; this one walks along ridges and onto kinks
+  // alike. The step doubles after a success and halves after a round without one, down to the tolerance.
+  Eigen::Vector3d z = Eigen::Vector3d::Zero(), g;
+  double f = evaluate(z, g);
+  const double tolerance = 1e-5 * r; // a thousandth of a pixel on a 100-pixel object
+  double h = initialStep * r;
+  for (unsigned int it = 0; it < maxIterations && h > tolerance; ++it) {
+    Eigen::Vector3d dirs[7];
+    int nd = 0;
+    if (g.norm() > 0.0)
+      dirs[nd++] = g / g.norm();
+    for (int i = 0; i < 3; ++i) {
+      dirs[nd++] = Eigen::Vector3d::Unit(i);
+      dirs[nd++] = -Eigen::Vector3d::Unit(i);
+    }
+    bool moved = false;
+    for (int k = 0; k < nd && !moved; ++k) {
+      Eigen::Vector3d gn;
+      const Eigen::Vector3d zn = z + h * dirs[k];
+      const double fn = evaluate(zn, gn);
+      if (fn > f && std::isfinite(fn)) {
+        z = zn;
+        f = fn;
+        g = gn;
+        moved = true;
+      }
+    }
+    h = moved ? std::min(2.0 * h, 0.05 * r) : 0.5 * h;
+  }
+  if (!z.allFinite())
+    return initial;
+  // Further motion M: x -> R(z0 / r) (x - c) + c + t, after initial: M * initial.
+  const vpMorphRigidTransform M(z[0] / r, z[1], z[2], 1.0, cx, cy);
+  return M * initial;
+}
+
+vpMorphRigidTransform vpMorphRigidTransform::fitOnOverlap(const vpMorphContour &input, const vpMorphContour &target,
+                                                          const vpMorphRigidTransform &initial, double angleRange,
+                                                          unsigned int starts, unsigned int maxIterations)
+{
+  if (!std::isfinite(angleRange) || angleRange < 0.0)
+    badParameter("vpMorphRigidTransform::fitOnOverlap: angleRange must be finite and >= 0");
+  if (starts < 1 || starts % 2 == 0)
+    badParameter("vpMorphRigidTransform::fitOnOverlap: starts must be odd and >= 1");
+  if (input.empty() || target.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpMorphRigidTransform::fitOnOverlap: empty contour");
+  double cx, cy;
+  initial.apply(input).centroid(cx, cy);
+  const int half = int(starts / 2);
+  vpMorphRigidTransform best = initial;
+  double bestOverlap = -1.0;
+  for (int k = -half; k <= half; ++k) {
+    const double a = half > 0 ? angleRange * double(k) / double(half) : 0.0;
+    const vpMorphRigidTransform T =
+        refineOnOverlap(input, target, vpMorphRigidTransform(a, 0.0, 0.0, 1.0, cx, cy) * initial, maxIterations);
+    const double f = T.apply(input).overlapArea(target);
+    if (f > bestOverlap) {
+      bestOverlap = f;
+      best = T;
+    }
+  }
+  return best;
 }

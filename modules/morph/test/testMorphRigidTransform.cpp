@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include <visp3/core/vpCameraParameters.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphMatcher.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
@@ -414,4 +415,120 @@ TEST_CASE("vpMorphRigidTransform::apply moves a contour's measured edge outline 
   }
   CHECK(e < 1e-9);
   CHECK(!m.hasRegion()); // none was measured: none is made up
+}
+
+TEST_CASE("vpMorphContour::overlapArea is the area of the regions' intersection", "[morph][overlap]")
+{
+  auto rect = [](double x0, double y0, double x1, double y1) {
+    return vpMorphContour({x0, x1, x1, x0}, {y0, y0, y1, y1});
+  };
+  const vpMorphContour a = rect(0, 0, 10, 6), b = rect(4, -2, 20, 3);
+  CHECK(a.overlapArea(b) == Approx(6 * 3));
+  CHECK(b.overlapArea(a) == Approx(6 * 3));
+  CHECK(a.overlapArea(a) == Approx(60));
+  CHECK(a.overlapArea(rect(20, 20, 30, 30)) == 0.0);
+  CHECK(a.overlapArea(rect(2, 1, 5, 4)) == Approx(9)); // inside: no crossing at all
+  CHECK(rect(2, 1, 5, 4).overlapArea(a) == Approx(9));
+  const vpMorphContour reversed({10, 0, 0, 10}, {0, 0, 6, 6}); // the same rectangle, clockwise
+  CHECK(reversed.overlapArea(b) == Approx(18));
+  // Dense polygons (the grid path): two 720-gons of radius r whose centres are d apart: the lens between two
+  // circles, to the polygons' own accuracy.
+  auto disc = [](double cx, double r) {
+    std::vector<double> x, y;
+    for (int k = 0; k < 720; ++k) {
+      x.push_back(cx + r * std::cos(k * M_PI / 360));
+      y.push_back(r * std::sin(k * M_PI / 360));
+    }
+    return vpMorphContour(x, y);
+  };
+  const double r = 50, d = 30;
+  const double lens = 2 * r * r * std::acos(d / (2 * r)) - d / 2 * std::sqrt(4 * r * r - d * d);
+  CHECK(disc(0, r).overlapArea(disc(d, r)) == Approx(lens).epsilon(1e-4));
+  // A non-convex pair against a fine raster count.
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 5; ++trial) {
+    const vpMorphContour p = starPolygon(rng, 30, 2.0), q = randomSimilarity(rng, p).apply(p);
+    const double exact = p.overlapArea(q);
+    double xmin = 1e9, xmax = -1e9, ymin = 1e9, ymax = -1e9;
+    for (const vpMorphContour *c : {&p, &q})
+      for (std::size_t k = 0; k < c->size(); ++k) {
+        xmin = std::min(xmin, c->x(k));
+        xmax = std::max(xmax, c->x(k));
+        ymin = std::min(ymin, c->y(k));
+        ymax = std::max(ymax, c->y(k));
+      }
+    auto inside = [](const vpMorphContour &c, double x, double y) {
+      bool in = false;
+      for (std::size_t i = 0, j = c.size() - 1; i < c.size(); j = i++)
+        if ((c.y(i) > y) != (c.y(j) > y) && x < (c.x(j) - c.x(i)) * (y - c.y(i)) / (c.y(j) - c.y(i)) + c.x(i))
+          in = !in;
+      return in;
+    };
+    const double h = 0.25;
+    double counted = 0.0;
+    for (double y = ymin + h / 2; y < ymax; y += h)
+      for (double x = xmin + h / 2; x < xmax; x += h)
+        counted += inside(p, x, y) && inside(q, x, y) ? h * h : 0.0;
+    INFO("trial " << trial);
+    CHECK(exact == Approx(counted).epsilon(5e-3));
+  }
+  CHECK_THROWS_AS(a.overlapArea(vpMorphContour()), vpMorphException);
+  CHECK_THROWS_AS(a.overlapArea(a.toNormalized(vpCameraParameters(800, 800, 320, 240))), vpMorphException);
+}
+
+TEST_CASE("vpMorphRigidTransform: refineOnOverlap and fitOnOverlap find placements of largest overlap",
+          "[morph][rigid][overlap]")
+{
+  std::mt19937 rng(23);
+  // A rigid pair: the largest overlap is where the two coincide.
+  for (int trial = 0; trial < 10; ++trial) {
+    const vpMorphContour B = starPolygon(rng, 40, 2.0);
+    vpMorphRigidTransform truth = randomSimilarity(rng, B);
+    const vpMorphContour A = truth.inverse().apply(B);
+    const vpMorphRigidTransform initial = vpMorphRigidTransform(0.06, 5.0, -4.0, 1.0, truth.cx(), truth.cy()) * truth;
+    const vpMorphRigidTransform refined = vpMorphRigidTransform::refineOnOverlap(A, B, initial);
+    INFO("trial " << trial);
+    CHECK(maxVertexError(A, initial, truth) > 4.0);
+    CHECK(maxVertexError(A, refined, truth) < 0.01);
+    CHECK(refined.scale() == Approx(initial.scale()).epsilon(1e-12)); // the scale is the caller's
+  }
+  // A bent bar (one half turned by 12 deg about the middle) on the straight one: no placement lays it on the
+  // target. From where the unbent halves coincide, the local search stays (a kink: any move uncovers that half
+  // faster than it covers the other); with starts over +-10 deg, fitOnOverlap finds the larger overlap, turned by
+  // about half the bend. Both are local maxima: every small move loses area.
+  const vpMorphContour straight({-100, 100, 100, -100}, {-8, -8, 8, 8});
+  const double bend = 12 * M_PI / 180;
+  std::vector<double> bx{-100, 0, 100 * std::cos(bend) + 8 * std::sin(bend), 100 * std::cos(bend) - 8 * std::sin(bend),
+                         0, -100};
+  std::vector<double> by{-8, -8, 100 * std::sin(bend) - 8 * std::cos(bend), 100 * std::sin(bend) + 8 * std::cos(bend),
+                         8, 8};
+  const vpMorphContour bent(bx, by);
+  const vpMorphRigidTransform start(0.0, 0.0, 0.0);
+  const vpMorphRigidTransform local = vpMorphRigidTransform::refineOnOverlap(bent, straight, start);
+  const vpMorphRigidTransform best = vpMorphRigidTransform::fitOnOverlap(bent, straight, start, 10 * M_PI / 180, 9);
+  const double f0 = start.apply(bent).overlapArea(straight), f = best.apply(bent).overlapArea(straight);
+  CHECK(local.apply(bent).overlapArea(straight) == Approx(f0));
+  CHECK(f > f0 + 50.0);
+  for (const vpMorphRigidTransform &m : {local, best}) {
+    const double fm = m.apply(bent).overlapArea(straight);
+    const double cx = m.cx() + m.tx(), cy = m.cy() + m.ty();
+    for (const vpMorphRigidTransform &d :
+         {vpMorphRigidTransform(1e-3, 0, 0, 1, cx, cy), vpMorphRigidTransform(-1e-3, 0, 0, 1, cx, cy),
+          vpMorphRigidTransform(0, 0.05, 0), vpMorphRigidTransform(0, -0.05, 0), vpMorphRigidTransform(0, 0, 0.05),
+          vpMorphRigidTransform(0, 0, -0.05)})
+      CHECK((d * m).apply(bent).overlapArea(straight) < fm);
+  }
+  CHECK(std::fabs(best.theta()) > 0.25 * bend);
+  CHECK(std::fabs(best.theta()) < 0.75 * bend);
+
+  const vpMorphContour B = starPolygon(rng, 12);
+  CHECK_THROWS_AS(vpMorphRigidTransform::refineOnOverlap(vpMorphContour(), B, vpMorphRigidTransform()),
+                  vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::refineOnOverlap(B, B, vpMorphRigidTransform(), 0), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::refineOnOverlap(B, B, vpMorphRigidTransform(), 10, 0.0), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitOnOverlap(B, B, vpMorphRigidTransform(), -0.1, 3), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitOnOverlap(B, B, vpMorphRigidTransform(), 0.1, 4), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::refineOnOverlap(B, B.toNormalized(vpCameraParameters(800, 800, 320, 240)),
+                                                         vpMorphRigidTransform()),
+                  vpMorphException);
 }

@@ -61,6 +61,13 @@ public:
   double area() const;
   bool isCounterClockwise() const { return signedArea() > 0.0; }
   double perimeter() const;
+  /*!
+    Area of the intersection of this polygon's region with \e other's (both simple; either orientation), exact
+    (Green's theorem over the pieces of each boundary inside the other region). With area(), it measures how well
+    two shapes overlay: intersection over union = overlap / (area() + other.area() - overlap).
+    \throw vpMorphException on an empty contour or different units.
+  */
+  double overlapArea(const vpMorphContour &other) const;
   //! Area centroid (x, y) of the polygon.
   void centroid(double &cx, double &cy) const;
 

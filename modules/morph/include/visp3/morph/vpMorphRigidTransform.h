@@ -156,6 +156,37 @@ public:
                                                double minSigma = 0.0, unsigned int maxIterations = 10);
 
   /*!
+    Refines \e initial so that the input's region, moved by it, covers as much of the target's region as it can
+    (the area of their intersection is maximised over rotation and translation; the scale stays \e initial's).
+    Why: a deformed object (a bent handle, opened jaws) has no pose at which its outline lies on the template's;
+    its best rigid placement is the one of largest overlap, which needs no choice of which part is "the object"
+    (an outline fit follows whichever part is longest). The overlap is exact (Green's theorem over the boundary
+    pieces inside the other region), and so is its gradient; it is climbed by a pattern search along the gradient
+    and the axes with an adaptive step (its maxima often sit on kinks, where gradient methods stall), from
+    \e initial, to a local maximum: give it a start in the right basin, or several starts.
+    Pass dense outlines for sub-pixel accuracy; polygons are faster.
+    \param maxIterations search rounds (each at most 7 overlap evaluations), >= 1.
+    \param initialStep first step, as a share of the input's radius of gyration, in (0, 1]; it stops at 1e-5
+    of it (a thousandth of a pixel on a 100-pixel object). Give a small one from a start already close.
+    \throw vpMorphException on empty contours, different units, a bad \e maxIterations or \e initialStep.
+  */
+  static vpMorphRigidTransform refineOnOverlap(const vpMorphContour &input, const vpMorphContour &target,
+                                               const vpMorphRigidTransform &initial, unsigned int maxIterations = 200,
+                                               double initialStep = 0.01);
+
+  /*!
+    The best of refineOnOverlap() started from \e initial and from \e initial turned about the moved input's
+    centroid by every multiple of angleRange / ((starts - 1) / 2) up to +-angleRange: the overlap of a deformed
+    object has a local maximum wherever one of its parts lies on the template's (its edges coincide there), and
+    the largest overlap is often elsewhere.
+    \param angleRange radians, finite and >= 0; \param starts odd, >= 1.
+    \throw vpMorphException as refineOnOverlap(), and on a bad angleRange or starts.
+  */
+  static vpMorphRigidTransform fitOnOverlap(const vpMorphContour &input, const vpMorphContour &target,
+                                            const vpMorphRigidTransform &initial, double angleRange,
+                                            unsigned int starts, unsigned int maxIterations = 200);
+
+  /*!
     Checks that \e correspondence fits the two contours (non-empty contours, same units, sizes equal to the
     contours', indices in range, every vertex of each contour used at least once).
     \throw vpMorphException::badContourError on an empty contour, badParameterError otherwise.
