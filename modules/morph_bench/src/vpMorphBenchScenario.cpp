@@ -49,7 +49,7 @@ vpMorphPlanarScene vpMorphBenchScenario::scene() const
 {
   vpMorphPlanarScene scene(objectImage);
   if (objectImage != templateImage)
-    scene.setReferenceImage(templateImage);
+    scene.setReferenceImage(templateImage, vpMorphPlanarScene::BEST_OVERLAP);
   scene.setFaults(faults);
   return scene;
 }

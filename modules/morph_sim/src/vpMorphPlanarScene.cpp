@@ -10,6 +10,7 @@
 
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpImageConvert.h>
+#include <visp3/core/vpMath.h>
 #include <visp3/core/vpMeterPixelConversion.h>
 #include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
@@ -181,14 +182,24 @@ void vpMorphPlanarScene::textureFrame(const vpMorphContour &c, double objectSize
   metresPerTexel = objectSize / std::max(*xmax - *xmin, *ymax - *ymin);
 }
 
-void vpMorphPlanarScene::setReferenceImage(const std::string &referenceImage)
+void vpMorphPlanarScene::setReferenceImage(const std::string &referenceImage, ReferencePlacement placement)
 {
   vpImage<unsigned char> ref;
   readImage(referenceImage, "vpMorphPlanarScene::setReferenceImage: reference image", ref);
   if (ref.getWidth() != m_texture.getWidth() || ref.getHeight() != m_texture.getHeight())
     badParameter("vpMorphPlanarScene::setReferenceImage: '" + referenceImage +
                  "' is not of the object image's size: the two must share one texture frame");
-  textureFrame(vpMorphContourExtractor().extract(ref), m_objectSize, m_texCx, m_texCy, m_metresPerTexel);
+  const vpMorphContour refContour = vpMorphContourExtractor().extract(ref);
+  textureFrame(refContour, m_objectSize, m_texCx, m_texCy, m_metresPerTexel);
+  m_texAlign = vpMorphRigidTransform();
+  if (placement == BEST_OVERLAP) {
+    // Starts every 2.5 deg over +-20 deg on the polygons (a local maximum wherever a part lies on the template's),
+    // then the best refined on the edge outlines, to a thousandth of a texel.
+    const vpMorphContour object = vpMorphContourExtractor().extract(m_texture);
+    const vpMorphRigidTransform coarse =
+        vpMorphRigidTransform::fitOnOverlap(object, refContour, vpMorphRigidTransform(), vpMath::rad(20.0), 17);
+    m_texAlign = vpMorphRigidTransform::refineOnOverlap(object.outline(), refContour.outline(), coarse, 400);
+  }
   updateLayout();
 }
 
@@ -246,13 +257,19 @@ void vpMorphPlanarScene::setCamera(const vpCameraParameters &cam, unsigned int w
 
 std::vector<vpPoint> vpMorphPlanarScene::objectContour3D() const
 {
-  const double c = std::cos(m_objTheta), s = std::sin(m_objTheta), p = m_metresPerTexel;
   std::vector<vpPoint> P;
-  for (size_t k = 0; k < m_texX.size(); ++k) {
-    const double lx = (m_texX[k] - m_texCx) * p, ly = (m_texY[k] - m_texCy) * p;
-    P.push_back(planePoint(m_objX + c * lx - s * ly, m_objY + s * lx + c * ly));
-  }
+  for (size_t k = 0; k < m_texX.size(); ++k)
+    P.push_back(texelOnPlane(m_texX[k], m_texY[k]));
   return P;
+}
+
+vpPoint vpMorphPlanarScene::texelOnPlane(double tx, double ty) const
+{
+  double ax, ay;
+  m_texAlign.apply(tx, ty, ax, ay);
+  const double c = std::cos(m_objTheta), s = std::sin(m_objTheta), p = m_metresPerTexel;
+  const double lx = (ax - m_texCx) * p, ly = (ay - m_texCy) * p;
+  return planePoint(m_objX + c * lx - s * ly, m_objY + s * lx + c * ly);
 }
 
 vpMorphContour vpMorphPlanarScene::projectedContour(const vpHomogeneousMatrix &cMo) const
@@ -428,11 +445,7 @@ std::vector<vpMorphPlanarScene::Patch> vpMorphPlanarScene::patches() const
   std::vector<Patch> out;
   // Object texture: texel (i, j) centre lands at ((j - cx) p, (i - cy) p) before placement (vpImageSimulator maps
   // texel centres 0 .. W-1 onto the rectangle).
-  const double p = m_metresPerTexel, c = std::cos(m_objTheta), s = std::sin(m_objTheta);
-  auto place = [&](double tx, double ty) {
-    const double lx = (tx - m_texCx) * p, ly = (ty - m_texCy) * p;
-    return planePoint(m_objX + c * lx - s * ly, m_objY + s * lx + c * ly);
-  };
+  auto place = [&](double tx, double ty) { return texelOnPlane(tx, ty); };
   const double W = m_texture.getWidth() - 1.0, H = m_texture.getHeight() - 1.0;
   if (!m_faults.objectHidden)
     out.push_back({{place(0, 0), place(W, 0), place(W, H), place(0, H)}, 0});

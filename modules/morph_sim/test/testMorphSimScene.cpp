@@ -437,6 +437,34 @@ TEST_CASE("a deformed object in its template's frame keeps its undeformed part i
   CHECK_THROWS_AS(framed.setReferenceImage(object("no-such-object")), vpMorphException);
 }
 
+TEST_CASE("a deformed object placed by best overlap lies on its template as well as a rigid move can",
+          "[morph_sim][scene][overlap]")
+{
+  // Seen from one pose, the bent object's silhouette covers more of the template's than in the shared frame (where
+  // only the part drawn undeformed lies on it), and no small rigid move of it covers more.
+  const vpHomogeneousMatrix cMo = view(0, 0, 0.5, 0, 0, 0);
+  for (const std::string name : {"key", "hammer", "wrench"}) {
+    const vpMorphPlanarScene tpl(object(name));
+    vpMorphPlanarScene shared(object(name + "-deformed")), best(object(name + "-deformed"));
+    shared.setReferenceImage(object(name));
+    best.setReferenceImage(object(name), vpMorphPlanarScene::BEST_OVERLAP);
+    CHECK(shared.referenceAlignment().theta() == 0.0);
+    CHECK(std::fabs(vpMath::deg(best.referenceAlignment().theta())) > 5.0); // bends of 12-15 deg
+    const vpMorphContour ref = tpl.projectedContour(cMo), moved = best.projectedContour(cMo);
+    const double f = moved.overlapArea(ref);
+    INFO(name << ": overlap " << f / ref.area() << " of the template's area, shared frame "
+              << shared.projectedContour(cMo).overlapArea(ref) / ref.area());
+    CHECK(f > shared.projectedContour(cMo).overlapArea(ref) + 0.02 * ref.area());
+    double cx, cy;
+    moved.centroid(cx, cy);
+    for (const vpMorphRigidTransform &d :
+         {vpMorphRigidTransform(vpMath::rad(0.3), 0, 0, 1, cx, cy), vpMorphRigidTransform(vpMath::rad(-0.3), 0, 0, 1, cx, cy),
+          vpMorphRigidTransform(0, 0.5, 0), vpMorphRigidTransform(0, -0.5, 0), vpMorphRigidTransform(0, 0, 0.5),
+          vpMorphRigidTransform(0, 0, -0.5)})
+      CHECK(d.apply(moved).overlapArea(ref) < f);
+  }
+}
+
 TEST_CASE("bad scene input throws vpMorphException", "[morph_sim][errors]")
 {
   CHECK_THROWS_AS(vpMorphPlanarScene(object("no-such-object")), vpMorphException);

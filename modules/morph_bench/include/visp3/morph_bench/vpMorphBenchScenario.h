@@ -69,9 +69,11 @@ public:
   std::vector<vpMorphBenchEvent> events;           //!< timed faults of the run (set "faults")
 
   /*!
-    The scene of this scenario: objectImage with the faults, in the object frame of templateImage when the two
-    differ (vpMorphPlanarScene::setReferenceImage()): a deformed object is then aligned when its undeformed part
-    is where the template's is, and the truth error is measured to that pose.
+    The scene of this scenario: objectImage with the faults, placed against templateImage when the two differ
+    (vpMorphPlanarScene::setReferenceImage(), BEST_OVERLAP): a deformed object is aligned when it overlays its
+    template as well as a rigid placement can, and the truth error is measured to that pose. Not where its part
+    drawn undeformed lies on the template's (SHARED_FRAME): which part of a bent tool stayed still does not show
+    in an image, so no controller could be held to it.
   */
   vpMorphPlanarScene scene() const;
   //! The intrinsics the controllers are told, from the true ones.

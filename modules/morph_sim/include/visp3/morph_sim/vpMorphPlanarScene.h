@@ -15,6 +15,7 @@
 #include <visp3/core/vpPoint.h>
 #include <visp3/core/vpRGBa.h>
 #include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 
 /*!
@@ -74,17 +75,31 @@ public:
   explicit vpMorphPlanarScene(const std::string &objectImage, double objectSize = 0.15, int tagId = 0,
                               double tagSize = 0.08);
 
+  //! Where setReferenceImage() puts the object's texture against the reference's.
+  enum ReferencePlacement {
+    SHARED_FRAME, //!< As drawn: the two images share one texture frame (a deformed variant's undeformed part on the template's).
+    BEST_OVERLAP  //!< Moved (rotation and translation in the image) to where its silhouette overlaps the reference's most.
+  };
+
   /*!
     Takes the object frame (origin at the outline centroid, axes of the image) and the scale (objectSize over the
-    longest side) from another image of the same size, instead of from the object image itself. Why: a deformed
-    variant drawn in its template's texture frame (the undeformed part where the template has it, as
-    vispmorph-make-data draws them) then sits in the object frame exactly where the template's undeformed part
-    does, so the pose that aligns the two is the template's pose; measured from its own centroid and size, a
-    bent object's frame would move with the bend and the benchmark's truth with it.
+    longest side) from another image of the same size, instead of from the object image itself, so that a deformed
+    variant is placed against its template rather than by its own centroid and size (which move with the bend).
+    - SHARED_FRAME: the object's texture keeps its place in the shared texture frame, so the pose that aligns the
+      part drawn undeformed (as vispmorph-make-data draws a bent key: its bow) with the template's is the
+      template's pose. Which part stayed still is a choice of the drawing, not visible in an image: bending the
+      blade about the bow or the bow about the blade gives the same shape.
+    - BEST_OVERLAP: the object's texture is moved by the rigid motion under which its silhouette covers the most
+      of the reference's (referenceAlignment(); exact overlap of the two measured edge outlines, best of starts
+      +-20 deg apart by 2.5 deg): the pose that lays the deformed object on its template as well as a rigid
+      placement can, which depends on the shapes only. A shape with two equally good placements (pliers opened
+      symmetrically: either arm) gets the first one found.
     \throw vpMorphException notFoundError or ioError for a missing or unreadable image, badImageError for an image
     without object, badParameterError for an image of another size.
   */
-  void setReferenceImage(const std::string &referenceImage);
+  void setReferenceImage(const std::string &referenceImage, ReferencePlacement placement = SHARED_FRAME);
+  //! The motion of the object's texture (template pixels) set by setReferenceImage(): identity unless BEST_OVERLAP.
+  const vpMorphRigidTransform &referenceAlignment() const { return m_texAlign; }
   //! Places the object frame origin (the outline centroid, of the reference image if set) at (x, y), turned by theta (rad) about z.
   void setObjectPlacement(double x, double y, double theta);
   /*!
@@ -153,6 +168,8 @@ private:
   static void textureFrame(const vpMorphContour &c, double objectSize, double &cx, double &cy,
                            double &metresPerTexel);
   std::vector<Patch> patches() const;
+  // A texture point (template pixels) on the plane: referenceAlignment(), the texture frame, the placement.
+  vpPoint texelOnPlane(double tx, double ty) const;
   template <typename T> void renderT(const vpHomogeneousMatrix &cMo, vpImage<T> &I, unsigned int frame) const;
 
   std::string m_path;
@@ -162,6 +179,7 @@ private:
   std::vector<double> m_texX, m_texY; // outline in template pixels
   double m_texCx = 0, m_texCy = 0;    // outline centroid in template pixels
   double m_metresPerTexel = 0;
+  vpMorphRigidTransform m_texAlign; // texture motion of setReferenceImage(BEST_OVERLAP)
   double m_objX = 0, m_objY = 0, m_objTheta = 0;
   bool m_tagAuto = true;
   double m_tagX = 0, m_tagY = 0;
