@@ -48,6 +48,14 @@
   more than 2 % from the target's when the sequence starts: part of the object hidden, or deformed): then the whole
   similarity comes from the outline, the robust vertex fit refined by a trimmed outline fit
   (vpMorphRigidTransform::refineOnOutline), for the whole sequence (Iteration::areaBased).
+  At the first fit to the target, the current region laid on it is checked: an occluder only hides, so a region
+  that sticks out of the target's by more than 2 % of its area (on the edge outlines when both contours carry
+  them; not a silhouette joined across a cut, which has no measured region) is deformed, for the rest of the
+  sequence. Its rotation and translation then come from the placement of largest overlap
+  (vpMorphRigidTransform::fitOnOverlap, starts over +-10 deg the first time, then refined from the last period's
+  offset to the outline fit; Iteration::overlapBased): the pose at which a bent tool lies on its template as well
+  as a rigid placement can, whatever part of it is longest. Its scale comes from the ratio of the outlines'
+  lengths, which a bend keeps (its area and an outline fit change by percents).
   Through the image projection of a
   plane parallel to the image at the current depth Z (estimated from the area: \f$Z = Z^* \sqrt{a^{*} / a}\f$), the
   camera displacement that produces it is \f[ {}^cM_{c'} = \left[R_z(-\theta),\ \left(k Z (c - R(-\theta)(c + t)/s),\ Z
@@ -208,6 +216,7 @@ public:
     bool fullMatch = false;         //!< the correspondence came from a full search
     bool areaBased = false; //!< translation and scale from the area centroids and ratio (regions if both have one),
                             //!< not from the outline fit (see fitToSubGoal in the source: occluded or deformed views)
+    bool overlapBased = false;      //!< rotation and translation from the largest overlap (a deformed view)
     vpHomogeneousMatrix eMc;        //!< hand-eye estimate after this iteration
     double translationScale = 1;    //!< projection scale estimate after this iteration
     vpColVector ve;                 //!< commanded end-effector velocity
@@ -370,6 +379,8 @@ private:
   vpMorphRigidTransform fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx, double Z);
   vpHomogeneousMatrix cameraDisplacement(const vpMorphRigidTransform &T, double Z, double k) const;
   void residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx);
+  vpMorphRigidTransform overlapFit(const vpMorphContour &currentN, const vpMorphContour &goalN,
+                                   const vpMorphRigidTransform &T);
   bool tiltActive() const;
   bool estimateTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &cMct, double &Zp);
   void record();
@@ -418,7 +429,10 @@ private:
   Status m_status = NOT_STARTED;
   unsigned int m_iter = 0;
   double m_rotRes = 0, m_transRes = 0, m_scaleRes = 0, m_work = 0;
-  bool m_fullMatch = false, m_areaBased = false;
+  bool m_fullMatch = false, m_areaBased = false, m_overlapBased = false;
+  bool m_overlapWarm = false;          // m_overlapOffset holds the last deformed view's offset
+  enum { SHAPE_UNDECIDED, DEFORMED, UNDEFORMED } m_deformed = SHAPE_UNDECIDED; // decided at the first fit to the target
+  vpMorphRigidTransform m_overlapOffset; // largest-overlap fit o (outline or area fit)^-1, to warm-start the next
   double m_tiltRes = 0;
   bool m_tiltOk = false, m_tiltLatched = false;
   vpHomogeneousMatrix m_cMcdH;
