@@ -464,7 +464,8 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
       // Only the scale: along a straight cut the edges, like the polygons, leave the fit free to slide, and the
       // edges' fit slides further (an occluded key drifting 15 cm instead of 13 mm). Nor when it moves the outline
       // by more than two pixels, which the polygons place to a pixel.
-      if (m_k + 1 == m_subGoals.size() && currentN.hasOutline() && m_target.hasOutline()) {
+      // Not for a deformed view (see overlapFit(): its scale comes from the outlines' lengths).
+      if (m_k + 1 == m_subGoals.size() && currentN.hasOutline() && m_target.hasOutline() && m_deformed != DEFORMED) {
         const vpMorphContour &o = currentN.outline();
         const vpMorphRigidTransform Te = vpMorphRigidTransform::refineOnOutline(
             o, m_target.toNormalized(m_cam).outline(), T, true, 0.2 * halfPixel);
@@ -532,10 +533,10 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   // +-10 deg on the polygons find the right basin.
   const vpMorphRigidTransform start = m_overlapWarm ? m_overlapOffset * Ts
                                                     : vpMorphRigidTransform::fitOnOverlap(currentN, goalN, Ts,
-                                                                                          vpMath::rad(10.0), 5, 60);
-  // From the last period's offset the maximum is within a fraction of a pixel: a short first step.
-  const vpMorphRigidTransform Tovl =
-      vpMorphRigidTransform::refineOnOverlap(cur, goal, start, m_overlapWarm ? 6 : 60, m_overlapWarm ? 0.002 : 0.01);
+                                                                                          vpMath::rad(10.0), 5, 25);
+  // Then on the outlines, from within a fraction of a pixel: a short first step and a few rounds, the search
+  // going on from there at the next period (a whole search from each start costs tens of milliseconds).
+  const vpMorphRigidTransform Tovl = vpMorphRigidTransform::refineOnOverlap(cur, goal, start, m_overlapWarm ? 6 : 20, 0.002);
   m_overlapOffset = Tovl * Ts.inverse();
   m_overlapWarm = true;
   m_overlapBased = true;
