@@ -28,6 +28,18 @@ double wrapAngle(double a)
   throw vpMorphException(vpMorphException::badParameterError, msg);
 }
 
+// The checks shared by the refinements of a transform between two contours.
+void checkContourPair(const vpMorphContour &input, const vpMorphContour &target, unsigned int maxIterations,
+                      const char *who)
+{
+  if (input.empty() || target.empty())
+    throw vpMorphException(vpMorphException::badContourError, std::string(who) + ": empty contour");
+  if (input.units() != target.units())
+    badParameter(std::string(who) + ": the two contours have different units");
+  if (maxIterations < 1)
+    badParameter(std::string(who) + ": maxIterations must be >= 1");
+}
+
 // Corresponded point sets P_k = A_{i_k}, Q_k = B_{j_k} with their per-pair length weights.
 struct PairSet
 {
@@ -401,12 +413,7 @@ vpMorphRigidTransform vpMorphRigidTransform::refineOnOutline(const vpMorphContou
                                                              double minSigma, unsigned int maxIterations)
 {
   const char *who = "vpMorphRigidTransform::refineOnOutline";
-  if (input.empty() || target.empty())
-    throw vpMorphException(vpMorphException::badContourError, std::string(who) + ": empty contour");
-  if (input.units() != target.units())
-    badParameter(std::string(who) + ": the two contours have different units");
-  if (maxIterations < 1)
-    badParameter(std::string(who) + ": maxIterations must be >= 1");
+  checkContourPair(input, target, maxIterations, who);
   if (!std::isfinite(minSigma) || minSigma < 0.0)
     badParameter(std::string(who) + ": minSigma must be finite and >= 0");
 
@@ -500,16 +507,11 @@ vpMorphRigidTransform vpMorphRigidTransform::refineOnOverlap(const vpMorphContou
   const char *who = "vpMorphRigidTransform::refineOnOverlap";
   if (!(initialStep > 0.0 && initialStep <= 1.0))
     badParameter(std::string(who) + ": initialStep must be in (0, 1]");
-  if (input.empty() || target.empty())
-    throw vpMorphException(vpMorphException::badContourError, std::string(who) + ": empty contour");
-  if (input.units() != target.units())
-    badParameter(std::string(who) + ": the two contours have different units");
-  if (maxIterations < 1)
-    badParameter(std::string(who) + ": maxIterations must be >= 1");
+  checkContourPair(input, target, maxIterations, who);
 
   // The input moved by initial, about its centroid c; z = (r theta, tx, ty) is the further motion x -> R(theta)
-  // (x - c) + c + t, with the angle scaled by the radius of gyration r so that all three are lengths (a
-  // well-conditioned start for the quasi-Newton metric).
+  // (x - c) + c + t, with the angle scaled by the radius of gyration r so that all three are lengths (one step
+  // length serves them all).
   const vpMorphContour moved = initial.apply(input);
   std::vector<Eigen::Vector2d> P(moved.size());
   for (std::size_t k = 0; k < moved.size(); ++k)
