@@ -141,6 +141,98 @@ double median(std::vector<double> v)
   return m;
 }
 
+// Input samples every perimeter / 256 along its edges, vertices included, relative to its centroid (cx, cy), in
+// order along the outline.
+std::vector<Eigen::Vector2d> edgeSamples(const vpMorphContour &input, double &cx, double &cy)
+{
+  input.centroid(cx, cy);
+  const Eigen::Vector2d c(cx, cy);
+  std::vector<Eigen::Vector2d> P;
+  const double step = input.perimeter() / 256.0;
+  const std::size_t n = input.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d a(input.x(k), input.y(k)), b(input.x((k + 1) % n), input.y((k + 1) % n));
+    const std::size_t m = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil((b - a).norm() / step)));
+    for (std::size_t j = 0; j < m; ++j)
+      P.push_back(a + (double(j) / double(m)) * (b - a) - c);
+  }
+  return P;
+}
+
+// \e T as the map x' = M (x - c) + t, M = [a -b; b a] (linear in (a, b, t), one linear solve an ICP round), and the
+// target's spread about t (a scale for the convergence tests).
+Eigen::Vector4d linearParameters(const vpMorphRigidTransform &T, double cx, double cy, const vpMorphContour &target,
+                                 double &spread)
+{
+  double tx, ty;
+  T.apply(cx, cy, tx, ty);
+  const Eigen::Vector4d x(T.scale() * std::cos(T.theta()), T.scale() * std::sin(T.theta()), tx, ty);
+  spread = 0.0;
+  for (std::size_t k = 0; k < target.size(); ++k)
+    spread = std::max(spread, (Eigen::Vector2d(target.x(k), target.y(k)) - x.tail<2>()).norm());
+  return x;
+}
+
+/*
+  Trimmed point-to-edge ICP of the points P (relative to the input's centre) on the edges behind \e nearest, from
+  x = (a, b, tx, ty) of the map p -> [a -b; b a] p + t. Tukey weights at 5 sigma, sigma = sigmaFixed when > 0, else
+  1.4826 MAD of the distances floored at sigmaMin. Returns the refined x (not checked for a positive scale).
+*/
+Eigen::Vector4d edgeIcp(const std::vector<Eigen::Vector2d> &P, const vpMorphNearestEdge &nearest, Eigen::Vector4d x,
+                        bool withScale, double sigmaMin, double sigmaFixed, unsigned int iterations, double spread)
+{
+  std::vector<Eigen::Vector2d> Q(P.size()), N(P.size());
+  std::vector<double> d(P.size());
+  for (unsigned int it = 0; it < iterations; ++it) {
+    for (std::size_t k = 0; k < P.size(); ++k) {
+      const Eigen::Vector2d p(x[0] * P[k].x() - x[1] * P[k].y() + x[2], x[1] * P[k].x() + x[0] * P[k].y() + x[3]);
+      // The nearest point q = p - r m of the target's edges: r the signed distance, m the edge's normal (towards p
+      // at a vertex).
+      double mx, my;
+      const double r = nearest(p.x(), p.y(), mx, my);
+      N[k] = Eigen::Vector2d(mx, my);
+      Q[k] = p - r * N[k];
+      d[k] = std::fabs(r);
+    }
+    // Distances are norms (>= 0): their median stands for the MAD of a residual centred on 0. Tukey weights
+    // from the distance trim what the target does not have; the fit itself is point-to-edge, which slides
+    // along the edges in one round instead of creeping, plus a small point-to-point term that keeps it posed
+    // where every kept point lies on one straight edge.
+    const double sigma = sigmaFixed > 0.0 ? sigmaFixed : std::max(1.4826 * median(d), sigmaMin), cut = 5.0 * sigma;
+    Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+    double W = 0.0;
+    for (std::size_t k = 0; k < P.size(); ++k) {
+      const double u = d[k] / cut;
+      const double w = u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
+      if (w == 0.0)
+        continue;
+      W += w;
+      const double px = P[k].x(), py = P[k].y();
+      auto add = [&](const Eigen::Vector4d &J, double target_, double weight) {
+        A += weight * J * J.transpose();
+        rhs += weight * target_ * J;
+      };
+      const Eigen::Vector2d &nk = N[k];
+      add(Eigen::Vector4d(nk.x() * px + nk.y() * py, nk.y() * px - nk.x() * py, nk.x(), nk.y()), nk.dot(Q[k]), w);
+      add(Eigen::Vector4d(px, -py, 1, 0), Q[k].x(), 1e-3 * w);
+      add(Eigen::Vector4d(py, px, 0, 1), Q[k].y(), 1e-3 * w);
+    }
+    if (!(W > 0.0))
+      break;
+    Eigen::Vector4d xn = A.ldlt().solve(rhs);
+    if (!xn.allFinite())
+      break;
+    if (!withScale)
+      xn.head<2>() /= xn.head<2>().norm();
+    const double change = (xn - x).cwiseAbs().maxCoeff();
+    x = xn;
+    if (change < 1e-12 * std::max(spread, 1.0))
+      break;
+  }
+  return x;
+}
+
 // Robust scale of the residuals: 1.4826 MAD of the pooled x and y residual components.
 double robustSigma(const PairSet &s, const Similarity &T)
 {
@@ -417,82 +509,13 @@ vpMorphRigidTransform vpMorphRigidTransform::refineOnOutline(const vpMorphContou
   if (!std::isfinite(minSigma) || minSigma < 0.0)
     badParameter(std::string(who) + ": minSigma must be finite and >= 0");
 
-  // Input samples every perimeter / 256 along its edges, vertices included, relative to its centroid c.
-  double cx, cy;
-  input.centroid(cx, cy);
-  const Eigen::Vector2d c(cx, cy);
-  std::vector<Eigen::Vector2d> P;
-  const double step = input.perimeter() / 256.0;
-  const std::size_t n = input.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const Eigen::Vector2d a(input.x(k), input.y(k)), b(input.x((k + 1) % n), input.y((k + 1) % n));
-    const std::size_t m = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil((b - a).norm() / step)));
-    for (std::size_t j = 0; j < m; ++j)
-      P.push_back(a + (double(j) / double(m)) * (b - a) - c);
-  }
-
-  // The map x' = M (x - c) + t, M = [a -b; b a]: linear in (a, b, t), so that each round is one linear solve.
-  Eigen::Vector4d x;
-  {
-    double tx, ty;
-    initial.apply(cx, cy, tx, ty);
-    x << initial.scale() * std::cos(initial.theta()), initial.scale() * std::sin(initial.theta()), tx, ty;
-  }
-  double spread = 0.0;
-  for (std::size_t k = 0; k < target.size(); ++k)
-    spread = std::max(spread, (Eigen::Vector2d(target.x(k), target.y(k)) - x.tail<2>()).norm());
+  double cx, cy, spread;
+  const std::vector<Eigen::Vector2d> P = edgeSamples(input, cx, cy);
+  Eigen::Vector4d x = linearParameters(initial, cx, cy, target, spread);
   const double sigmaMin = std::max(1e-9 * std::max(spread, 1e-300), minSigma);
 
   const vpMorphNearestEdge nearest(target); // a grid over a dense target's edges
-  std::vector<Eigen::Vector2d> Q(P.size()), N(P.size());
-  std::vector<double> d(P.size());
-  for (unsigned int it = 0; it < maxIterations; ++it) {
-    for (std::size_t k = 0; k < P.size(); ++k) {
-      const Eigen::Vector2d p(x[0] * P[k].x() - x[1] * P[k].y() + x[2], x[1] * P[k].x() + x[0] * P[k].y() + x[3]);
-      // The nearest point q = p - r m of the target's edges: r the signed distance, m the edge's normal (towards p
-      // at a vertex).
-      double mx, my;
-      const double r = nearest(p.x(), p.y(), mx, my);
-      N[k] = Eigen::Vector2d(mx, my);
-      Q[k] = p - r * N[k];
-      d[k] = std::fabs(r);
-    }
-    // Distances are norms (>= 0): their median stands for the MAD of a residual centred on 0. Tukey weights
-    // from the distance trim what the target does not have; the fit itself is point-to-edge, which slides
-    // along the edges in one round instead of creeping, plus a small point-to-point term that keeps it posed
-    // where every kept point lies on one straight edge.
-    const double sigma = std::max(1.4826 * median(d), sigmaMin), cut = 5.0 * sigma;
-    Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
-    Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
-    double W = 0.0;
-    for (std::size_t k = 0; k < P.size(); ++k) {
-      const double u = d[k] / cut;
-      const double w = u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
-      if (w == 0.0)
-        continue;
-      W += w;
-      const double px = P[k].x(), py = P[k].y();
-      auto add = [&](const Eigen::Vector4d &J, double target_, double weight) {
-        A += weight * J * J.transpose();
-        rhs += weight * target_ * J;
-      };
-      const Eigen::Vector2d &nk = N[k];
-      add(Eigen::Vector4d(nk.x() * px + nk.y() * py, nk.y() * px - nk.x() * py, nk.x(), nk.y()), nk.dot(Q[k]), w);
-      add(Eigen::Vector4d(px, -py, 1, 0), Q[k].x(), 1e-3 * w);
-      add(Eigen::Vector4d(py, px, 0, 1), Q[k].y(), 1e-3 * w);
-    }
-    if (!(W > 0.0))
-      break;
-    Eigen::Vector4d xn = A.ldlt().solve(rhs);
-    if (!xn.allFinite())
-      break;
-    if (!withScale)
-      xn.head<2>() /= xn.head<2>().norm();
-    const double change = (xn - x).cwiseAbs().maxCoeff();
-    x = xn;
-    if (change < 1e-12 * std::max(spread, 1.0))
-      break;
-  }
+  x = edgeIcp(P, nearest, x, withScale, sigmaMin, 0.0, maxIterations, spread);
   const double scale = x.head<2>().norm();
   if (!(scale > 0.0) || !x.allFinite())
     return initial;
@@ -604,4 +627,61 @@ vpMorphRigidTransform vpMorphRigidTransform::fitOnOverlap(const vpMorphContour &
     }
   }
   return best;
+}
+
+vpMorphRigidTransform vpMorphRigidTransform::fitRigidPart(const vpMorphContour &input, const vpMorphContour &target,
+                                                          const vpMorphRigidTransform &initial, double tolerance,
+                                                          double *share)
+{
+  const char *who = "vpMorphRigidTransform::fitRigidPart";
+  checkContourPair(input, target, 1, who);
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    badParameter(std::string(who) + ": tolerance must be finite and > 0");
+  double cx, cy, spread;
+  const std::vector<Eigen::Vector2d> P = edgeSamples(input, cx, cy);
+  const Eigen::Vector4d x0 = linearParameters(initial, cx, cy, target, spread);
+  const vpMorphNearestEdge nearest(target);
+  auto explained = [&](const Eigen::Vector4d &x) {
+    std::size_t in = 0;
+    for (const Eigen::Vector2d &p : P) {
+      double mx, my;
+      in += std::fabs(nearest(x[0] * p.x() - x[1] * p.y() + x[2], x[1] * p.x() + x[0] * p.y() + x[3], mx, my)) <
+            tolerance;
+    }
+    return double(in) / double(P.size());
+  };
+  // A window along a straight edge, or a start far off, can shrink the map to a point near one edge: only maps
+  // within 10 % of the start's scale are hypotheses.
+  const double s0 = x0.head<2>().norm();
+  auto plausible = [s0](const Eigen::Vector4d &x) {
+    return x.allFinite() && std::fabs(x.head<2>().norm() / s0 - 1.0) < 0.1;
+  };
+  // Hypotheses: the start, and each window of a sixth of the outline fitted alone (a part of a deformed object is
+  // itself rigid: its window fits it whole).
+  Eigen::Vector4d best = x0;
+  double bestShare = explained(x0);
+  const std::size_t n = P.size(), w = std::max<std::size_t>(3, n / 6);
+  for (std::size_t k = 0; k < 12; ++k) {
+    std::vector<Eigen::Vector2d> window;
+    for (std::size_t j = 0; j < w; ++j)
+      window.push_back(P[(k * n / 12 + j) % n]);
+    const Eigen::Vector4d x = edgeIcp(window, nearest, x0, true, 0.25 * tolerance, 0.0, 15, spread);
+    if (!plausible(x))
+      continue;
+    const double sh = explained(x);
+    if (sh > bestShare) {
+      bestShare = sh;
+      best = x;
+    }
+  }
+  // Refined on what it explains: Tukey weights vanishing at the tolerance.
+  const Eigen::Vector4d x = edgeIcp(P, nearest, best, true, 0.0, 0.2 * tolerance, 20, spread);
+  if (plausible(x) && explained(x) >= bestShare) {
+    best = x;
+    bestShare = explained(x);
+  }
+  if (share)
+    *share = bestShare;
+  return vpMorphRigidTransform(std::atan2(best[1], best[0]), best[2] - cx, best[3] - cy, best.head<2>().norm(), cx,
+                               cy);
 }

@@ -532,3 +532,33 @@ TEST_CASE("vpMorphRigidTransform: refineOnOverlap and fitOnOverlap find placemen
                                                          vpMorphRigidTransform()),
                   vpMorphException);
 }
+
+TEST_CASE("vpMorphRigidTransform::fitRigidPart finds the part of a bent shape that is not bent", "[morph][rigid][overlap]")
+{
+  // A straight bar, and the same bar with its right half turned by 12 deg, seen through a similarity (scale 1.03):
+  // the left half still lies exactly on the straight bar under the inverse similarity, which the largest overlap
+  // (turned by about half the bend) and a trimmed outline fit (whichever half wins) do not find.
+  const double bend = 12 * M_PI / 180;
+  const vpMorphContour straight = vpMorphContour({-100, 100, 100, -100}, {-8, -8, 8, 8}).resampled(400);
+  const vpMorphContour bent =
+      vpMorphContour({-100, 0, 100 * std::cos(bend) + 8 * std::sin(bend), 100 * std::cos(bend) - 8 * std::sin(bend), 0,
+                      -100},
+                     {-8, -8, 100 * std::sin(bend) - 8 * std::cos(bend), 100 * std::sin(bend) + 8 * std::cos(bend), 8, 8})
+          .resampled(400);
+  const vpMorphRigidTransform seen(0.2, 30.0, -12.0, 1.03, 0.0, 0.0); // bent bar -> image
+  const vpMorphContour input = seen.apply(bent);
+  const vpMorphRigidTransform truth = seen.inverse(); // lays the left half on the straight bar
+  // From the largest overlap at the bend-keeping scale estimate (here: exact lengths, so 1 / 1.03).
+  const vpMorphRigidTransform start = vpMorphRigidTransform::fitOnOverlap(input, straight, truth, 10 * M_PI / 180, 9);
+  double share = 0.0;
+  const vpMorphRigidTransform part = vpMorphRigidTransform::fitRigidPart(input, straight, start, 0.05, &share);
+  INFO("start theta " << start.theta() << ", part theta " << part.theta() << ", share " << share);
+  CHECK(std::fabs(std::remainder(start.theta() - truth.theta(), 2 * M_PI)) > 0.25 * bend); // the overlap: between
+  CHECK(std::fabs(std::remainder(part.theta() - truth.theta(), 2 * M_PI)) < 1e-3);
+  CHECK(part.scale() == Approx(truth.scale()).epsilon(1e-3));
+  CHECK(share > 0.4);
+  CHECK(share < 0.7);
+  // Errors.
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitRigidPart(input, straight, start, 0.0), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitRigidPart(vpMorphContour(), straight, start, 0.1), vpMorphException);
+}

@@ -104,8 +104,8 @@ TEST_CASE("vpServoMorph lays a deformed view on its template by the largest over
   // Each deformed object is placed as the benchmark's deformable set places it: where its silhouette overlaps its
   // template's most. Seen from the goal, the servo must find nothing left to do in the image plane, whatever
   // part of the tool is longest (the outline fit lays the screwdriver's handle on the template's: 3.8 deg off;
-  // the area fit moved the hammer by its centroid), and take the depth from the outlines' lengths (the area of
-  // a bent hammer is 2 % off: 14 mm at 0.5 m).
+  // the area fit moved the hammer by its centroid), and take the depth from its undeformed part (the area of a bent
+  // hammer is 2 % off, 14 mm at 0.5 m; its outline 0.2 % shorter, 1.2 mm).
   const std::string data = VISPMORPH_DATA_DIR;
   for (const std::string name : {"screwdriver", "hammer", "key", "wrench"}) {
     const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose(name);
@@ -124,7 +124,9 @@ TEST_CASE("vpServoMorph lays a deformed view on its template by the largest over
     CHECK(it.overlapBased);
     CHECK(vpMath::deg(it.rotationResidual) < 0.25);
     CHECK(it.translationResidual < 0.5);
-    CHECK(it.scaleResidual < 0.5);
+    // Within 0.1 px from the undeformed part (measured 0.01-0.08); the wrench's (a ring: round, its turn unseen)
+    // is not found, and its outlines' lengths leave 0.22 px.
+    CHECK(it.scaleResidual < (name == "wrench" ? 0.3 : 0.1));
     // Turned by 3 deg about the optical axis, the same view is 3 deg away.
     vpServoMorph turned;
     turned.setCameraParameters(taught.camera());

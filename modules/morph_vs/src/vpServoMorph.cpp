@@ -23,6 +23,12 @@ const double kNotAlikeMinInliers = 0.99;
 // Share of the current region outside the target's, once laid on it, above which the view is deformed (an occluder
 // only hides; the edge outlines' noise leaves well under a percent, bends of 10-15 deg leave 5-12 %).
 const double kDeformedOutside = 0.02;
+// The largest undeformed part of a deformed view: edges within this distance (pixels) of the target's, over at
+// least this share of the outline.
+const double kRigidPartTolerancePx = 0.15, kRigidPartMinShare = 0.1;
+const unsigned int kRigidPartPeriod = 8;
+// Largest change of the outline's length that a bend explains (relative): the drawn bends change it by under 0.5 %.
+const double kBendLengthChange = 0.01;
 // Points of the resampled outlines the overlap is measured on (about 5 pixels apart: 0.025 ms an evaluation).
 const std::size_t kOverlapPoints = 128;
 
@@ -348,6 +354,8 @@ void vpServoMorph::restart()
   m_overlapWarm = false;
   m_overlapBased = false;
   m_deformed = SHAPE_UNDECIDED;
+  m_scaleBias = 1.0;
+  m_rigidPartCount = 0;
   m_tiltRes = 0;
   m_cMcdH.eye();
   m_history.clear();
@@ -404,6 +412,8 @@ void vpServoMorph::start(const vpMorphContour &current)
   m_tiltLatched = false;
   m_overlapWarm = false;
   m_deformed = SHAPE_UNDECIDED;
+  m_scaleBias = 1.0;
+  m_rigidPartCount = 0;
   m_haveWork = false;
   m_started = true;
 }
@@ -525,8 +535,11 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   // drawn bend stretches an edge), while it changes the area and drags an outline fit (measured on rendered
   // views of the deformed objects at their goal: length ratio 0.2-0.5 % off, area 0.7-5 %, fit 0.5-2.3 %).
   // Resampled every 3 pixels or so for the lengths: the pixel staircase does not count, small teeth do.
-  const double s = goalN.outline().resampled(2 * kOverlapPoints).perimeter() /
-                   currentN.outline().resampled(2 * kOverlapPoints).perimeter();
+  // Corrected by the scale of the largest undeformed part (its edges lie on the template's: a bent key's bow; found
+  // below), kept as a ratio to the lengths' scale: a property of the two shapes.
+  const double lengthScale = goalN.outline().resampled(2 * kOverlapPoints).perimeter() /
+                             currentN.outline().resampled(2 * kOverlapPoints).perimeter();
+  const double s = m_scaleBias * lengthScale;
   const vpMorphRigidTransform Ts(T.theta(), T.tx(), T.ty(), s, T.cx(), T.cy());
   // The offset between the largest overlap and the outline (or area) fit is a property of the two shapes: it
   // barely changes from one period to the next, so it warm-starts the search; the first time, starts over
@@ -537,10 +550,20 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   // Then on the outlines, from within a fraction of a pixel: a short first step and a few rounds, the search
   // going on from there at the next period (a whole search from each start costs tens of milliseconds).
   const vpMorphRigidTransform Tovl = vpMorphRigidTransform::refineOnOverlap(cur, goal, start, m_overlapWarm ? 6 : 20, 0.002);
-  m_overlapOffset = Tovl * Ts.inverse();
+  m_overlapOffset = Tovl * Ts.inverse(); // scale 1: Tovl keeps Ts's
   m_overlapWarm = true;
   m_overlapBased = true;
-  return Tovl;
+  // Every kRigidPartPeriod periods (a search of the whole outline, milliseconds): the ratio of the two scales is a
+  // property of the shapes, and it improves as the view nears the goal, where the part's edges lie on the target's.
+  if (dense && m_rigidPartCount++ % kRigidPartPeriod == 0) {
+    double share = 0.0;
+    const vpMorphRigidTransform R = vpMorphRigidTransform::fitRigidPart(
+        currentN.outline().resampled(2 * kOverlapPoints), goalN.outline(), Tovl,
+        kRigidPartTolerancePx / std::max(m_cam.get_px(), m_cam.get_py()), &share);
+    if (share >= kRigidPartMinShare && std::fabs(R.scale() / lengthScale - 1.0) < kBendLengthChange)
+      m_scaleBias = R.scale() / lengthScale;
+  }
+  return vpMorphRigidTransform(Tovl.theta(), Tovl.tx(), Tovl.ty(), m_scaleBias * lengthScale, Tovl.cx(), Tovl.cy());
 }
 
 void vpServoMorph::residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx)

@@ -187,6 +187,21 @@ public:
                                             unsigned int starts, unsigned int maxIterations = 200);
 
   /*!
+    The similarity under which the largest share of the input lies within \e tolerance of the target's edges,
+    near \e initial: the pose, and above all the scale, of the part of a deformed object that is not deformed
+    (a bent key's bow), which the largest overlap and an outline fit only average with the bent part. Each of 12
+    windows along the input (a sixth of its length, half overlapping) is fitted alone (trimmed point-to-edge ICP
+    from \e initial); the fit under which most of the whole input lies within tolerance is refined on the part it
+    explains. Pass dense outlines (the input is sampled every perimeter / 256).
+    \param tolerance in the contours' units, > 0 (a few tenths of a pixel).
+    \param share if not null, receives the share of the input within tolerance under the result, in [0, 1].
+    \throw vpMorphException on empty contours, different units or a bad tolerance.
+  */
+  static vpMorphRigidTransform fitRigidPart(const vpMorphContour &input, const vpMorphContour &target,
+                                            const vpMorphRigidTransform &initial, double tolerance,
+                                            double *share = nullptr);
+
+  /*!
     Checks that \e correspondence fits the two contours (non-empty contours, same units, sizes equal to the
     contours', indices in range, every vertex of each contour used at least once).
     \throw vpMorphException::badContourError on an empty contour, badParameterError otherwise.
