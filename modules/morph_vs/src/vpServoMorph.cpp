@@ -351,11 +351,8 @@ void vpServoMorph::restart()
   m_tiltWarm = false;
   m_tiltOk = false;
   m_tiltLatched = false;
-  m_overlapWarm = false;
+  forgetDeformation();
   m_overlapBased = false;
-  m_deformed = SHAPE_UNDECIDED;
-  m_scaleBias = 1.0;
-  m_rigidPartCount = 0;
   m_tiltRes = 0;
   m_cMcdH.eye();
   m_history.clear();
@@ -410,10 +407,7 @@ void vpServoMorph::start(const vpMorphContour &current)
   m_tiltTracker.reset();
   m_tiltWarm = false;
   m_tiltLatched = false;
-  m_overlapWarm = false;
-  m_deformed = SHAPE_UNDECIDED;
-  m_scaleBias = 1.0;
-  m_rigidPartCount = 0;
+  forgetDeformation();
   m_haveWork = false;
   m_started = true;
 }
@@ -511,6 +505,15 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
   return T;
 }
 
+void vpServoMorph::forgetDeformation()
+{
+  m_overlapWarm = false;
+  m_deformed = SHAPE_UNDECIDED;
+  m_scaleBias = 1.0;
+  m_rigidPartCount = 0;
+  m_rigidPartShare = 0.0;
+}
+
 vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, const vpMorphContour &goalN,
                                                const vpMorphRigidTransform &T)
 {
@@ -554,14 +557,19 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   m_overlapWarm = true;
   m_overlapBased = true;
   // Every kRigidPartPeriod periods (a search of the whole outline, milliseconds): the ratio of the two scales is a
-  // property of the shapes, and it improves as the view nears the goal, where the part's edges lie on the target's.
+  // property of the shapes, best measured where the part's edges lie on the target's.
   if (dense && m_rigidPartCount++ % kRigidPartPeriod == 0) {
     double share = 0.0;
     const vpMorphRigidTransform R = vpMorphRigidTransform::fitRigidPart(
         currentN.outline().resampled(2 * kOverlapPoints), goalN.outline(), Tovl,
         kRigidPartTolerancePx / std::max(m_cam.get_px(), m_cam.get_py()), &share);
-    if (share >= kRigidPartMinShare && std::fabs(R.scale() / lengthScale - 1.0) < kBendLengthChange)
+    // Kept from the view where the part explains most of the outline: near the goal it is the whole undeformed
+    // part; farther, or on a lesser coincidence, less of it.
+    if (share >= std::max(kRigidPartMinShare, m_rigidPartShare) &&
+        std::fabs(R.scale() / lengthScale - 1.0) < kBendLengthChange) {
       m_scaleBias = R.scale() / lengthScale;
+      m_rigidPartShare = share;
+    }
   }
   return vpMorphRigidTransform(Tovl.theta(), Tovl.tx(), Tovl.ty(), m_scaleBias * lengthScale, Tovl.cx(), Tovl.cy());
 }

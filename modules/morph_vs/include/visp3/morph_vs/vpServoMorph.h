@@ -56,7 +56,8 @@
   offset to the outline fit; Iteration::overlapBased): the pose at which a bent tool lies on its template as well
   as a rigid placement can, whatever part of it is longest. Its scale (the depth) is the scale of its largest
   undeformed part (vpMorphRigidTransform::fitRigidPart: edges within 0.15 px of the target's over a tenth of the
-  outline or more, searched every 8 periods), kept as a ratio to the outlines' lengths, which a bend nearly keeps
+  outline or more, searched every 8 periods, kept from the view where it explains the most), as a ratio to the
+  outlines' lengths, which a bend nearly keeps
   (the lengths alone when no such part is found: a drawn bend changes them by 0.2-0.5 %; its area and an outline
   fit change by percents).
   Through the image projection of a
@@ -384,6 +385,8 @@ private:
   void residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx);
   vpMorphRigidTransform overlapFit(const vpMorphContour &currentN, const vpMorphContour &goalN,
                                    const vpMorphRigidTransform &T);
+  // A new sequence: whether the view is deformed, and its offsets, are decided again.
+  void forgetDeformation();
   bool tiltActive() const;
   bool estimateTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &cMct, double &Zp);
   void record();
@@ -438,6 +441,7 @@ private:
   vpMorphRigidTransform m_overlapOffset; // largest-overlap fit o (outline or area fit)^-1, to warm-start the next
   double m_scaleBias = 1.0; // scale of the largest undeformed part over the outlines' length ratio (a deformed view)
   unsigned int m_rigidPartCount = 0; // periods since the deformed view was found, for the part's search
+  double m_rigidPartShare = 0.0;     // share of the outline the part behind m_scaleBias explained
   double m_tiltRes = 0;
   bool m_tiltOk = false, m_tiltLatched = false;
   vpHomogeneousMatrix m_cMcdH;
