@@ -104,9 +104,9 @@ Recording record(const std::string &objectImage, const std::string &templateImag
 
 const Recording &recording()
 {
-  static const Recording rec =
-      record(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png", std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png",
-             vpHomogeneousMatrix(0.03, -0.02, 0, 0, 0, vpMath::rad(150)));
+  static const Recording rec = record(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png",
+                                      std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png",
+                                      vpHomogeneousMatrix(0.03, -0.02, 0, 0, 0, vpMath::rad(150)));
   return rec;
 }
 
@@ -236,11 +236,9 @@ public:
     const double base = m_time["BM_ibvs4Points"];
     os << "\nper call, CPU time of the fastest repetition, and ratio to a stock 4-point IBVS computeControlLaw()\n";
     for (const auto &t : m_time)
-      os << std::setw(20) << std::left << t.first << std::right << std::fixed << std::setprecision(3)
-         << std::setw(12) << t.second / 1000.0 << " ms" << std::setprecision(1) << std::setw(10) << t.second / base
-         << " x\n";
+      os << std::setw(20) << std::left << t.first << std::right << std::fixed << std::setprecision(3) << std::setw(12)
+         << t.second / 1000.0 << " ms" << std::setprecision(1) << std::setw(10) << t.second / base << " x\n";
   }
-
 };
 } // namespace
 

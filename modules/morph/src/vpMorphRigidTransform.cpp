@@ -682,6 +682,5 @@ vpMorphRigidTransform vpMorphRigidTransform::fitRigidPart(const vpMorphContour &
   }
   if (share)
     *share = bestShare;
-  return vpMorphRigidTransform(std::atan2(best[1], best[0]), best[2] - cx, best[3] - cy, best.head<2>().norm(), cx,
-                               cy);
+  return vpMorphRigidTransform(std::atan2(best[1], best[0]), best[2] - cx, best[3] - cy, best.head<2>().norm(), cx, cy);
 }

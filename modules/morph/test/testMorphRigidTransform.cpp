@@ -498,10 +498,10 @@ TEST_CASE("vpMorphRigidTransform: refineOnOverlap and fitOnOverlap find placemen
   // about half the bend. Both are local maxima: every small move loses area.
   const vpMorphContour straight({-100, 100, 100, -100}, {-8, -8, 8, 8});
   const double bend = 12 * M_PI / 180;
-  std::vector<double> bx{-100, 0, 100 * std::cos(bend) + 8 * std::sin(bend), 100 * std::cos(bend) - 8 * std::sin(bend),
-                         0, -100};
+  std::vector<double> bx{
+      -100, 0, 100 * std::cos(bend) + 8 * std::sin(bend), 100 * std::cos(bend) - 8 * std::sin(bend), 0, -100};
   std::vector<double> by{-8, -8, 100 * std::sin(bend) - 8 * std::cos(bend), 100 * std::sin(bend) + 8 * std::cos(bend),
-                         8, 8};
+                         8,  8};
   const vpMorphContour bent(bx, by);
   const vpMorphRigidTransform start(0.0, 0.0, 0.0);
   const vpMorphRigidTransform local = vpMorphRigidTransform::refineOnOverlap(bent, straight, start);
@@ -533,7 +533,8 @@ TEST_CASE("vpMorphRigidTransform: refineOnOverlap and fitOnOverlap find placemen
                   vpMorphException);
 }
 
-TEST_CASE("vpMorphRigidTransform::fitRigidPart finds the part of a bent shape that is not bent", "[morph][rigid][overlap]")
+TEST_CASE("vpMorphRigidTransform::fitRigidPart finds the part of a bent shape that is not bent",
+          "[morph][rigid][overlap]")
 {
   // A straight bar, and the same bar with its right half turned by 12 deg, seen through a similarity (scale 1.03):
   // the left half still lies exactly on the straight bar under the inverse similarity, which the largest overlap
@@ -541,9 +542,9 @@ TEST_CASE("vpMorphRigidTransform::fitRigidPart finds the part of a bent shape th
   const double bend = 12 * M_PI / 180;
   const vpMorphContour straight = vpMorphContour({-100, 100, 100, -100}, {-8, -8, 8, 8}).resampled(400);
   const vpMorphContour bent =
-      vpMorphContour({-100, 0, 100 * std::cos(bend) + 8 * std::sin(bend), 100 * std::cos(bend) - 8 * std::sin(bend), 0,
-                      -100},
-                     {-8, -8, 100 * std::sin(bend) - 8 * std::cos(bend), 100 * std::sin(bend) + 8 * std::cos(bend), 8, 8})
+      vpMorphContour(
+          {-100, 0, 100 * std::cos(bend) + 8 * std::sin(bend), 100 * std::cos(bend) - 8 * std::sin(bend), 0, -100},
+          {-8, -8, 100 * std::sin(bend) - 8 * std::cos(bend), 100 * std::sin(bend) + 8 * std::cos(bend), 8, 8})
           .resampled(400);
   const vpMorphRigidTransform seen(0.2, 30.0, -12.0, 1.03, 0.0, 0.0); // bent bar -> image
   const vpMorphContour input = seen.apply(bent);

@@ -119,8 +119,8 @@ TEST_CASE("vpServoMorph lays a deformed view on its template by the largest over
     servo.setTarget(target, Zd);
     servo.computeControlLaw(silhouette(bent, cdMo));
     const vpServoMorph::Iteration &it = servo.history().back();
-    INFO(name << ": rotation " << vpMath::deg(it.rotationResidual) << " deg, translation "
-              << it.translationResidual << " px, scale " << it.scaleResidual << " px");
+    INFO(name << ": rotation " << vpMath::deg(it.rotationResidual) << " deg, translation " << it.translationResidual
+              << " px, scale " << it.scaleResidual << " px");
     CHECK(it.overlapBased);
     CHECK(vpMath::deg(it.rotationResidual) < 0.25);
     CHECK(it.translationResidual < 0.5);

@@ -458,9 +458,9 @@ TEST_CASE("a deformed object placed by best overlap lies on its template as well
     double cx, cy;
     moved.centroid(cx, cy);
     for (const vpMorphRigidTransform &d :
-         {vpMorphRigidTransform(vpMath::rad(0.3), 0, 0, 1, cx, cy), vpMorphRigidTransform(vpMath::rad(-0.3), 0, 0, 1, cx, cy),
-          vpMorphRigidTransform(0, 0.5, 0), vpMorphRigidTransform(0, -0.5, 0), vpMorphRigidTransform(0, 0, 0.5),
-          vpMorphRigidTransform(0, 0, -0.5)})
+         {vpMorphRigidTransform(vpMath::rad(0.3), 0, 0, 1, cx, cy),
+          vpMorphRigidTransform(vpMath::rad(-0.3), 0, 0, 1, cx, cy), vpMorphRigidTransform(0, 0.5, 0),
+          vpMorphRigidTransform(0, -0.5, 0), vpMorphRigidTransform(0, 0, 0.5), vpMorphRigidTransform(0, 0, -0.5)})
       CHECK(d.apply(moved).overlapArea(ref) < f);
   }
 }

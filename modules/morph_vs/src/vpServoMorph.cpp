@@ -21,7 +21,7 @@ const double kOutlineMinInliers = 0.9, kOutlineMaxResidualPx = 0.5;
 // Inlier share the homography needs when the regions are not alike (see estimateTilt()).
 const double kNotAlikeMinInliers = 0.99;
 // Share of the current region outside the target's, once laid on it, above which the view is deformed (an occluder
-// only hides; the edge outlines' noise leaves well under a percent, bends of 10-15 deg leave 5-12 %).
+// only hides; the edge outlines' noise leaves under 0.6 % out on the noise set, bends of 10-15 deg 3-14 %).
 const double kDeformedOutside = 0.02;
 // The largest undeformed part of a deformed view: edges within this distance (pixels) of the target's, over at
 // least this share of the outline.
@@ -468,11 +468,11 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
       // Only the scale: along a straight cut the edges, like the polygons, leave the fit free to slide, and the
       // edges' fit slides further (an occluded key drifting 15 cm instead of 13 mm). Nor when it moves the outline
       // by more than two pixels, which the polygons place to a pixel.
-      // Not for a deformed view (see overlapFit(): its scale comes from the outlines' lengths).
+      // Not for a deformed view (see overlapFit(): its scale comes from its undeformed part).
       if (m_k + 1 == m_subGoals.size() && currentN.hasOutline() && m_target.hasOutline() && m_deformed != DEFORMED) {
         const vpMorphContour &o = currentN.outline();
-        const vpMorphRigidTransform Te = vpMorphRigidTransform::refineOnOutline(
-            o, m_target.toNormalized(m_cam).outline(), T, true, 0.2 * halfPixel);
+        const vpMorphRigidTransform Te =
+            vpMorphRigidTransform::refineOnOutline(o, m_target.toNormalized(m_cam).outline(), T, true, 0.2 * halfPixel);
         double moved = 0.0;
         for (std::size_t i = 0; i < o.size(); ++i) {
           double x0, y0, x1, y1;
@@ -547,12 +547,13 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   // The offset between the largest overlap and the outline (or area) fit is a property of the two shapes: it
   // barely changes from one period to the next, so it warm-starts the search; the first time, starts over
   // +-10 deg on the polygons find the right basin.
-  const vpMorphRigidTransform start = m_overlapWarm ? m_overlapOffset * Ts
-                                                    : vpMorphRigidTransform::fitOnOverlap(currentN, goalN, Ts,
-                                                                                          vpMath::rad(10.0), 5, 25);
+  const vpMorphRigidTransform start =
+      m_overlapWarm ? m_overlapOffset * Ts
+                    : vpMorphRigidTransform::fitOnOverlap(currentN, goalN, Ts, vpMath::rad(10.0), 5, 25);
   // Then on the outlines, from within a fraction of a pixel: a short first step and a few rounds, the search
   // going on from there at the next period (a whole search from each start costs tens of milliseconds).
-  const vpMorphRigidTransform Tovl = vpMorphRigidTransform::refineOnOverlap(cur, goal, start, m_overlapWarm ? 6 : 20, 0.002);
+  const vpMorphRigidTransform Tovl =
+      vpMorphRigidTransform::refineOnOverlap(cur, goal, start, m_overlapWarm ? 6 : 20, 0.002);
   m_overlapOffset = Tovl * Ts.inverse(); // scale 1: Tovl keeps Ts's
   m_overlapWarm = true;
   m_overlapBased = true;
@@ -560,9 +561,9 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   // property of the shapes, best measured where the part's edges lie on the target's.
   if (dense && m_rigidPartCount++ % kRigidPartPeriod == 0) {
     double share = 0.0;
-    const vpMorphRigidTransform R = vpMorphRigidTransform::fitRigidPart(
-        currentN.outline().resampled(2 * kOverlapPoints), goalN.outline(), Tovl,
-        kRigidPartTolerancePx / std::max(m_cam.get_px(), m_cam.get_py()), &share);
+    const vpMorphRigidTransform R =
+        vpMorphRigidTransform::fitRigidPart(currentN.outline().resampled(2 * kOverlapPoints), goalN.outline(), Tovl,
+                                            kRigidPartTolerancePx / std::max(m_cam.get_px(), m_cam.get_py()), &share);
     // Kept from the view where the part explains most of the outline: near the goal it is the whole undeformed
     // part; farther, or on a lesser coincidence, less of it.
     if (share >= std::max(kRigidPartMinShare, m_rigidPartShare) &&
@@ -670,9 +671,9 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       // Both jumped: another shape (an occluder, another object), or the same one re-digitised at a new place.
       // With a database, the distance from the last contour tells them apart (D_morph ignores the place);
       // without one, stop.
-      const bool sameShape = !m_checkDb.empty() && !m_prevContour.empty() &&
-                             m_checkDb.distance().distance(current, m_prevContour) <=
-                                 m_shapeChange * m_checkDb.threshold(m_checkIndex);
+      const bool sameShape =
+          !m_checkDb.empty() && !m_prevContour.empty() &&
+          m_checkDb.distance().distance(current, m_prevContour) <= m_shapeChange * m_checkDb.threshold(m_checkIndex);
       if (!sameShape)
         return stop(UNRELIABLE_CORRESPONDENCE);
     }

@@ -77,8 +77,8 @@ public:
 
   //! Where setReferenceImage() puts the object's texture against the reference's.
   enum ReferencePlacement {
-    SHARED_FRAME, //!< As drawn: the two images share one texture frame (a deformed variant's undeformed part on the template's).
-    BEST_OVERLAP  //!< Moved (rotation and translation in the image) to where its silhouette overlaps the reference's most.
+    SHARED_FRAME, //!< As drawn: one texture frame for both (a deformed variant's undeformed part on the template's).
+    BEST_OVERLAP  //!< Moved (turned and shifted in the image) to where its silhouette overlaps the reference's most.
   };
 
   /*!
