@@ -2,7 +2,6 @@
 
 #include "vpMorphRegionOverlap.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -151,13 +150,7 @@ double vpMorphContour::overlapArea(const vpMorphContour &other) const
   if (units() != other.units())
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphContour::overlapArea: the two contours have different units");
-  auto polygon = [](const vpMorphContour &c) {
-    std::vector<Eigen::Vector2d> p(c.size());
-    for (std::size_t k = 0; k < c.size(); ++k)
-      p[k] = Eigen::Vector2d(c.x(k), c.y(k));
-    return vpMorphOverlapPolygon(std::move(p));
-  };
-  return vpMorphOverlapArea(polygon(*this), polygon(other));
+  return vpMorphOverlapArea(vpMorphOverlapPolygon(vpMorphPoints(*this)), vpMorphOverlapPolygon(vpMorphPoints(other)));
 }
 
 double vpMorphContour::edgeLength(std::size_t k) const

@@ -12,6 +12,17 @@
 
 #include <Eigen/Dense>
 
+#include <visp3/morph/vpMorphContour.h>
+
+//! A contour's vertices as points.
+inline std::vector<Eigen::Vector2d> vpMorphPoints(const vpMorphContour &c)
+{
+  std::vector<Eigen::Vector2d> p(c.size());
+  for (std::size_t k = 0; k < c.size(); ++k)
+    p[k] = Eigen::Vector2d(c.x(k), c.y(k));
+  return p;
+}
+
 /*
   A closed polygon (counter-clockwise) with its edges bucketed in a uniform grid of cells about two mean edges wide:
   a dense outline (a point per boundary pixel) meets another one's edges, and answers "inside?", in about constant

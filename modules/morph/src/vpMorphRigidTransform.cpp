@@ -173,6 +173,18 @@ Eigen::Vector4d linearParameters(const vpMorphRigidTransform &T, double cx, doub
   return x;
 }
 
+// The transform of linearParameters() x, about (cx, cy): x' = s R (x - c) + t = s R (x - c) + c + (t - c).
+vpMorphRigidTransform fromLinearParameters(const Eigen::Vector4d &x, double cx, double cy)
+{
+  return vpMorphRigidTransform(std::atan2(x[1], x[0]), x[2] - cx, x[3] - cy, x.head<2>().norm(), cx, cy);
+}
+
+// The map of linearParameters() x applied to p: [a -b; b a] p + t.
+Eigen::Vector2d linearMap(const Eigen::Vector4d &x, const Eigen::Vector2d &p)
+{
+  return Eigen::Vector2d(x[0] * p.x() - x[1] * p.y() + x[2], x[1] * p.x() + x[0] * p.y() + x[3]);
+}
+
 /*
   Trimmed point-to-edge ICP of the points P (relative to the input's centre) on the edges behind \e nearest, from
   x = (a, b, tx, ty) of the map p -> [a -b; b a] p + t. Tukey weights at 5 sigma, sigma = sigmaFixed when > 0, else
@@ -185,7 +197,7 @@ Eigen::Vector4d edgeIcp(const std::vector<Eigen::Vector2d> &P, const vpMorphNear
   std::vector<double> d(P.size());
   for (unsigned int it = 0; it < iterations; ++it) {
     for (std::size_t k = 0; k < P.size(); ++k) {
-      const Eigen::Vector2d p(x[0] * P[k].x() - x[1] * P[k].y() + x[2], x[1] * P[k].x() + x[0] * P[k].y() + x[3]);
+      const Eigen::Vector2d p = linearMap(x, P[k]);
       // The nearest point q = p - r m of the target's edges: r the signed distance, m the edge's normal (towards p
       // at a vertex).
       double mx, my;
@@ -516,11 +528,9 @@ vpMorphRigidTransform vpMorphRigidTransform::refineOnOutline(const vpMorphContou
 
   const vpMorphNearestEdge nearest(target); // a grid over a dense target's edges
   x = edgeIcp(P, nearest, x, withScale, sigmaMin, 0.0, maxIterations, spread);
-  const double scale = x.head<2>().norm();
-  if (!(scale > 0.0) || !x.allFinite())
+  if (!(x.head<2>().norm() > 0.0) || !x.allFinite())
     return initial;
-  // x' = s R (x - c) + t = s R (x - c) + c + (t - c).
-  return vpMorphRigidTransform(std::atan2(x[1], x[0]), x[2] - cx, x[3] - cy, scale, cx, cy);
+  return fromLinearParameters(x, cx, cy);
 }
 
 vpMorphRigidTransform vpMorphRigidTransform::refineOnOverlap(const vpMorphContour &input, const vpMorphContour &target,
@@ -536,9 +546,7 @@ vpMorphRigidTransform vpMorphRigidTransform::refineOnOverlap(const vpMorphContou
   // (x - c) + c + t, with the angle scaled by the radius of gyration r so that all three are lengths (one step
   // length serves them all).
   const vpMorphContour moved = initial.apply(input);
-  std::vector<Eigen::Vector2d> P(moved.size());
-  for (std::size_t k = 0; k < moved.size(); ++k)
-    P[k] = Eigen::Vector2d(moved.x(k), moved.y(k));
+  const std::vector<Eigen::Vector2d> P = vpMorphPoints(moved);
   double cx, cy;
   moved.centroid(cx, cy);
   const Eigen::Vector2d c(cx, cy);
@@ -548,10 +556,7 @@ vpMorphRigidTransform vpMorphRigidTransform::refineOnOverlap(const vpMorphContou
   const double r = std::sqrt(r2 / double(P.size()));
   if (!(r > 0.0) || !std::isfinite(r))
     return initial;
-  std::vector<Eigen::Vector2d> Bp(target.size());
-  for (std::size_t k = 0; k < target.size(); ++k)
-    Bp[k] = Eigen::Vector2d(target.x(k), target.y(k));
-  const vpMorphOverlapPolygon B(std::move(Bp));
+  const vpMorphOverlapPolygon B(vpMorphPoints(target));
 
   auto evaluate = [&](const Eigen::Vector3d &z, Eigen::Vector3d &g) {
     const Eigen::Rotation2Dd R(z[0] / r);
@@ -580,8 +585,8 @@ vpMorphRigidTransform vpMorphRigidTransform::refineOnOverlap(const vpMorphContou
       dirs[nd++] = Eigen::Vector3d::Unit(i);
       dirs[nd++] = -Eigen::Vector3d::Unit(i);
     }
-    bool moved = false;
-    for (int k = 0; k < nd && !moved; ++k) {
+    bool improved = false;
+    for (int k = 0; k < nd && !improved; ++k) {
       Eigen::Vector3d gn;
       const Eigen::Vector3d zn = z + h * dirs[k];
       const double fn = evaluate(zn, gn);
@@ -589,10 +594,10 @@ vpMorphRigidTransform vpMorphRigidTransform::refineOnOverlap(const vpMorphContou
         z = zn;
         f = fn;
         g = gn;
-        moved = true;
+        improved = true;
       }
     }
-    h = moved ? std::min(2.0 * h, 0.05 * r) : 0.5 * h;
+    h = improved ? std::min(2.0 * h, 0.05 * r) : 0.5 * h;
   }
   if (!z.allFinite())
     return initial;
@@ -644,9 +649,9 @@ vpMorphRigidTransform vpMorphRigidTransform::fitRigidPart(const vpMorphContour &
   auto explained = [&](const Eigen::Vector4d &x) {
     std::size_t in = 0;
     for (const Eigen::Vector2d &p : P) {
+      const Eigen::Vector2d q = linearMap(x, p);
       double mx, my;
-      in += std::fabs(nearest(x[0] * p.x() - x[1] * p.y() + x[2], x[1] * p.x() + x[0] * p.y() + x[3], mx, my)) <
-            tolerance;
+      in += std::fabs(nearest(q.x(), q.y(), mx, my)) < tolerance;
     }
     return double(in) / double(P.size());
   };
@@ -682,5 +687,5 @@ vpMorphRigidTransform vpMorphRigidTransform::fitRigidPart(const vpMorphContour &
   }
   if (share)
     *share = bestShare;
-  return vpMorphRigidTransform(std::atan2(best[1], best[0]), best[2] - cx, best[3] - cy, best.head<2>().norm(), cx, cy);
+  return fromLinearParameters(best, cx, cy);
 }
