@@ -166,10 +166,8 @@ vpMorphPlanarScene::vpMorphPlanarScene(const std::string &objectImage, double ob
   }
   readImage(objectImage, "vpMorphPlanarScene: object image", m_texture);
   m_tag = vpMorphTagTexture::create(tagId, kTagCell);                    // checks the id
-  const vpMorphContour c = vpMorphContourExtractor().extract(m_texture); // throws badImageError without object
-  m_texX = c.xs();
-  m_texY = c.ys();
-  textureFrame(c, m_objectSize, m_texCx, m_texCy, m_metresPerTexel);
+  m_texContour = vpMorphContourExtractor().extract(m_texture); // throws badImageError without object
+  textureFrame(m_texContour, m_objectSize, m_texCx, m_texCy, m_metresPerTexel);
   updateLayout();
 }
 
@@ -195,10 +193,9 @@ void vpMorphPlanarScene::setReferenceImage(const std::string &referenceImage, Re
   if (placement == BEST_OVERLAP) {
     // Starts every 2.5 deg over +-20 deg on the polygons (a local maximum wherever a part lies on the template's),
     // then the best refined on the edge outlines, to a thousandth of a texel.
-    const vpMorphContour object = vpMorphContourExtractor().extract(m_texture);
     const vpMorphRigidTransform coarse =
-        vpMorphRigidTransform::fitOnOverlap(object, refContour, vpMorphRigidTransform(), vpMath::rad(20.0), 17);
-    m_texAlign = vpMorphRigidTransform::refineOnOverlap(object.outline(), refContour.outline(), coarse, 400);
+        vpMorphRigidTransform::fitOnOverlap(m_texContour, refContour, vpMorphRigidTransform(), vpMath::rad(20.0), 17);
+    m_texAlign = vpMorphRigidTransform::refineOnOverlap(m_texContour.outline(), refContour.outline(), coarse, 400);
   }
   updateLayout();
 }
@@ -258,8 +255,8 @@ void vpMorphPlanarScene::setCamera(const vpCameraParameters &cam, unsigned int w
 std::vector<vpPoint> vpMorphPlanarScene::objectContour3D() const
 {
   std::vector<vpPoint> P;
-  for (size_t k = 0; k < m_texX.size(); ++k)
-    P.push_back(texelOnPlane(m_texX[k], m_texY[k]));
+  for (size_t k = 0; k < m_texContour.size(); ++k)
+    P.push_back(texelOnPlane(m_texContour.x(k), m_texContour.y(k)));
   return P;
 }
 
@@ -445,10 +442,9 @@ std::vector<vpMorphPlanarScene::Patch> vpMorphPlanarScene::patches() const
   std::vector<Patch> out;
   // Object texture: texel (i, j) centre lands at ((j - cx) p, (i - cy) p) before placement (vpImageSimulator maps
   // texel centres 0 .. W-1 onto the rectangle).
-  auto place = [&](double tx, double ty) { return texelOnPlane(tx, ty); };
   const double W = m_texture.getWidth() - 1.0, H = m_texture.getHeight() - 1.0;
   if (!m_faults.objectHidden)
-    out.push_back({{place(0, 0), place(W, 0), place(W, H), place(0, H)}, 0});
+    out.push_back({{texelOnPlane(0, 0), texelOnPlane(W, 0), texelOnPlane(W, H), texelOnPlane(0, H)}, 0});
   for (const auto &d : m_distractors)
     out.push_back({d, 3});
   const double h = vpMorphTagTexture::textureSideForTagSize(m_tagSize, kTagCell) / 2;

@@ -176,7 +176,7 @@ private:
   double m_objectSize, m_tagSize;
   int m_tagId;
   vpImage<unsigned char> m_texture, m_tag;
-  std::vector<double> m_texX, m_texY; // outline in template pixels
+  vpMorphContour m_texContour; // the object's outline in template pixels (with its edge outline)
   double m_texCx = 0, m_texCy = 0;    // outline centroid in template pixels
   double m_metresPerTexel = 0;
   vpMorphRigidTransform m_texAlign; // texture motion of setReferenceImage(BEST_OVERLAP)
