@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
 
 namespace
 {
@@ -407,3 +408,79 @@ vpMorphCorrespondence vpMorphMatcher::matchWindow(const vpMorphContour &A, const
 }
 
 double vpMorphMatcher::distance(const vpMorphContour &A, const vpMorphContour &B) { return match(A, B).work(); }
+
+namespace
+{
+//! Intersection over union of A moved by T and B (0 when the regions are degenerate).
+double placedIoU(const vpMorphContour &A, const vpMorphContour &B, const vpMorphRigidTransform &T)
+{
+  const vpMorphContour moved = T.apply(A);
+  const double inter = moved.overlapArea(B);
+  const double uni = std::fabs(moved.signedArea()) + std::fabs(B.signedArea()) - inter;
+  return uni > 0.0 && std::isfinite(inter) ? inter / uni : 0.0;
+}
+} // namespace
+
+vpMorphCorrespondence vpMorphMatcher::matchOnRegions(const vpMorphContour &A, const vpMorphContour &B, double minGain,
+                                                     double *gain)
+{
+  if (!(minGain > 0.0 && minGain <= 1.0)) {
+    std::ostringstream os;
+    os << "vpMorphMatcher::matchOnRegions: minGain must be in (0, 1], got " << minGain;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  if (gain)
+    *gain = 0.0;
+  vpMorphCorrespondence best = match(A, B);
+  const double areaA = std::fabs(A.signedArea()), areaB = std::fabs(B.signedArea());
+  const double s = std::sqrt(areaB / areaA);
+  if (!std::isfinite(s) || !(s > 0.0))
+    return best; // no region to compare: the work alone decides
+  // Refinement budgets: a placement is compared, not measured, so a few dozen rounds from a coarse step suffice.
+  const unsigned int rounds = 50;
+  const double step = 0.02;
+  const vpMorphRigidTransform Tw = vpMorphRigidTransform::fitLeastSquares(A, B, best, true);
+  const vpMorphRigidTransform Tws(Tw.theta(), Tw.tx(), Tw.ty(), s, Tw.cx(), Tw.cy());
+  double iouWork = placedIoU(A, B, Tws);
+  if (iouWork >= 1.0 - minGain) // refining can only raise it: nothing can win by minGain
+    return best;
+  iouWork = placedIoU(A, B, vpMorphRigidTransform::refineOnOverlap(A, B, Tws, rounds, step));
+  if (iouWork >= 1.0 - minGain)
+    return best;
+  double ax, ay, bx, by;
+  A.centroid(ax, ay);
+  B.centroid(bx, by);
+  const int samples = 12;
+  vpMorphRigidTransform Tbest;
+  double iouBest = -1.0;
+  for (int k = 0; k < samples; ++k) {
+    const vpMorphRigidTransform Tk(Tw.theta() + 2.0 * M_PI * k / samples, bx - ax, by - ay, s, ax, ay);
+    const double iou = placedIoU(A, B, Tk);
+    if (iou > iouBest) {
+      iouBest = iou;
+      Tbest = Tk;
+    }
+  }
+  Tbest = vpMorphRigidTransform::refineOnOverlap(A, B, Tbest, rounds, step);
+  iouBest = placedIoU(A, B, Tbest);
+  if (!(iouBest > iouWork + minGain))
+    return best;
+  // The least work among the starts whose own fit turns the way the placement does (within the sampling step).
+  vpMorphCorrespondence placed;
+  bool found = false;
+  for (std::size_t b = 0; b < B.size(); ++b) {
+    vpMorphCorrespondence c = matchFromStart(A, B, 0, b);
+    if (found && c.work() >= placed.work())
+      continue;
+    const vpMorphRigidTransform Tc = vpMorphRigidTransform::fitLeastSquares(A, B, c, true);
+    if (std::fabs(std::remainder(Tc.theta() - Tbest.theta(), 2.0 * M_PI)) <= M_PI / samples) {
+      placed = std::move(c);
+      found = true;
+    }
+  }
+  if (!found)
+    return best;
+  if (gain)
+    *gain = iouBest - iouWork;
+  return placed;
+}

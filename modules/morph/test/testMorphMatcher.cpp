@@ -6,8 +6,14 @@
 #include <random>
 #include <set>
 
+#include <string>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/io/vpImageIo.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphMatcher.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
 
 #include "testMorphShapes.h"
 
@@ -311,6 +317,75 @@ TEST_CASE("matcher bad input gives a clear error", "[matcher][bad-input]")
   const vpMorphContour N({0.0, 0.1, 0.0}, {0.0, 0.0, 0.1}, vpMorphContour::NORMALIZED);
   REQUIRE_THROWS_AS(matcher.match(A, N), vpMorphException);
   REQUIRE_THROWS_WITH(matcher.match(A, N), Catch::Contains("units"));
+}
+
+namespace
+{
+vpMorphContour objectContour(const std::string &file)
+{
+  vpImage<unsigned char> I;
+  vpImageIo::read(I, std::string(VISPMORPH_DATA_DIR) + "/objects/" + file);
+  return vpMorphContourExtractor().extract(I);
+}
+
+double fittedDegrees(const vpMorphContour &A, const vpMorphContour &B, const vpMorphCorrespondence &c)
+{
+  return vpMath::deg(vpMorphRigidTransform::fitLeastSquares(A, B, c, true).theta());
+}
+} // namespace
+
+TEST_CASE("matchOnRegions: a deformed view is matched the way its region lies on the target's", "[matcher][regions]")
+{
+  vpMorphMatcher matcher;
+  // The sagging wedge: its minimal work lies half a turn round (measured -155 deg), under which no rigid move lays
+  // its region on the template's.
+  const vpMorphContour bent = objectContour("wedge-deformed.png"), wedge = objectContour("wedge.png");
+  const vpMorphCorrespondence least = matcher.match(bent, wedge);
+  REQUIRE(std::fabs(fittedDegrees(bent, wedge, least)) > 90.0);
+  double gain = -1.0;
+  const vpMorphCorrespondence placed = matcher.matchOnRegions(bent, wedge, 0.1, &gain);
+  CHECK(gain > 0.1);
+  CHECK(std::fabs(fittedDegrees(bent, wedge, placed)) < 15.0);
+  CHECK(placed.work() >= least.work());
+  // Turned by 120 deg, the same.
+  const vpMorphContour turned = vpMorphRigidTransform(vpMath::rad(120.0), 15.0, -8.0, 1.1, 320, 240).apply(bent);
+  const vpMorphCorrespondence placedTurned = matcher.matchOnRegions(turned, wedge, 0.1, &gain);
+  CHECK(gain > 0.1);
+  CHECK(std::fabs(std::remainder(fittedDegrees(turned, wedge, placedTurned) + 120.0, 360.0)) < 15.0);
+  // A demand above what the other placement wins keeps the minimal work.
+  CHECK(matcher.matchOnRegions(bent, wedge, 0.5, &gain).work() == Approx(least.work()).epsilon(1e-12));
+  CHECK(gain == 0.0);
+}
+
+TEST_CASE("matchOnRegions keeps the minimal work where it lays the regions best", "[matcher][regions]")
+{
+  vpMorphMatcher matcher;
+  for (const std::string name : {"hammer", "key", "pliers", "screwdriver", "wedge", "wrench"}) {
+    const vpMorphContour object = objectContour(name + ".png");
+    for (const std::string &file : {name + ".png", name + "-deformed.png"}) {
+      INFO(file);
+      // Rigid views (here turned by 170 deg) and the other deformed objects: the minimal work is already right.
+      if (file == "wedge-deformed.png")
+        continue;
+      const vpMorphContour view =
+          vpMorphRigidTransform(vpMath::rad(170.0), 5.0, 3.0, 0.9, 320, 240).apply(objectContour(file));
+      double gain = -1.0;
+      const vpMorphCorrespondence checked = matcher.matchOnRegions(view, object, 0.1, &gain);
+      const vpMorphCorrespondence least = matcher.match(view, object);
+      CHECK(gain == 0.0);
+      CHECK(checked.start() == least.start());
+      CHECK(checked.work() == Approx(least.work()).epsilon(1e-12));
+    }
+  }
+}
+
+TEST_CASE("matchOnRegions bad input gives a clear error", "[matcher][regions][bad-input]")
+{
+  vpMorphMatcher matcher;
+  const vpMorphContour A({0.0, 10.0, 0.0}, {0.0, 0.0, 10.0});
+  for (const double g : {0.0, -0.1, 1.5, std::nan("")})
+    REQUIRE_THROWS_WITH(matcher.matchOnRegions(A, A, g), Catch::Contains("minGain"));
+  REQUIRE_THROWS_AS(matcher.matchOnRegions(A, vpMorphContour()), vpMorphException);
 }
 
 TEST_CASE("contour validation rejects degenerate polygons", "[contour][bad-input]")

@@ -106,10 +106,17 @@ const vpMorphCorrespondence &vpMorphCorrespondenceTracker::update(const vpMorphC
     }
   }
   if (!done) {
-    m_corr = m_matcher.match(current, target);
+    double gain = 0.0;
+    m_corr = m_regionCheck ? m_matcher.matchOnRegions(current, target, 0.1, &gain) : m_matcher.match(current, target);
     m_source = FULL;
     ++m_fullCount;
-    measureMargin(current, target);
+    if (gain > 0.0) {
+      // The starts far from this one include the minimal-work one: its work says nothing about this choice.
+      m_margin = std::min(1.0, gain);
+      ++m_regionOverrides;
+    } else {
+      measureMargin(current, target);
+    }
   }
   m_prevInput = current;
   m_prevTargetX = target.xs();

@@ -372,7 +372,13 @@ void vpServoMorph::start(const vpMorphContour &current)
   if (m_nSub == 0) {
     m_subGoals = {m_target};
   } else {
-    const vpMorph morph(current, m_target);
+    // The plan follows the correspondence the tracker would choose (checked on the regions, see
+    // vpMorphCorrespondenceTracker): otherwise a deformed view is planned half a turn round and then fitted the
+    // other way at the last sub-goal, a jump that re-plans the same way again.
+    vpMorphMatcher &matcher = m_tracker.matcher();
+    const vpMorph morph(current, m_target,
+                        m_tracker.regionCheck() ? matcher.matchOnRegions(current, m_target)
+                                                : matcher.match(current, m_target));
     m_subGoals = morph.sequence(m_nSub);
     // Whether the two regions are one shape seen twice is a property of the current object against the target
     // (the sub-goals before the deformation frames are views of the current contour itself): see fitToSubGoal().

@@ -32,6 +32,10 @@
   - the best start is strictly inside the window (on its edge the optimum may lie outside it);
   - no distance jump: work <= jumpFactor() * previous work + workFloor().
 
+  <b>Region check</b> (on by default): a full search is vpMorphMatcher::matchOnRegions(), so a deformed view
+  whose minimal work lies half a turn round (a sagging wedge) is matched the way its region lies on the target's.
+  The margin of such a correspondence is the intersection over union it won by.
+
   After each full search the <b>margin</b> is measured: the relative gap (D_alt - D) / D_alt in [0, 1] between
   the best work D and the best work D_alt of the starts more than n/8 target vertices away from the best
   one (n the target size). A margin near 0 means two different alignments of the contour are almost equally
@@ -76,6 +80,11 @@ public:
   double workFloor() const { return m_workFloor; }
   //! Absolute slack of the jump test (default 1e-3, >= 0), so that near-zero works do not trigger it.
   void setWorkFloor(double w);
+  bool regionCheck() const { return m_regionCheck; }
+  //! Full searches checked against the regions' overlap (default true, see the class description).
+  void setRegionCheck(bool on) { m_regionCheck = on; }
+  //! Number of full searches whose minimal-work correspondence the region check replaced.
+  unsigned int regionOverrideCount() const { return m_regionOverrides; }
   //! Half width of the tracking window in target vertices (0: automatic, max(2, n / 8)).
   void setWindowHalfWidth(std::size_t h) { m_halfWidth = h; }
   vpMorphMatcher &matcher() { return m_matcher; }
@@ -92,6 +101,8 @@ private:
   double m_prevWork = 0.0, m_margin = 1.0;
   double m_jumpFactor = 1.5, m_workFloor = 1e-3;
   std::size_t m_halfWidth = 0;
+  bool m_regionCheck = true;
+  unsigned int m_regionOverrides = 0;
   unsigned int m_fullCount = 0, m_trackedCount = 0, m_rejectedCount = 0;
 };
 
