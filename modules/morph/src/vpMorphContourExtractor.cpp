@@ -458,6 +458,23 @@ void near(const std::vector<cv::Point> &chain, const cv::Point &c, double r, std
     if (std::hypot(double(p.x - c.x), double(p.y - c.y)) <= r)
       out.push_back(p);
 }
+
+// The pixels of a chain within r of c that lie within \e reach of the other chain.
+void cutEdge(const std::vector<cv::Point> &chain, const cv::Point &c, double r, const std::vector<cv::Point> &other,
+             double reach, std::vector<cv::Point> &out)
+{
+  std::vector<cv::Point> candidates;
+  near(chain, c, r, candidates);
+  const double reach2 = reach * reach;
+  for (const cv::Point &p : candidates)
+    for (const cv::Point &q : other) {
+      const double dx = p.x - q.x, dy = p.y - q.y;
+      if (dx * dx + dy * dy <= reach2) {
+        out.push_back(p);
+        break;
+      }
+    }
+}
 } // namespace
 
 vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned char> &I) const
@@ -516,10 +533,14 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
     const Link best = links[bestPiece];
     if (!(best.d <= maxGap))
       break;
-    const double r = std::max(1.5 * best.d, 3.0);
+    // Of the pixels near the gap, those about as close to the other side as the closest pair: the two cut edges
+    // (a card's edges are parallel, so each lies at the gap's width from the other) and the start of the limb's
+    // sides. Not the rest of a bow or a head within 1.5 gaps of a long cut, whose hull would fill a triangle
+    // between them (a key cut along its shaft joined into a blob).
+    const double r = std::max(1.5 * best.d, 3.0), slack = std::max(2.0, 0.25 * best.d);
     std::vector<cv::Point> bridge, hull;
-    near(best.g->chain, best.pg, r, bridge);
-    near(pieces[bestPiece]->chain, best.pp, r, bridge);
+    cutEdge(best.g->chain, best.pg, r, pieces[bestPiece]->chain, best.d + slack, bridge);
+    cutEdge(pieces[bestPiece]->chain, best.pp, r, best.g->chain, best.d + slack, bridge);
     cv::convexHull(bridge, hull);
     fill(pieces[bestPiece]->chain, false);
     fill(hull, true);

@@ -55,8 +55,9 @@ public:
     The largest object and the pieces an occluder cut from it, as one outline: every region of at least
     joinedMinShare() of the largest one's area, whose boundary comes within joinedMaxGap() times the largest
     one's bounding-box diagonal of the group (nearest first), is joined to it across the gap by the convex hull
-    of both boundaries' pixels near the gap (within 1.5 gaps: a limb cut straight across is closed with its own
-    width). Why: a card lying across a thin tool leaves two pieces, and the largest piece alone is another shape
+    of both boundaries' cut edges: their pixels within 1.5 gaps of the closest pair and within the gap (plus a
+    quarter, at least 2 px) of the other side. A limb cut straight across is closed with its own width, and the
+    rest of a bow or a head near a long cut stays out of the hull. Why: a card lying across a thin tool leaves two pieces, and the largest piece alone is another shape
     (measured on the benchmark's occlusion set: 4 of 6 recognition failures). Without such pieces it is extract();
     a joined outline carries no measured region (part of its area is bridged, not seen).
     \throw vpMorphException::badImageError as extract().
