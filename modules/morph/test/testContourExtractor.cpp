@@ -226,6 +226,33 @@ TEST_CASE("extractor: extractJoined joins the pieces an occluder cut, not distan
   CHECK_FALSE(joined.hasRegion()); // part of its area is bridged, not seen
   CHECK(largest.hasRegion());
 
+  // A key: a bow (a disc of radius 40) on a shaft (200 x 16 px) cut by a 60 px gap next to the bow. Only the cut
+  // edges are bridged: the bow within 1.5 gaps of the cut stays out of the bridge (with it, a triangle from the
+  // bow to the shaft: 69 % more area).
+  auto keyPart = [](double a, double b, bool bow) {
+    Poly p;
+    if (bow) { // the arc from where the shaft's lower edge leaves it, round the left, to its upper edge
+      const double alpha = std::asin(8.0 / 40.0);
+      for (int k = 0; k <= 60; ++k) {
+        const double t = alpha + (2.0 * M_PI - 2.0 * alpha) * k / 60.0;
+        p.x.push_back(200 + 40 * std::cos(t));
+        p.y.push_back(240 + 40 * std::sin(t));
+      }
+    } else {
+      p.x = {a, a};
+      p.y = {248, 232};
+    }
+    p.x.insert(p.x.end(), {b, b});
+    p.y.insert(p.y.end(), {232, 248});
+    return p;
+  };
+  const Poly key = keyPart(0, 440, true), bowSide = keyPart(0, 280, true), tip = keyPart(340, 440, false);
+  const vpMorphContour keyWhole = ex.extract(render({key}, 0, 255));
+  const vpMorphContour keyJoined = ex.extractJoined(render({bowSide, tip}, 0, 255));
+  checkValid(keyJoined);
+  CHECK(keyJoined.area() == Approx(keyWhole.area()).epsilon(0.02));
+  CHECK(maxDistTo(keyJoined, key.x, key.y) <= 2.0);
+
   // Nothing to join: extract() itself, region included.
   const vpImage<unsigned char> one = render({whole}, 0, 255);
   const vpMorphContour alone = ex.extractJoined(one);
