@@ -437,7 +437,7 @@ vpMorphCorrespondence vpMorphMatcher::matchOnRegions(const vpMorphContour &A, co
   if (!std::isfinite(s) || !(s > 0.0))
     return best; // no region to compare: the work alone decides
   // Refinement budgets: a placement is compared, not measured, so a few dozen rounds from a coarse step suffice.
-  const unsigned int rounds = 50;
+  const unsigned int rounds = 20;
   const double step = 0.02;
   const vpMorphRigidTransform Tw = vpMorphRigidTransform::fitLeastSquares(A, B, best, true);
   const vpMorphRigidTransform Tws(Tw.theta(), Tw.tx(), Tw.ty(), s, Tw.cx(), Tw.cy());
