@@ -134,7 +134,7 @@ TEST_CASE("bench: the tag controllers' goal is the taught view as the detector s
 TEST_CASE("bench: unreachable starts are failures of every controller alike, never a crash", "[bench]")
 {
   vpMorphBench::Settings st;
-  st.robot = vpMorphSimRobot::AFMA6; // joint 6 cannot turn by 180 deg
+  st.robot = vpMorphSimRobot::AFMA6; // its wrist cannot turn the camera by 180 deg
   st.maxIterations = 20;
   const vpMorphBench afma6(kData, st);
   const vpMorphBenchScenario s = planarStart("key", 179, 0, 0);

@@ -24,8 +24,9 @@
   - FREE_CAMERA: a free-flying end-effector (vpSimulatorCamera integrates its velocity); its 6 "joints" are
     the end-effector velocity, eJe = identity; no joint limits.
   - VIPER850: the 6-axis PUMA-like arm, with ViSP's vpViper850 kinematic model and joint limits.
-  - AFMA6: the gantry, with ViSP's vpAfma6 model and joint limits (joint 6 about +-91 deg, so a 180 deg turn
-    about the optical axis is out of reach: it is reported, not hidden).
+  - AFMA6: the gantry, with ViSP's vpAfma6 model and joint limits (its wrist joints cannot turn the camera by
+    180 deg about the optical axis: it is reported, not hidden). Its reference configuration has joint 5 at 45 deg:
+    at 90 deg (the tool looking straight down) joints 4 and 6 are aligned, the wrist singularity.
 
   <b>Why not vpSimulatorViper850 / vpSimulatorAfma6 directly:</b> they integrate the joint velocity in a
   wall-clock thread, so two runs differ and a run lasts as long as the simulated motion. This class
