@@ -3,9 +3,13 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <string>
 
 #include <visp3/core/vpExponentialMap.h>
+#include <visp3/io/vpImageIo.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_vs/vpMorphCorrespondenceTracker.h>
 #include <visp3/morph_vs/vpMorphHandEyeEstimator.h>
 
@@ -52,6 +56,30 @@ TEST_CASE("vpMorphCorrespondenceTracker: full search first, then tracked, full a
   CHECK_THROWS_AS(tr.update(vpMorphContour(), goal), vpMorphException);
   CHECK_THROWS_AS(tr.setJumpFactor(0.5), vpMorphException);
   CHECK_THROWS_AS(tr.setWorkFloor(-1), vpMorphException);
+}
+
+TEST_CASE("vpMorphCorrespondenceTracker checks its full searches on the regions", "[tracker]")
+{
+  // The sagging wedge against its template: the minimal work turns it by about 155 deg, its region says 0.
+  vpImage<unsigned char> I;
+  vpImageIo::read(I, std::string(VISPMORPH_DATA_DIR) + "/objects/wedge-deformed.png");
+  const vpMorphContour bent = vpMorphContourExtractor().extract(I);
+  vpImageIo::read(I, std::string(VISPMORPH_DATA_DIR) + "/objects/wedge.png");
+  const vpMorphContour wedge = vpMorphContourExtractor().extract(I);
+  auto turn = [&](const vpMorphCorrespondence &c) {
+    return vpMath::deg(vpMorphRigidTransform::fitLeastSquares(bent, wedge, c, true).theta());
+  };
+  vpMorphCorrespondenceTracker checked, plain;
+  plain.setRegionCheck(false);
+  CHECK(checked.regionCheck());
+  CHECK(std::fabs(turn(checked.update(bent, wedge))) < 15.0);
+  CHECK(checked.regionOverrideCount() == 1);
+  CHECK(checked.margin() > 0.1); // the overlap it won by
+  CHECK(std::fabs(turn(plain.update(bent, wedge))) > 90.0);
+  CHECK(plain.regionOverrideCount() == 0);
+  // Tracked from there, it stays.
+  CHECK(std::fabs(turn(checked.update(bent, wedge))) < 15.0);
+  CHECK(checked.lastSource() == vpMorphCorrespondenceTracker::TRACKED);
 }
 
 TEST_CASE("vpMorphHandEyeEstimator recovers the planar hand-eye error and the projection scale", "[calibration]")
