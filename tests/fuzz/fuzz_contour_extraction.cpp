@@ -67,6 +67,11 @@ template <typename Pixel> void run(const vpImage<Pixel> &I, const vpImage<unsign
     const vpMorphContour largest = extractor.extract(I);
     VP_FUZZ_CHECK(largest.xs() == all.front().xs() && largest.ys() == all.front().ys(),
                   "extract() is the first of extractAll()");
+    // The pieces joined across their gaps: a valid polygon in the image, never smaller than the largest alone
+    // by more than its digitisation (the bridges and pieces only add).
+    const vpMorphContour joined = extractor.extractJoined(I);
+    checkPolygon(joined, w, h);
+    VP_FUZZ_CHECK(joined.area() >= largest.area() - largest.perimeter(), "a joined outline holds the largest piece");
   }
   try {
     for (const std::vector<vpImagePoint> &chain : extractor.boundaries(I))

@@ -110,6 +110,12 @@ void fuzzMatch(const vpMorphContour &A, const vpMorphContour &B, uint8_t flags)
   VP_FUZZ_CHECK(win.work() >= brute.work() - 1e-9 * (1.0 + brute.work()), "no window beats the minimum");
   const vpMorphCorrespondence one = matcher.matchFromStart(A, B, (flags >> 2) % m, b);
   checkCorrespondence(one, A, B);
+  double gain = -1.0;
+  const vpMorphCorrespondence placed = matcher.matchOnRegions(A, B, 0.1, &gain);
+  checkCorrespondence(placed, A, B);
+  VP_FUZZ_CHECK(gain == 0.0 || (gain > 0.1 && gain <= 1.0), "matchOnRegions replaces only on a win above minGain");
+  VP_FUZZ_CHECK(gain > 0.0 || placed.work() == fast.work(), "matchOnRegions keeps match() unless it replaces it");
+  VP_FUZZ_CHECK(placed.work() >= brute.work() - 1e-9 * (1.0 + brute.work()), "no placement beats the minimum");
 
   const vpMorph::Estimator est = static_cast<vpMorph::Estimator>((flags >> 6) % 3);
   try {

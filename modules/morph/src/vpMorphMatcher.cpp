@@ -432,55 +432,63 @@ vpMorphCorrespondence vpMorphMatcher::matchOnRegions(const vpMorphContour &A, co
   if (gain)
     *gain = 0.0;
   vpMorphCorrespondence best = match(A, B);
-  const double areaA = std::fabs(A.signedArea()), areaB = std::fabs(B.signedArea());
-  const double s = std::sqrt(areaB / areaA);
-  if (!std::isfinite(s) || !(s > 0.0))
-    return best; // no region to compare: the work alone decides
-  // Refinement budgets: a placement is compared, not measured, so a few dozen rounds from a coarse step suffice.
-  const unsigned int rounds = 20;
-  const double step = 0.02;
-  const vpMorphRigidTransform Tw = vpMorphRigidTransform::fitLeastSquares(A, B, best, true);
-  const vpMorphRigidTransform Tws(Tw.theta(), Tw.tx(), Tw.ty(), s, Tw.cx(), Tw.cy());
-  double iouWork = placedIoU(A, B, Tws);
-  if (iouWork >= 1.0 - minGain) // refining can only raise it: nothing can win by minGain
-    return best;
-  iouWork = placedIoU(A, B, vpMorphRigidTransform::refineOnOverlap(A, B, Tws, rounds, step));
-  if (iouWork >= 1.0 - minGain)
-    return best;
-  double ax, ay, bx, by;
-  A.centroid(ax, ay);
-  B.centroid(bx, by);
-  const int samples = 12;
-  vpMorphRigidTransform Tbest;
-  double iouBest = -1.0;
-  for (int k = 0; k < samples; ++k) {
-    const vpMorphRigidTransform Tk(Tw.theta() + 2.0 * M_PI * k / samples, bx - ax, by - ay, s, ax, ay);
-    const double iou = placedIoU(A, B, Tk);
-    if (iou > iouBest) {
-      iouBest = iou;
-      Tbest = Tk;
+  // Past match(), the contours are valid: a failure of the check is a placement that degenerates in floating
+  // point (huge coordinates whose moved vertices merge), where the regions cannot be compared and the work decides.
+  try {
+    const double areaA = std::fabs(A.signedArea()), areaB = std::fabs(B.signedArea());
+    const double s = std::sqrt(areaB / areaA);
+    if (!std::isfinite(s) || !(s > 0.0))
+      return best; // no region to compare: the work alone decides
+    // Refinement budgets: a placement is compared, not measured, so a few dozen rounds from a coarse step suffice.
+    const unsigned int rounds = 20;
+    const double step = 0.02;
+    const vpMorphRigidTransform Tw = vpMorphRigidTransform::fitLeastSquares(A, B, best, true);
+    const vpMorphRigidTransform Tws(Tw.theta(), Tw.tx(), Tw.ty(), s, Tw.cx(), Tw.cy());
+    double iouWork = placedIoU(A, B, Tws);
+    if (iouWork >= 1.0 - minGain) // refining can only raise it: nothing can win by minGain
+      return best;
+    iouWork = placedIoU(A, B, vpMorphRigidTransform::refineOnOverlap(A, B, Tws, rounds, step));
+    if (iouWork >= 1.0 - minGain)
+      return best;
+    double ax, ay, bx, by;
+    A.centroid(ax, ay);
+    B.centroid(bx, by);
+    const int samples = 12;
+    vpMorphRigidTransform Tbest;
+    double iouBest = -1.0;
+    for (int k = 0; k < samples; ++k) {
+      const vpMorphRigidTransform Tk(Tw.theta() + 2.0 * M_PI * k / samples, bx - ax, by - ay, s, ax, ay);
+      const double iou = placedIoU(A, B, Tk);
+      if (iou > iouBest) {
+        iouBest = iou;
+        Tbest = Tk;
+      }
     }
-  }
-  Tbest = vpMorphRigidTransform::refineOnOverlap(A, B, Tbest, rounds, step);
-  iouBest = placedIoU(A, B, Tbest);
-  if (!(iouBest > iouWork + minGain))
-    return best;
-  // The least work among the starts whose own fit turns the way the placement does (within the sampling step).
-  vpMorphCorrespondence placed;
-  bool found = false;
-  for (std::size_t b = 0; b < B.size(); ++b) {
-    vpMorphCorrespondence c = matchFromStart(A, B, 0, b);
-    if (found && c.work() >= placed.work())
-      continue;
-    const vpMorphRigidTransform Tc = vpMorphRigidTransform::fitLeastSquares(A, B, c, true);
-    if (std::fabs(std::remainder(Tc.theta() - Tbest.theta(), 2.0 * M_PI)) <= M_PI / samples) {
-      placed = std::move(c);
-      found = true;
+    Tbest = vpMorphRigidTransform::refineOnOverlap(A, B, Tbest, rounds, step);
+    iouBest = placedIoU(A, B, Tbest);
+    if (!(iouBest > iouWork + minGain))
+      return best;
+    // The least work among the starts whose own fit turns the way the placement does (within the sampling step).
+    vpMorphCorrespondence placed;
+    bool found = false;
+    for (std::size_t b = 0; b < B.size(); ++b) {
+      vpMorphCorrespondence c = matchFromStart(A, B, 0, b);
+      if (found && c.work() >= placed.work())
+        continue;
+      const vpMorphRigidTransform Tc = vpMorphRigidTransform::fitLeastSquares(A, B, c, true);
+      if (std::fabs(std::remainder(Tc.theta() - Tbest.theta(), 2.0 * M_PI)) <= M_PI / samples) {
+        placed = std::move(c);
+        found = true;
+      }
     }
-  }
-  if (!found)
+    if (!found)
+      return best;
+    if (gain)
+      *gain = iouBest - iouWork;
+    return placed;
+  } catch (const vpMorphException &) {
+    if (gain)
+      *gain = 0.0;
     return best;
-  if (gain)
-    *gain = iouBest - iouWork;
-  return placed;
+  }
 }
