@@ -57,10 +57,11 @@ public:
     one's bounding-box diagonal of the group (nearest first), is joined to it across the gap by the convex hull
     of both boundaries' cut edges: their pixels within 1.5 gaps of the closest pair and within the gap (plus a
     quarter, at least 2 px) of the other side. A limb cut straight across is closed with its own width, and the
-    rest of a bow or a head near a long cut stays out of the hull. Why: a card lying across a thin tool leaves two pieces, and the largest piece alone is another shape
-    (measured on the benchmark's occlusion set: 4 of 6 recognition failures). Without such pieces it is extract();
-    a joined outline carries no measured region (part of its area is bridged, not seen).
-    \throw vpMorphException::badImageError as extract().
+    rest of a bow or a head near a long cut stays out of the hull. Why: a card lying across a thin tool leaves two
+    pieces, and the largest piece alone is another shape (measured on the benchmark's occlusion set: 4 of 6 recognition
+    failures). Without such pieces it is extract(); a joined outline carries no measured region (part of its area is
+    bridged, not seen), but its edge outline, measured with the largest piece's grey levels (where it crosses the bridge
+    there is no edge to measure). \throw vpMorphException::badImageError as extract().
   */
   vpMorphContour extractJoined(const vpImage<unsigned char> &I) const;
   vpMorphContour extractJoined(const vpImage<vpRGBa> &I) const;
