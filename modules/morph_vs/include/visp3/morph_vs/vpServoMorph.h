@@ -112,7 +112,9 @@
   are not alike (see above: a tilted view, or a part hidden or bent) unless the homography explains the whole
   outline (99 % inliers: an occluder's edge fitted away by the robust weights still pulls the perspective part), or
   a current contour without a measured region towards a target with one (an outline joined across a cut: part of it
-  was bridged, not seen).
+  was bridged, not seen). On the final approach, an estimate that its own commands do not bring down (still at
+  least the first commanded one along the executed way, three periods in a row, once half a dead zone has been
+  executed) is not the view's tilt: the correction stops until restart().
 
   Why off by default: it is not the paper's law, and on polygons alone (contours built by hand, or stored without
   their outlines) it removes large tilts but stops within its 4 deg dead zone. With extracted contours on the
@@ -444,6 +446,10 @@ private:
   double m_rigidPartShare = 0.0;     // share of the outline the part behind m_scaleBias explained
   double m_tiltRes = 0;
   bool m_tiltOk = false, m_tiltLatched = false;
+  // Tilt executed since the first tilt command of the final approach (camera frame, rad), the estimate at that
+  // command, and the periods in a row the estimate has not come down along it (see estimateTilt()).
+  double m_tiltSumX = 0.0, m_tiltSumY = 0.0, m_tiltRefX = 0.0, m_tiltRefY = 0.0;
+  unsigned int m_tiltNoProgress = 0;
   vpHomogeneousMatrix m_cMcdH;
   // For the distance-jump test and the calibration: the previous iteration to the same sub-goal.
   bool m_haveWork = false, m_haveMove = false;
