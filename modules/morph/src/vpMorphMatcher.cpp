@@ -411,12 +411,21 @@ double vpMorphMatcher::distance(const vpMorphContour &A, const vpMorphContour &B
 
 namespace
 {
-//! Intersection over union of A moved by T and B (0 when the regions are degenerate).
+/*
+  Intersection over union of A moved by T and B (0 when the regions are degenerate). \throw vpMorphException when
+  the overlap is not one of two regions (negative, or larger than either: self-intersecting contours, whose
+  overlapArea() is not defined), so that the caller leaves the regions out.
+*/
 double placedIoU(const vpMorphContour &A, const vpMorphContour &B, const vpMorphRigidTransform &T)
 {
   const vpMorphContour moved = T.apply(A);
   const double inter = moved.overlapArea(B);
-  const double uni = std::fabs(moved.signedArea()) + std::fabs(B.signedArea()) - inter;
+  const double a = std::fabs(moved.signedArea()), b = std::fabs(B.signedArea());
+  if (inter < -1e-9 * (a + b) || inter > std::min(a, b) * (1.0 + 1e-9) + 1e-300)
+    throw vpMorphException(vpMorphException::badContourError,
+                           "vpMorphMatcher::matchOnRegions: the regions' overlap is not a region's (self-intersecting "
+                           "contours?)");
+  const double uni = a + b - inter;
   return uni > 0.0 && std::isfinite(inter) ? inter / uni : 0.0;
 }
 } // namespace
@@ -433,7 +442,8 @@ vpMorphCorrespondence vpMorphMatcher::matchOnRegions(const vpMorphContour &A, co
     *gain = 0.0;
   vpMorphCorrespondence best = match(A, B);
   // Past match(), the contours are valid: a failure of the check is a placement that degenerates in floating
-  // point (huge coordinates whose moved vertices merge), where the regions cannot be compared and the work decides.
+  // point (huge coordinates whose moved vertices merge) or self-intersecting contours (their overlap is no region's),
+  // where the regions cannot be compared and the work decides.
   try {
     const double areaA = std::fabs(A.signedArea()), areaB = std::fabs(B.signedArea());
     const double s = std::sqrt(areaB / areaA);

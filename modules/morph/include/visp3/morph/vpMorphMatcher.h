@@ -90,7 +90,9 @@ public:
     away from its goal. The placements are compared by intersection over union, both at the area-ratio scale
     and refined on the overlap (vpMorphRigidTransform::refineOnOverlap()); the others are sampled every 30 deg
     about the centroids, and only the best of them is refined. Views that the minimal-work placement already
-    covers to within \e minGain are not searched (the usual case: a rigid view covers itself to 1).
+    covers to within \e minGain are not searched (the usual case: a rigid view covers itself to 1). Where the
+    regions cannot be compared (self-intersecting contours, a placement degenerate in floating point), the
+    minimal work decides.
     \param minGain the intersection over union the other placement must win by, in (0, 1].
     \param gain if not null, receives that win when the correspondence was replaced, else 0.
     \throw vpMorphException as match(), and on a bad \e minGain.
