@@ -443,10 +443,13 @@ void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg, const Region 
   reg.mu02 = m02 / m00 - yc * yc;
 }
 
-// The first \e measured regions (largest first) also get their grey-level area and centroid.
-std::vector<Region> regions(const vpImage<unsigned char> &I, std::size_t measured = 0)
+// The first \e measured regions (largest first) also get their grey-level area and centroid. \e binOut, if not
+// null, receives the object mask they were found in.
+std::vector<Region> regions(const vpImage<unsigned char> &I, std::size_t measured = 0, cv::Mat *binOut = nullptr)
 {
   const cv::Mat bin = mask(I);
+  if (binOut)
+    *binOut = bin;
   // One pixel of background all round closes objects that touch the border.
   cv::Mat padded;
   cv::copyMakeBorder(bin, padded, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
@@ -572,7 +575,8 @@ void cutEdge(const std::vector<cv::Point> &chain, const cv::Point &c, double r, 
 
 vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned char> &I) const
 {
-  std::vector<Region> regs = regions(I, 1);
+  cv::Mat bin;
+  std::vector<Region> regs = regions(I, 1, &bin);
   const Region &largest = regs.front();
   const cv::Rect box = cv::boundingRect(largest.chain);
   const double maxGap = joinedMaxGap() * std::hypot(double(box.width), double(box.height));
@@ -661,7 +665,7 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
   // depth 3.3 mm off). No measured region: part of its area is a bridge, not the object's grey levels.
   const cv::Mat grey(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
                      const_cast<unsigned char *>(I.bitmap));
-  measure(grey, mask(I), r, &largest);
+  measure(grey, bin, r, &largest);
   r.subArea = 0.0;
   return polygon(r);
 }
