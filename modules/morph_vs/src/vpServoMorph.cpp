@@ -352,12 +352,8 @@ void vpServoMorph::restart()
   m_iter = 0;
   m_haveMove = m_haveWork = false;
   m_tracker.reset();
-  m_tiltTracker.reset();
-  m_tiltWarm = false;
   m_tiltOk = false;
-  m_tiltLatched = false;
-  m_tiltSumX = m_tiltSumY = m_tiltRefX = m_tiltRefY = 0.0;
-  m_tiltNoProgress = 0;
+  forgetTilt();
   forgetDeformation();
   m_overlapBased = false;
   m_tiltRes = 0;
@@ -417,11 +413,7 @@ void vpServoMorph::start(const vpMorphContour &current)
   }
   m_k = 0;
   m_tracker.reset();
-  m_tiltTracker.reset();
-  m_tiltWarm = false;
-  m_tiltLatched = false;
-  m_tiltSumX = m_tiltSumY = m_tiltRefX = m_tiltRefY = 0.0;
-  m_tiltNoProgress = 0;
+  forgetTilt();
   forgetDeformation();
   m_haveWork = false;
   m_started = true;
@@ -518,6 +510,15 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
   m_margin = tr->margin();
   residuals(T, currentPx);
   return T;
+}
+
+void vpServoMorph::forgetTilt()
+{
+  m_tiltTracker.reset();
+  m_tiltWarm = false;
+  m_tiltLatched = false;
+  m_tiltSumX = m_tiltSumY = m_tiltRefX = m_tiltRefY = 0.0;
+  m_tiltNoProgress = 0;
 }
 
 void vpServoMorph::forgetDeformation()

@@ -387,6 +387,8 @@ private:
   void residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx);
   vpMorphRigidTransform overlapFit(const vpMorphContour &currentN, const vpMorphContour &goalN,
                                    const vpMorphRigidTransform &T);
+  // A new sequence: the tilt's correspondence, warm start, latch and guard start again.
+  void forgetTilt();
   // A new sequence: whether the view is deformed, and its offsets, are decided again.
   void forgetDeformation();
   bool tiltActive() const;
