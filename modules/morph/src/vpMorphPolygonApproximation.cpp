@@ -66,12 +66,15 @@ public:
     return e;
   }
 
-  // L1 error only (the quantity refinement minimises).
-  double l1(std::ptrdiff_t a, std::ptrdiff_t b) const
+  // L1 error only (the quantity refinement minimises). The sum stops as soon as base + sum reaches \e limit (then
+  // the value returned is no longer the error, but base + it is still >= limit): the terms are >= 0 and rounding is
+  // monotone, so base + the whole sum could not have come under the limit either.
+  double l1(std::ptrdiff_t a, std::ptrdiff_t b, double base = 0.0,
+            double limit = std::numeric_limits<double>::infinity()) const
   {
     const Pt &pa = at(a), &pb = at(b);
     double s = 0.0;
-    for (std::ptrdiff_t i = a + 1, w = wrap(i); i < b; ++i, w = w + 1 == m_n ? 0 : w + 1)
+    for (std::ptrdiff_t i = a + 1, w = wrap(i); i < b && base + s < limit; ++i, w = w + 1 == m_n ? 0 : w + 1)
       s += segDist(pa, pb, m_p[static_cast<std::size_t>(w)]);
     return s;
   }
@@ -146,20 +149,31 @@ void splitArc(const Chain &c, std::ptrdiff_t a, std::ptrdiff_t b, Vertices &out)
   }
 }
 
-// One Gauss-Seidel sweep of L1 placement; returns true if a vertex moved.
-bool refineSweep(const Chain &c, Vertices &v)
+// One Gauss-Seidel sweep of L1 placement; returns true if a vertex moved. \e seen holds the neighbours each vertex
+// was last placed between: a vertex whose neighbours have not moved since would stay (it is at the first minimum of
+// the same costs, up to the same 1e-9), so it is skipped, which leaves the result exactly that of a full sweep.
+bool refineSweep(const Chain &c, Vertices &v, std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> &seen)
 {
   const std::ptrdiff_t n = c.size();
   bool moved = false;
   for (std::size_t j = 0; j < v.size(); ++j) {
     const std::ptrdiff_t p = prevOf(v, j, n), q = nextOf(v, j, n);
+    if (seen[j] == std::make_pair(p, q))
+      continue;
+    seen[j] = std::make_pair(p, q);
     double best = c.l1(p, v[j]) + c.l1(v[j], q);
     std::ptrdiff_t arg = v[j];
     for (std::ptrdiff_t k = p + 1; k < q; ++k) {
       if (k == v[j])
         continue;
-      const double cost = c.l1(p, k) + c.l1(k, q);
-      if (cost < best - 1e-9) {
+      // Exactly l1(p, k) + l1(k, q) summed in that order, abandoned once it cannot beat the best: most candidates
+      // are far from it, and this search was most of the extraction's time (O(arc^2) per vertex).
+      const double limit = best - 1e-9;
+      const double first = c.l1(p, k, 0.0, limit);
+      if (!(first < limit))
+        continue;
+      const double cost = first + c.l1(k, q, first, limit);
+      if (cost < limit) {
         best = cost;
         arg = k;
       }
@@ -176,7 +190,9 @@ void refine(const Chain &c, Vertices &v)
 {
   // Each move strictly lowers the total L1 error, so the loop ends; the cap is only a guard against
   // floating-point cycling.
-  for (int sweep = 0; sweep < 100 && refineSweep(c, v); ++sweep) {
+  std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> seen(
+      v.size(), std::make_pair(std::numeric_limits<std::ptrdiff_t>::min(), std::ptrdiff_t(0)));
+  for (int sweep = 0; sweep < 100 && refineSweep(c, v, seen); ++sweep) {
   }
 }
 
