@@ -1,8 +1,10 @@
 #include <visp3/morph/vpMorphPolygonApproximation.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -149,18 +151,27 @@ void splitArc(const Chain &c, std::ptrdiff_t a, std::ptrdiff_t b, Vertices &out)
   }
 }
 
-// One Gauss-Seidel sweep of L1 placement; returns true if a vertex moved. \e seen holds the neighbours each vertex
-// was last placed between: a vertex whose neighbours have not moved since would stay (it is at the first minimum of
-// the same costs, up to the same 1e-9), so it is skipped, which leaves the result exactly that of a full sweep.
-bool refineSweep(const Chain &c, Vertices &v, std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> &seen)
+// Placements known to stay: (previous, vertex, next) chain indices, shifted by a multiple of the chain's length so
+// that the vertex is in [0, n) (the costs depend on the indices modulo n only).
+using StablePlacements = std::set<std::array<std::ptrdiff_t, 3>>;
+
+std::array<std::ptrdiff_t, 3> placement(std::ptrdiff_t p, std::ptrdiff_t x, std::ptrdiff_t q, std::ptrdiff_t n)
+{
+  const std::ptrdiff_t shift = (x >= 0 ? x / n : -((-x + n - 1) / n)) * n;
+  return {p - shift, x - shift, q - shift};
+}
+
+// One Gauss-Seidel sweep of L1 placement; returns true if a vertex moved. A vertex already placed between the same
+// neighbours would stay where it is (it is at the first minimum of the same costs, up to the same 1e-9): it is
+// skipped (\e stable), which leaves the result exactly that of a full sweep.
+bool refineSweep(const Chain &c, Vertices &v, StablePlacements &stable)
 {
   const std::ptrdiff_t n = c.size();
   bool moved = false;
   for (std::size_t j = 0; j < v.size(); ++j) {
     const std::ptrdiff_t p = prevOf(v, j, n), q = nextOf(v, j, n);
-    if (seen[j] == std::make_pair(p, q))
+    if (stable.count(placement(p, v[j], q, n)))
       continue;
-    seen[j] = std::make_pair(p, q);
     double best = c.l1(p, v[j]) + c.l1(v[j], q);
     std::ptrdiff_t arg = v[j];
     for (std::ptrdiff_t k = p + 1; k < q; ++k) {
@@ -178,6 +189,7 @@ bool refineSweep(const Chain &c, Vertices &v, std::vector<std::pair<std::ptrdiff
         arg = k;
       }
     }
+    stable.insert(placement(p, arg, q, n));
     if (arg != v[j]) {
       v[j] = arg;
       moved = true;
@@ -186,13 +198,13 @@ bool refineSweep(const Chain &c, Vertices &v, std::vector<std::pair<std::ptrdiff
   return moved;
 }
 
-void refine(const Chain &c, Vertices &v)
+// \e stable carries over between calls on the same chain: after a merge, only the removed vertex's neighbours are
+// placed anew.
+void refine(const Chain &c, Vertices &v, StablePlacements &stable)
 {
   // Each move strictly lowers the total L1 error, so the loop ends; the cap is only a guard against
   // floating-point cycling.
-  std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> seen(
-      v.size(), std::make_pair(std::numeric_limits<std::ptrdiff_t>::min(), std::ptrdiff_t(0)));
-  for (int sweep = 0; sweep < 100 && refineSweep(c, v, seen); ++sweep) {
+  for (int sweep = 0; sweep < 100 && refineSweep(c, v, stable); ++sweep) {
   }
 }
 
@@ -439,14 +451,15 @@ void stages(const std::vector<Pt> &p, Vertices &split, Vertices &refined, Vertic
   }
 
   refined = split;
-  refine(c, refined);
+  StablePlacements stable;
+  refine(c, refined, stable);
   // Merging changes the neighbours that the L1 placement depends on, and re-placed vertices may allow
   // further merges: alternate until no vertex is removed (V decreases at each round, so this ends).
   merged = refined;
   for (;;) {
     const std::size_t before = merged.size();
     merge(c, merged);
-    refine(c, merged);
+    refine(c, merged, stable);
     if (merged.size() == before)
       break;
   }
