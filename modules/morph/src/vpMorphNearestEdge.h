@@ -22,9 +22,20 @@
 class vpMorphNearestEdge
 {
 public:
-  explicit vpMorphNearestEdge(const vpMorphContour &c) : m_c(c)
+  explicit vpMorphNearestEdge(const vpMorphContour &c)
   {
     const std::size_t n = c.size();
+    // Each edge's start and direction, laid out flat: a query visits dozens of edges.
+    m_edges.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t l = (k + 1) % n;
+      Edge &e = m_edges[k];
+      e.ax = c.x(k);
+      e.ay = c.y(k);
+      e.dx = c.x(l) - e.ax;
+      e.dy = c.y(l) - e.ay;
+      e.l2 = e.dx * e.dx + e.dy * e.dy;
+    }
     if (n < 32)
       return; // a polygon: scanning is as fast
     m_x0 = *std::min_element(c.xs().begin(), c.xs().end());
@@ -49,7 +60,7 @@ public:
   double operator()(double px, double py, double &mx, double &my) const
   {
     Best b;
-    const std::size_t n = m_c.size();
+    const std::size_t n = m_edges.size();
     // Outside the grid (or no grid): the exhaustive scan.
     if (m_cells.empty() || !(px >= m_x0 && py >= m_y0 && px < m_x0 + m_nx * m_h && py < m_y0 + m_ny * m_h)) {
       for (std::size_t k = 0; k < n; ++k)
@@ -90,9 +101,8 @@ private:
   int cellY(double y) const { return std::min(m_ny - 1, std::max(0, int((y - m_y0) / m_h))); }
   void visit(std::size_t k, double px, double py, Best &b) const
   {
-    const vpMorphContour &c = m_c;
-    const std::size_t l = (k + 1) % c.size();
-    const double ax = c.x(k), ay = c.y(k), dx = c.x(l) - ax, dy = c.y(l) - ay, l2 = dx * dx + dy * dy;
+    const Edge &e = m_edges[k];
+    const double ax = e.ax, ay = e.ay, dx = e.dx, dy = e.dy, l2 = e.l2;
     double t = l2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / l2 : 0.0;
     bool in = true;
     if (t <= 0.0) {
@@ -114,8 +124,7 @@ private:
   }
   double finish(const Best &b, double px, double py, double &mx, double &my) const
   {
-    const std::size_t l = (b.k + 1) % m_c.size();
-    const double dx = m_c.x(l) - m_c.x(b.k), dy = m_c.y(l) - m_c.y(b.k), len = std::hypot(dx, dy);
+    const double dx = m_edges[b.k].dx, dy = m_edges[b.k].dy, len = std::hypot(dx, dy);
     const double nx = len > 0 ? -dy / len : 0.0, ny = len > 0 ? dx / len : 1.0; // the edge's normal
     const double ex = px - b.fx, ey = py - b.fy, e = std::hypot(ex, ey);
     if (b.interior || e <= 0.0) {
@@ -128,7 +137,11 @@ private:
     return e;
   }
 
-  const vpMorphContour &m_c;
+  struct Edge
+  {
+    double ax, ay, dx, dy, l2;
+  };
+  std::vector<Edge> m_edges;
   double m_x0 = 0, m_y0 = 0, m_h = 1;
   int m_nx = 0, m_ny = 0;
   std::vector<std::vector<std::size_t>> m_cells;
