@@ -634,58 +634,187 @@ vpMorphRigidTransform vpMorphRigidTransform::fitOnOverlap(const vpMorphContour &
   return best;
 }
 
+namespace
+{
+/*
+  The set-up shared by fitRigidPart() and refineRigidPart(): the input's edge samples P (about its centroid c), the
+  target's edges, the start x0 (linear parameters, see edgeIcp), and the stretches of P that lie on the target's
+  edges under a map x.
+*/
+class RigidPartProblem
+{
+public:
+  struct Stretch
+  {
+    std::size_t start = 0, length = 0;
+    double information = 0.0; // 1 / var(scale) of a fit on it, from its residuals' spread
+  };
+
+  // The arguments are checked by the caller (check()).
+  RigidPartProblem(const vpMorphContour &input, const vpMorphContour &target, const vpMorphRigidTransform &initial,
+                   double tolerance)
+    : m_P(edgeSamples(input, m_cx, m_cy)), m_nearest(target), m_tol(tolerance), m_n(m_P.size()),
+      m_gap(std::max<std::size_t>(1, m_P.size() / 64))
+  {
+    m_x0 = linearParameters(initial, m_cx, m_cy, target, m_spread);
+    m_s0 = m_x0.head<2>().norm();
+  }
+
+  static void check(const vpMorphContour &input, const vpMorphContour &target, double tolerance, const char *who)
+  {
+    checkContourPair(input, target, 1, who);
+    if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+      badParameter(std::string(who) + ": tolerance must be finite and > 0");
+  }
+
+  const Eigen::Vector4d &start() const { return m_x0; }
+
+  // A window along a straight edge, or a start far off, can shrink the map to a point near one edge: only maps
+  // within 10 % of the start's scale are hypotheses.
+  bool plausible(const Eigen::Vector4d &x) const
+  {
+    return x.allFinite() && std::fabs(x.head<2>().norm() / m_s0 - 1.0) < 0.1;
+  }
+
+  // The map fitted on window k of 12 along the input (a sixth of it, half overlapping), alone, from the start.
+  Eigen::Vector4d fitWindow(std::size_t k) const
+  {
+    const std::size_t w = std::max<std::size_t>(3, m_n / 6);
+    std::vector<Eigen::Vector2d> window(w);
+    for (std::size_t j = 0; j < w; ++j)
+      window[j] = m_P[(k * m_n / 12 + j) % m_n];
+    return edgeIcp(window, m_nearest, m_x0, true, 0.25 * m_tol, 0.0, 15, m_spread);
+  }
+
+  // The longest cyclic stretch of samples within the tolerance under x (gaps of up to n/64 samples bridged: a
+  // sample off by noise does not cut a part in two), and the information on the scale that a fit on it carries.
+  Stretch longest(const Eigen::Vector4d &x) const
+  {
+    std::vector<char> in(m_n);
+    std::size_t count = 0;
+    for (std::size_t j = 0; j < m_n; ++j) {
+      const Eigen::Vector2d q = linearMap(x, m_P[j]);
+      double mx, my;
+      in[j] = std::fabs(m_nearest(q.x(), q.y(), mx, my)) < m_tol;
+      count += in[j];
+    }
+    Stretch best;
+    if (count == m_n) {
+      best.length = m_n;
+    } else {
+      std::size_t runStart = 0, last = 0;
+      bool open = false;
+      for (std::size_t i = 0; i < 2 * m_n; ++i) {
+        if (!in[i % m_n])
+          continue;
+        if (!open || i - last > m_gap + 1) {
+          runStart = i;
+          open = true;
+        }
+        last = i;
+        const std::size_t length = std::min(m_n, last - runStart + 1);
+        if (length > best.length) {
+          best.length = length;
+          best.start = runStart % m_n;
+        }
+      }
+    }
+    best.information = information(x, best);
+    return best;
+  }
+
+  // Refined on the stretch it explains, and the stretch found again, twice.
+  void refine(Eigen::Vector4d &x, Stretch &s) const
+  {
+    for (int round = 0; round < 2 && s.length >= 3; ++round) {
+      std::vector<Eigen::Vector2d> R(s.length);
+      for (std::size_t j = 0; j < s.length; ++j)
+        R[j] = m_P[(s.start + j) % m_n];
+      const Eigen::Vector4d xr = edgeIcp(R, m_nearest, x, true, 0.25 * m_tol, 0.0, 20, m_spread);
+      if (!plausible(xr))
+        break;
+      x = xr;
+      s = longest(x);
+    }
+  }
+
+  vpMorphRigidTransform result(const Eigen::Vector4d &x, const Stretch &s, double *share) const
+  {
+    if (share)
+      *share = double(s.length) / double(m_n);
+    return fromLinearParameters(x, m_cx, m_cy);
+  }
+
+private:
+  // 1 / var(scale) of the point-to-edge fit of x on the stretch: the inverse normal matrix's scale entry, times the
+  // residuals' mean square (floored at a tenth of the tolerance). A straight stretch fits at any scale along itself
+  // (none), and a stretch that only runs close to the target's edges (a bent limb diverging slowly) has large
+  // residuals: neither outweighs a curved part that lies on the target.
+  double information(const Eigen::Vector4d &x, const Stretch &s) const
+  {
+    if (s.length < 4)
+      return 0.0;
+    Eigen::Matrix4d M = Eigen::Matrix4d::Zero();
+    double ss = 0.0;
+    for (std::size_t j = 0; j < s.length; ++j) {
+      const Eigen::Vector2d &p = m_P[(s.start + j) % m_n];
+      const Eigen::Vector2d q = linearMap(x, p);
+      double mx, my;
+      const double r = m_nearest(q.x(), q.y(), mx, my);
+      ss += r * r;
+      const Eigen::Vector4d J(mx * p.x() + my * p.y(), my * p.x() - mx * p.y(), mx, my);
+      M += J * J.transpose();
+    }
+    const double scale = x.head<2>().norm();
+    const Eigen::Vector4d g(x[0] / scale, x[1] / scale, 0.0, 0.0);
+    const Eigen::FullPivLU<Eigen::Matrix4d> lu(M);
+    if (lu.rank() < 4)
+      return 0.0;
+    const double v = g.dot(lu.solve(g)) * std::max(ss / double(s.length), 0.01 * m_tol * m_tol);
+    return v > 0.0 && std::isfinite(v) ? 1.0 / v : 0.0;
+  }
+
+  double m_cx = 0.0, m_cy = 0.0, m_spread = 0.0, m_s0 = 1.0;
+  std::vector<Eigen::Vector2d> m_P;
+  vpMorphNearestEdge m_nearest;
+  double m_tol;
+  std::size_t m_n, m_gap;
+  Eigen::Vector4d m_x0;
+};
+} // namespace
+
 vpMorphRigidTransform vpMorphRigidTransform::fitRigidPart(const vpMorphContour &input, const vpMorphContour &target,
                                                           const vpMorphRigidTransform &initial, double tolerance,
                                                           double *share)
 {
-  const char *who = "vpMorphRigidTransform::fitRigidPart";
-  checkContourPair(input, target, 1, who);
-  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
-    badParameter(std::string(who) + ": tolerance must be finite and > 0");
-  double cx, cy, spread;
-  const std::vector<Eigen::Vector2d> P = edgeSamples(input, cx, cy);
-  const Eigen::Vector4d x0 = linearParameters(initial, cx, cy, target, spread);
-  const vpMorphNearestEdge nearest(target);
-  auto explained = [&](const Eigen::Vector4d &x) {
-    std::size_t in = 0;
-    for (const Eigen::Vector2d &p : P) {
-      const Eigen::Vector2d q = linearMap(x, p);
-      double mx, my;
-      in += std::fabs(nearest(q.x(), q.y(), mx, my)) < tolerance;
-    }
-    return double(in) / double(P.size());
-  };
-  // A window along a straight edge, or a start far off, can shrink the map to a point near one edge: only maps
-  // within 10 % of the start's scale are hypotheses.
-  const double s0 = x0.head<2>().norm();
-  auto plausible = [s0](const Eigen::Vector4d &x) {
-    return x.allFinite() && std::fabs(x.head<2>().norm() / s0 - 1.0) < 0.1;
-  };
-  // Hypotheses: the start, and each window of a sixth of the outline fitted alone (a part of a deformed object is
-  // itself rigid: its window fits it whole).
-  Eigen::Vector4d best = x0;
-  double bestShare = explained(x0);
-  const std::size_t n = P.size(), w = std::max<std::size_t>(3, n / 6);
+  RigidPartProblem::check(input, target, tolerance, "vpMorphRigidTransform::fitRigidPart");
+  const RigidPartProblem pb(input, target, initial, tolerance);
+  // Hypotheses: the start, and each window fitted alone (a part of a deformed object is itself rigid: its window
+  // fits it whole); kept: the one whose stretch gives the best-determined scale.
+  Eigen::Vector4d best = pb.start();
+  RigidPartProblem::Stretch stretch = pb.longest(best);
   for (std::size_t k = 0; k < 12; ++k) {
-    std::vector<Eigen::Vector2d> window;
-    for (std::size_t j = 0; j < w; ++j)
-      window.push_back(P[(k * n / 12 + j) % n]);
-    const Eigen::Vector4d x = edgeIcp(window, nearest, x0, true, 0.25 * tolerance, 0.0, 15, spread);
-    if (!plausible(x))
+    const Eigen::Vector4d x = pb.fitWindow(k);
+    if (!pb.plausible(x))
       continue;
-    const double sh = explained(x);
-    if (sh > bestShare) {
-      bestShare = sh;
+    const RigidPartProblem::Stretch s = pb.longest(x);
+    if (s.information > stretch.information) {
+      stretch = s;
       best = x;
     }
   }
-  // Refined on what it explains: Tukey weights vanishing at the tolerance.
-  const Eigen::Vector4d x = edgeIcp(P, nearest, best, true, 0.0, 0.2 * tolerance, 20, spread);
-  if (plausible(x) && explained(x) >= bestShare) {
-    best = x;
-    bestShare = explained(x);
-  }
-  if (share)
-    *share = bestShare;
-  return fromLinearParameters(best, cx, cy);
+  pb.refine(best, stretch);
+  return pb.result(best, stretch, share);
+}
+
+vpMorphRigidTransform vpMorphRigidTransform::refineRigidPart(const vpMorphContour &input, const vpMorphContour &target,
+                                                             const vpMorphRigidTransform &initial, double tolerance,
+                                                             double *share)
+{
+  RigidPartProblem::check(input, target, tolerance, "vpMorphRigidTransform::refineRigidPart");
+  const RigidPartProblem pb(input, target, initial, tolerance);
+  Eigen::Vector4d x = pb.start();
+  RigidPartProblem::Stretch stretch = pb.longest(x);
+  pb.refine(x, stretch);
+  return pb.result(x, stretch, share);
 }

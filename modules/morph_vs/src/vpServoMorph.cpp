@@ -24,8 +24,10 @@ const double kNotAlikeMinInliers = 0.99;
 // only hides; the edge outlines' noise leaves under 0.6 % out on the noise set, bends of 10-15 deg 3-14 %).
 const double kDeformedOutside = 0.02;
 // The largest undeformed part of a deformed view: edges within this distance (pixels) of the target's, over at
-// least this share of the outline.
-const double kRigidPartTolerancePx = 0.15, kRigidPartMinShare = 0.1;
+// least this share of the outline. The edges of a curved part measured in two images differ by 0.1-0.2 px with the
+// pixel phase (a bow is a polygon of short sides): at 0.15 px, a key's bow fell apart into stretches that a
+// straight edge outran.
+const double kRigidPartTolerancePx = 0.25, kRigidPartMinShare = 0.1;
 const unsigned int kRigidPartPeriod = 8;
 // Largest change of the outline's length that a bend explains (relative): the drawn bends change it by under 0.5 %.
 const double kBendLengthChange = 0.01;
@@ -527,7 +529,7 @@ void vpServoMorph::forgetDeformation()
   m_deformed = SHAPE_UNDECIDED;
   m_scaleBias = 1.0;
   m_rigidPartCount = 0;
-  m_rigidPartShare = 0.0;
+  m_partKnown = false;
 }
 
 vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, const vpMorphContour &goalN,
@@ -554,8 +556,8 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   // drawn bend stretches an edge), while it changes the area and drags an outline fit (measured on rendered
   // views of the deformed objects at their goal: length ratio 0.2-0.5 % off, area 0.7-5 %, fit 0.5-2.3 %).
   // Resampled every 3 pixels or so for the lengths: the pixel staircase does not count, small teeth do.
-  // Corrected by the scale of the largest undeformed part (its edges lie on the template's: a bent key's bow; found
-  // below), kept as a ratio to the lengths' scale: a property of the two shapes.
+  // Replaced by the scale of the largest undeformed part (its edges lie on the template's: a bent key's bow) when one
+  // is found, below.
   const double lengthScale = goalN.outline().resampled(2 * kOverlapPoints).perimeter() /
                              currentN.outline().resampled(2 * kOverlapPoints).perimeter();
   const double s = m_scaleBias * lengthScale;
@@ -573,22 +575,31 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   m_overlapOffset = Tovl * Ts.inverse(); // scale 1: Tovl keeps Ts's
   m_overlapWarm = true;
   m_overlapBased = true;
-  // Every kRigidPartPeriod periods (a search of the whole outline, milliseconds): the ratio of the two scales is a
-  // property of the shapes, best measured where the part's edges lie on the target's.
-  if (dense && m_rigidPartCount++ % kRigidPartPeriod == 0) {
-    double share = 0.0;
-    const vpMorphRigidTransform R =
-        vpMorphRigidTransform::fitRigidPart(currentN.outline().resampled(2 * kOverlapPoints), goalN.outline(), Tovl,
-                                            kRigidPartTolerancePx / std::max(m_cam.get_px(), m_cam.get_py()), &share);
-    // Kept from the view where the part explains most of the outline: near the goal it is the whole undeformed
-    // part; farther, or on a lesser coincidence, less of it.
-    if (share >= std::max(kRigidPartMinShare, m_rigidPartShare) &&
-        std::fabs(R.scale() / lengthScale - 1.0) < kBendLengthChange) {
-      m_scaleBias = R.scale() / lengthScale;
-      m_rigidPartShare = share;
+  // The scale of the largest undeformed part, when one is found: searched every kRigidPartPeriod periods (the whole
+  // outline, milliseconds) and followed from one period to the next in between (from its last offset to the overlap
+  // fit). It is measured each period because the lengths' scale is not steady enough to carry it: resampled at other
+  // places on the pixel staircase, a key's outline changes its length by 0.5 % from one period to the next, which
+  // moved a ratio measured once by as much (a key ending 1.8 mm deep).
+  double scale = m_scaleBias * lengthScale;
+  if (dense) {
+    const bool search = m_rigidPartCount++ % kRigidPartPeriod == 0;
+    if (search || m_partKnown) {
+      const vpMorphContour curDense = currentN.outline().resampled(2 * kOverlapPoints);
+      const double tolerance = kRigidPartTolerancePx / std::max(m_cam.get_px(), m_cam.get_py());
+      double share = 0.0;
+      const vpMorphRigidTransform R =
+          search ? vpMorphRigidTransform::fitRigidPart(curDense, goalN.outline(), Tovl, tolerance, &share)
+                 : vpMorphRigidTransform::refineRigidPart(curDense, goalN.outline(), m_partOffset * Tovl, tolerance,
+                                                          &share);
+      m_partKnown = share >= kRigidPartMinShare && std::fabs(R.scale() / lengthScale - 1.0) < kBendLengthChange;
+      if (m_partKnown) {
+        m_partOffset = R * Tovl.inverse();
+        m_scaleBias = R.scale() / lengthScale; // for the periods where the part is lost
+        scale = R.scale();
+      }
     }
   }
-  return vpMorphRigidTransform(Tovl.theta(), Tovl.tx(), Tovl.ty(), m_scaleBias * lengthScale, Tovl.cx(), Tovl.cy());
+  return vpMorphRigidTransform(Tovl.theta(), Tovl.tx(), Tovl.ty(), scale, Tovl.cx(), Tovl.cy());
 }
 
 void vpServoMorph::residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx)

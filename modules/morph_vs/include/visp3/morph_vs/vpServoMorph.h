@@ -55,11 +55,11 @@
   (vpMorphRigidTransform::fitOnOverlap, starts over +-10 deg the first time, then refined from the last period's
   offset to the outline fit; Iteration::overlapBased): the pose at which a bent tool lies on its template as well
   as a rigid placement can, whatever part of it is longest. Its scale (the depth) is the scale of its largest
-  undeformed part (vpMorphRigidTransform::fitRigidPart: edges within 0.15 px of the target's over a tenth of the
-  outline or more, searched every 8 periods, kept from the view where it explains the most), as a ratio to the
-  outlines' lengths, which a bend nearly keeps
-  (the lengths alone when no such part is found: a drawn bend changes them by 0.2-0.5 %; its area and an outline
-  fit change by percents).
+  undeformed part (vpMorphRigidTransform::fitRigidPart: a stretch of edges within 0.25 px of the target's over a
+  tenth of the outline or more, the one whose scale is best determined; searched every 8 periods and followed by
+  vpMorphRigidTransform::refineRigidPart at the periods between). When no such part is found, the outlines' length
+  ratio, which a bend nearly keeps, times the last part's ratio to it (the lengths alone: a drawn bend changes them
+  by 0.2-0.5 %; its area and an outline fit change by percents).
   Through the image projection of a
   plane parallel to the image at the current depth Z (estimated from the area: \f$Z = Z^* \sqrt{a^{*} / a}\f$), the
   camera displacement that produces it is \f[ {}^cM_{c'} = \left[R_z(-\theta),\ \left(k Z (c - R(-\theta)(c + t)/s),\ Z
@@ -445,7 +445,8 @@ private:
   vpMorphRigidTransform m_overlapOffset; // largest-overlap fit o (outline or area fit)^-1, to warm-start the next
   double m_scaleBias = 1.0; // scale of the largest undeformed part over the outlines' length ratio (a deformed view)
   unsigned int m_rigidPartCount = 0; // periods since the deformed view was found, for the part's search
-  double m_rigidPartShare = 0.0;     // share of the outline the part behind m_scaleBias explained
+  bool m_partKnown = false;          // the undeformed part was found at the last period
+  vpMorphRigidTransform m_partOffset; // its fit o the overlap fit^-1, to follow it to the next period
   double m_tiltRes = 0;
   bool m_tiltOk = false, m_tiltLatched = false;
   // Tilt executed since the first tilt command of the final approach (camera frame, rad), the estimate at that
