@@ -579,7 +579,7 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   // outline, milliseconds) and followed from one period to the next in between (from its last offset to the overlap
   // fit). It is measured each period because the lengths' scale is not steady enough to carry it: resampled at other
   // places on the pixel staircase, a key's outline changes its length by 0.5 % from one period to the next, which
-  // moved a ratio measured once by as much (a key ending 1.8 mm deep).
+  // moved a ratio measured once by as much (a key ending 2.2 mm deep).
   double scale = m_scaleBias * lengthScale;
   if (dense) {
     const bool search = m_rigidPartCount++ % kRigidPartPeriod == 0;
