@@ -22,6 +22,22 @@ namespace
 {
 const double Zd = 0.5;
 
+// Start \e index of \e set (seed 1, 10 starts) servoed by `morph` on the Viper850, its object checked, its result
+// printed.
+vpMorphBenchResult viperRun(const std::string &set, std::size_t index, const std::string &object)
+{
+  const std::string data = VISPMORPH_DATA_DIR;
+  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate(set, 10, 1, data)[index];
+  REQUIRE(sc.object == object);
+  vpMorphBench::Settings st;
+  st.robot = vpMorphSimRobot::VIPER850;
+  const vpMorphBenchResult r = vpMorphBench(data, st).run(sc, "morph");
+  std::printf("[%s] %s, start %zu on the Viper850: %s, final error %.3f mm %.3f deg\n", set.c_str(), object.c_str(),
+              index, r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation,
+              r.finalRotation * 180 / M_PI);
+  return r;
+}
+
 // The silhouette of the scene seen from cMo, the tag masked at its true corners.
 vpMorphContour silhouette(const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cMo)
 {
@@ -90,15 +106,7 @@ TEST_CASE("vpServoMorph stops following a tilt estimate that its own commands do
   // Planar-hard set, seed 1, start 0 on the Viper850: the thin pliers, whose tilt about their long axis the outlines
   // barely show. Near the goal the estimate settled at 0.7-1.5 deg beyond its dead zone and stayed there while the
   // camera, turned by it, went from 0.1 to 0.54 deg off (the success threshold is 0.5 deg).
-  const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("planar-hard", 10, 1, data)[0];
-  REQUIRE(sc.object == "pliers");
-  vpMorphBench::Settings st;
-  st.robot = vpMorphSimRobot::VIPER850;
-  const vpMorphBenchResult r = vpMorphBench(data, st).run(sc, "morph");
-  std::printf("[tilt] pliers, planar-hard start 0 on the Viper850: %s, final error %.3f mm %.3f deg\n",
-              r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation, r.finalRotation * 180 / M_PI);
-  CHECK(r.success);
+  CHECK(viperRun("planar-hard", 0, "pliers").success);
 }
 
 TEST_CASE("An occluded object's depth at the goal comes from its edge outline", "[bench][outline]")
@@ -248,13 +256,5 @@ TEST_CASE("A bent key servoed on the Viper850 ends at its undeformed part's dept
 {
   // Deformable set, seed 1, start 8 on the Viper850: the bent key ended 2.2 mm deep (its part's scale measured once,
   // far from the goal, and carried by the outlines' unsteady lengths); followed every period, 0.19 mm.
-  const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("deformable", 10, 1, data)[8];
-  REQUIRE(sc.object == "key");
-  vpMorphBench::Settings st;
-  st.robot = vpMorphSimRobot::VIPER850;
-  const vpMorphBenchResult r = vpMorphBench(data, st).run(sc, "morph");
-  std::printf("[deformed] key, deformable start 8 on the Viper850: %s, final error %.3f mm %.3f deg\n",
-              r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation, r.finalRotation * 180 / M_PI);
-  CHECK(r.success);
+  CHECK(viperRun("deformable", 8, "key").success);
 }
