@@ -17,7 +17,7 @@
   measured (the edge normal when the nearest point is inside an edge, towards p when it is a vertex). The edges are
   bucketed in a uniform grid of cells about two mean edges wide, searched in rings around p's cell: a dense outline
   (a point per boundary pixel) is queried in constant time instead of scanning its hundreds of edges. The result is
-  the exhaustive scan's (equal distances: the lowest edge index).
+  the exhaustive scan's (equal distances: the lowest edge index). A non-finite query point gives NaN (and m = 0).
 */
 class vpMorphNearestEdge
 {
@@ -124,6 +124,10 @@ private:
   }
   double finish(const Best &b, double px, double py, double &mx, double &my) const
   {
+    if (b.k >= m_edges.size()) { // no edge compared: a non-finite query point (a map that overflowed)
+      mx = my = 0.0;
+      return std::numeric_limits<double>::quiet_NaN();
+    }
     const double dx = m_edges[b.k].dx, dy = m_edges[b.k].dy, len = std::hypot(dx, dy);
     const double nx = len > 0 ? -dy / len : 0.0, ny = len > 0 ? dx / len : 1.0; // the edge's normal
     const double ex = px - b.fx, ey = py - b.fy, e = std::hypot(ex, ey);

@@ -636,6 +636,13 @@ vpMorphRigidTransform vpMorphRigidTransform::fitOnOverlap(const vpMorphContour &
 
 namespace
 {
+void checkRigidPart(const vpMorphContour &input, const vpMorphContour &target, double tolerance, const char *who)
+{
+  checkContourPair(input, target, 1, who);
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    badParameter(std::string(who) + ": tolerance must be finite and > 0");
+}
+
 /*
   The set-up shared by fitRigidPart() and refineRigidPart(): the input's edge samples P (about its centroid c), the
   target's edges, the start x0 (linear parameters, see edgeIcp), and the stretches of P that lie on the target's
@@ -650,21 +657,17 @@ public:
     double information = 0.0; // 1 / var(scale) of a fit on it, from its residuals' spread
   };
 
-  // The arguments are checked by the caller (check()).
+  // \throw vpMorphException on empty contours, different units, a bad tolerance, or a start that maps the input
+  // beyond the doubles' range.
   RigidPartProblem(const vpMorphContour &input, const vpMorphContour &target, const vpMorphRigidTransform &initial,
-                   double tolerance)
-    : m_P(edgeSamples(input, m_cx, m_cy)), m_nearest(target), m_tol(tolerance), m_n(m_P.size()),
-      m_gap(std::max<std::size_t>(1, m_P.size() / 64))
+                   double tolerance, const char *who)
+    : m_P((checkRigidPart(input, target, tolerance, who), edgeSamples(input, m_cx, m_cy))), m_nearest(target),
+      m_tol(tolerance), m_n(m_P.size()), m_gap(std::max<std::size_t>(1, m_P.size() / 64))
   {
     m_x0 = linearParameters(initial, m_cx, m_cy, target, m_spread);
     m_s0 = m_x0.head<2>().norm();
-  }
-
-  static void check(const vpMorphContour &input, const vpMorphContour &target, double tolerance, const char *who)
-  {
-    checkContourPair(input, target, 1, who);
-    if (!(tolerance > 0.0) || !std::isfinite(tolerance))
-      badParameter(std::string(who) + ": tolerance must be finite and > 0");
+    if (!m_x0.allFinite() || !(m_s0 > 0.0) || !std::isfinite(m_s0))
+      badParameter(std::string(who) + ": the initial transform maps the input beyond the range of doubles");
   }
 
   const Eigen::Vector4d &start() const { return m_x0; }
@@ -787,8 +790,7 @@ vpMorphRigidTransform vpMorphRigidTransform::fitRigidPart(const vpMorphContour &
                                                           const vpMorphRigidTransform &initial, double tolerance,
                                                           double *share)
 {
-  RigidPartProblem::check(input, target, tolerance, "vpMorphRigidTransform::fitRigidPart");
-  const RigidPartProblem pb(input, target, initial, tolerance);
+  const RigidPartProblem pb(input, target, initial, tolerance, "vpMorphRigidTransform::fitRigidPart");
   // Hypotheses: the start, and each window fitted alone (a part of a deformed object is itself rigid: its window
   // fits it whole); kept: the one whose stretch gives the best-determined scale.
   Eigen::Vector4d best = pb.start();
@@ -811,8 +813,7 @@ vpMorphRigidTransform vpMorphRigidTransform::refineRigidPart(const vpMorphContou
                                                              const vpMorphRigidTransform &initial, double tolerance,
                                                              double *share)
 {
-  RigidPartProblem::check(input, target, tolerance, "vpMorphRigidTransform::refineRigidPart");
-  const RigidPartProblem pb(input, target, initial, tolerance);
+  const RigidPartProblem pb(input, target, initial, tolerance, "vpMorphRigidTransform::refineRigidPart");
   Eigen::Vector4d x = pb.start();
   RigidPartProblem::Stretch stretch = pb.longest(x);
   pb.refine(x, stretch);

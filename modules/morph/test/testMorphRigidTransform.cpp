@@ -623,6 +623,14 @@ TEST_CASE("vpMorphRigidTransform::fitRigidPart takes the part whose scale is bes
   const vpMorphRigidTransform again = vpMorphRigidTransform::refineRigidPart(input, straight, near, 0.15, &followed);
   CHECK(again.scale() == Approx(truth.scale()).epsilon(4e-4));
   CHECK(followed == Approx(share).margin(0.05));
+  // A start that maps the input beyond the doubles' range: a clear error.
+  const vpMorphRigidTransform huge(0.0, 0.0, 0.0, 1e300, 0.0, 0.0);
+  CHECK_THROWS_AS(vpMorphRigidTransform::fitRigidPart(input, straight, huge, 0.15), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidTransform::refineRigidPart(input, straight, huge, 0.15), vpMorphException);
+  // Large but finite: nothing lies on the target, no crash.
+  const vpMorphRigidTransform far(0.0, 1e200, 0.0, 1.0, 0.0, 0.0);
+  CHECK_NOTHROW(vpMorphRigidTransform::refineRigidPart(input, straight, far, 0.15, &followed));
+  CHECK(followed == 0.0);
   CHECK_THROWS_AS(vpMorphRigidTransform::refineRigidPart(input, straight, near, -1.0), vpMorphException);
   CHECK_THROWS_AS(vpMorphRigidTransform::refineRigidPart(input, vpMorphContour(), near, 0.1), vpMorphException);
 }
