@@ -194,10 +194,12 @@ public:
     edges (gaps of 1/64 of the input bridged); the stretch chosen is the one whose scale a fit determines best (the
     inverse of the scale's variance, from the normal equations and the residuals), so that neither a straight edge
     (any scale fits along it) nor a limb that bends away slowly (larger residuals) outweighs a curved part that lies on
-    the target. Then refined as refineRigidPart() does. Pass dense outlines (the input is sampled every perimeter /
-    256). \param tolerance in the contours' units, > 0 (a few tenths of a pixel). \param share if not null, receives the
-    share of the input that the part's stretch covers, in [0, 1]. \throw vpMorphException on empty contours, different
-    units or a bad tolerance.
+    the target. Then refined as refineRigidPart() does. Pass dense outlines (the input is sampled every
+    perimeter / 256).
+    \param tolerance in the contours' units, > 0 (a few tenths of a pixel).
+    \param share if not null, receives the share of the input that the part's stretch covers, in [0, 1].
+    \throw vpMorphException on empty contours, different units, a bad tolerance, or an \e initial that maps the
+    input beyond the range of doubles.
   */
   static vpMorphRigidTransform fitRigidPart(const vpMorphContour &input, const vpMorphContour &target,
                                             const vpMorphRigidTransform &initial, double tolerance,
