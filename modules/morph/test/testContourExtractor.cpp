@@ -340,6 +340,54 @@ TEST_CASE("approximation: exact on clean polygons, start-point independent, para
     CHECK(std::hypot(circ.x(k) - 100.0, circ.y(k) - 100.0) == Approx(70.0).margin(1.5));
 }
 
+// The L1 error of the chain pixels strictly between a and b (unwrapped indices) against the segment a-b.
+double chainL1(const std::vector<vpImagePoint> &chain, long a, long b)
+{
+  const long n = static_cast<long>(chain.size());
+  auto at = [&](long i) { return chain[static_cast<std::size_t>(((i % n) + n) % n)]; };
+  double s = 0.0;
+  for (long i = a + 1; i < b; ++i)
+    s += segDist(at(a).get_u(), at(a).get_v(), at(b).get_u(), at(b).get_v(), at(i).get_u(), at(i).get_v());
+  return s;
+}
+
+TEST_CASE("approximation: every vertex is at the least L1 error between its neighbours", "[approx]")
+{
+  // The refinement's fixed point, checked against every place between the neighbours: the candidates it drops on a
+  // lower bound, without summing their errors, must all be worse.
+  std::vector<std::vector<vpImagePoint>> chains;
+  const vpMorphContourExtractor ex;
+  for (unsigned int seed : {1u, 2u, 3u})
+    chains.push_back(ex.boundary(render({testPolygon(320.3, 240.6, 0.1 * seed)}, 50, 200, 20.0, seed)));
+  vpImage<unsigned char> I;
+  for (const char *f : {"/mpeg7/horse-1.png", "/mpeg7/device0-1.png", "/kimia99/cat1.png"})
+    if (readPng(std::string(VISPMORPH_DATASETS_DIR) + f, I))
+      chains.push_back(ex.boundary(I));
+  for (const std::vector<vpImagePoint> &chain : chains) {
+    const std::vector<std::size_t> v = vpMorphPolygonApproximation::vertexIndices(chain);
+    const long n = static_cast<long>(chain.size()), m = static_cast<long>(v.size());
+    REQUIRE(m >= 3);
+    for (long j = 0; j < m; ++j) {
+      const long x = static_cast<long>(v[static_cast<std::size_t>(j)]);
+      const long p = j == 0 ? static_cast<long>(v.back()) - n : static_cast<long>(v[static_cast<std::size_t>(j - 1)]);
+      const long q =
+          j + 1 == m ? static_cast<long>(v.front()) + n : static_cast<long>(v[static_cast<std::size_t>(j + 1)]);
+      const double here = chainL1(chain, p, x) + chainL1(chain, x, q);
+      double best = here;
+      long arg = x;
+      for (long k = p + 1; k < q; ++k) {
+        const double c = chainL1(chain, p, k) + chainL1(chain, k, q);
+        if (c < best) {
+          best = c;
+          arg = k;
+        }
+      }
+      INFO("chain of " << n << " pixels, vertex " << j << " at " << x << ", best place " << arg);
+      CHECK(best >= here - 1e-6);
+    }
+  }
+}
+
 TEST_CASE("approximation: a comb of one-pixel spikes (a chain that retraces itself) gives a simple polygon",
           "[approx][bad]")
 {
