@@ -358,10 +358,18 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     for (std::size_t k = 0; k < N; ++k) {
       rw[k] = robustWeight(r[k], sigma, tukey);
       if (rw[k] > 0) {
-        M += rw[k] * J[k].transpose() * J[k];
-        b -= rw[k] * J[k].transpose() * r[k];
+        // The upper triangle, mirrored below: the same products as the full outer product, in half the time.
+        for (int i = 0; i < 8; ++i) {
+          const double wi = rw[k] * J[k][i];
+          for (int j = i; j < 8; ++j)
+            M(i, j) += wi * J[k][j];
+          b[i] -= wi * r[k];
+        }
       }
     }
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < i; ++j)
+        M(i, j) = M(j, i);
     // Conditioning on the Jacobi-scaled normal matrix: a sliver or a collapsed outline leaves directions free.
     Vec8 dg;
     for (int i = 0; i < 8; ++i)

@@ -35,6 +35,9 @@ public:
       e.dx = c.x(l) - e.ax;
       e.dy = c.y(l) - e.ay;
       e.l2 = e.dx * e.dx + e.dy * e.dy;
+      const double len = std::hypot(e.dx, e.dy);
+      e.nx = len > 0 ? -e.dy / len : 0.0;
+      e.ny = len > 0 ? e.dx / len : 1.0;
     }
     if (n < 32)
       return; // a polygon: scanning is as fast
@@ -128,9 +131,8 @@ private:
       mx = my = 0.0;
       return std::numeric_limits<double>::quiet_NaN();
     }
-    const double dx = m_edges[b.k].dx, dy = m_edges[b.k].dy, len = std::hypot(dx, dy);
-    const double nx = len > 0 ? -dy / len : 0.0, ny = len > 0 ? dx / len : 1.0; // the edge's normal
-    const double ex = px - b.fx, ey = py - b.fy, e = std::hypot(ex, ey);
+    const double nx = m_edges[b.k].nx, ny = m_edges[b.k].ny;
+    const double ex = px - b.fx, ey = py - b.fy, e = b.interior ? 0.0 : std::hypot(ex, ey);
     if (b.interior || e <= 0.0) {
       mx = nx;
       my = ny;
@@ -144,6 +146,7 @@ private:
   struct Edge
   {
     double ax, ay, dx, dy, l2;
+    double nx, ny; // the unit normal (0, 1 for a null edge), computed once: a query used to take two hypot()s
   };
   std::vector<Edge> m_edges;
   double m_x0 = 0, m_y0 = 0, m_h = 1;
