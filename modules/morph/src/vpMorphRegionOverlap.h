@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -52,6 +53,12 @@ public:
     m_nx = std::min(512, int((hi.x() - lo.x()) / m_h) + 1);
     m_ny = std::min(512, int((hi.y() - lo.y()) / m_h) + 1);
     m_h = std::max((hi.x() - lo.x()) / m_nx, (hi.y() - lo.y()) / m_ny) * (1.0 + 1e-12) + 1e-300;
+    // Each edge's first cell (lowest column and row of its bounding box), for the queries' "each edge once" tests.
+    m_first.resize(m_p.size());
+    for (std::size_t k = 0; k < m_p.size(); ++k) {
+      const Eigen::Vector2d &a = m_p[k], &b = m_p[(k + 1) % m_p.size()];
+      m_first[k] = {cellX(std::min(a.x(), b.x())), cellY(std::min(a.y(), b.y()))};
+    }
     // Cells in one array (counted, then filled): rebuilt at every step of an optimisation, so no allocation a cell.
     m_start.assign(std::size_t(m_nx) * std::size_t(m_ny) + 1, 0);
     forEachCell([&](std::size_t c, std::size_t) { ++m_start[c + 1]; });
@@ -76,7 +83,7 @@ public:
       for (std::size_t e = m_start[index(i, j)]; e < m_start[index(i, j) + 1]; ++e) {
         const std::size_t k = m_edges[e];
         const Eigen::Vector2d &a = m_p[k], &b = m_p[(k + 1) % m_p.size()];
-        if ((a.y() > q.y()) == (b.y() > q.y()) || i != std::max(i0, cellX(std::min(a.x(), b.x()))))
+        if ((a.y() > q.y()) == (b.y() > q.y()) || i != std::max(i0, m_first[k].first))
           continue; // not across the ray's line, or met before in this row
         const double x = a.x() + (q.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
         if (x > q.x())
@@ -98,10 +105,10 @@ public:
       for (int i = i0; i <= i1; ++i)
         for (std::size_t c = m_start[index(i, j)]; c < m_start[index(i, j) + 1]; ++c) {
           const std::size_t k = m_edges[c];
-          const Eigen::Vector2d &a = m_p[k], &b = m_p[(k + 1) % m_p.size()], d = b - a;
           // Each edge once: in the first cell of the scan (row by row) that holds it.
-          if (j != std::max(j0, cellY(std::min(a.y(), b.y()))) || i != std::max(i0, cellX(std::min(a.x(), b.x()))))
+          if (j != std::max(j0, m_first[k].second) || i != std::max(i0, m_first[k].first))
             continue;
+          const Eigen::Vector2d &a = m_p[k], &b = m_p[(k + 1) % m_p.size()], d = b - a;
           const double den = cross(e, d);
           if (den == 0.0)
             continue; // parallel: no crossing that changes the side
@@ -141,6 +148,7 @@ private:
   double m_h = 1.0;
   int m_nx = 1, m_ny = 1;
   std::vector<std::size_t> m_start, m_edges; // edges of cell c: m_edges[m_start[c] .. m_start[c + 1])
+  std::vector<std::pair<int, int>> m_first;  // each edge's first cell (column, row), computed once, not per query
 };
 
 /*
