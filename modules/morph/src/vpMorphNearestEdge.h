@@ -15,9 +15,11 @@
 /*
   Signed distance from p to the nearest point of the closed polygon c, and the unit direction m along which it is
   measured (the edge normal when the nearest point is inside an edge, towards p when it is a vertex). The edges are
-  bucketed in a uniform grid of cells about two mean edges wide, searched in rings around p's cell: a dense outline
-  (a point per boundary pixel) is queried in constant time instead of scanning its hundreds of edges. The result is
-  the exhaustive scan's (equal distances: the lowest edge index). A non-finite query point gives NaN (and m = 0).
+  bucketed in a uniform grid of cells about four mean edges wide, searched in rings around p's cell: a dense outline
+  (a point per boundary pixel) is queried in constant time instead of scanning its hundreds of edges. The cell size
+  only sets the cost, not the result: four edges were 7 % faster than two on the outline fits (their query points
+  lie up to pixels off the outline, where small cells need more rings). The result is the exhaustive scan's (equal
+  distances: the lowest edge index). A non-finite query point gives NaN (and m = 0).
 */
 class vpMorphNearestEdge
 {
@@ -45,7 +47,7 @@ public:
     m_y0 = *std::min_element(c.ys().begin(), c.ys().end());
     const double x1 = *std::max_element(c.xs().begin(), c.xs().end());
     const double y1 = *std::max_element(c.ys().begin(), c.ys().end());
-    m_h = std::max(2.0 * c.perimeter() / double(n), 1e-9 * std::max(x1 - m_x0, y1 - m_y0));
+    m_h = std::max(4.0 * c.perimeter() / double(n), 1e-9 * std::max(x1 - m_x0, y1 - m_y0));
     m_nx = std::min(1024, int((x1 - m_x0) / m_h) + 1);
     m_ny = std::min(1024, int((y1 - m_y0) / m_h) + 1);
     m_h = std::max((x1 - m_x0) / m_nx, (y1 - m_y0) / m_ny) * (1.0 + 1e-12) + 1e-300;
