@@ -175,9 +175,10 @@ void BM_morphIterationTilt(benchmark::State &state)
   state.counters["outlines"] = r.contours.front().hasOutline() && r.target.hasOutline() ? 1.0 : 0.0;
 }
 
-// The final approach of the bent hammer, where the view is found deformed and laid on its template by the largest
-// overlap: once from starts over +-10 deg (the first call of each pass), then refined from the last offset.
-void BM_morphIterationDeformed(benchmark::State &state)
+// The recorded run of the bent hammer from its iteration \e first on (the ones before it made again, untimed, at each
+// pass), to the end: its final approach, where the view is found deformed and laid on its template by the largest
+// overlap.
+void deformedIterations(benchmark::State &state, std::size_t first)
 {
   const Recording &r = deformedRecording();
   vpServoMorph servo;
@@ -185,39 +186,30 @@ void BM_morphIterationDeformed(benchmark::State &state)
   std::size_t k = r.contours.size();
   for (auto _ : state) {
     if (k == r.contours.size()) {
-      state.PauseTiming(); // reach the last sub-goal again, untimed
+      state.PauseTiming();
       servo.restart();
-      for (k = 0; k < r.finalApproach; ++k)
+      for (k = 0; k < first; ++k)
         servo.computeControlLaw(r.contours[k]);
       state.ResumeTiming();
     }
     benchmark::DoNotOptimize(servo.computeControlLaw(r.contours[k++])[0]);
   }
-  state.counters["contours"] = static_cast<double>(r.contours.size() - r.finalApproach);
+  state.counters["contours"] = static_cast<double>(r.contours.size() - first);
   state.counters["overlap"] = servo.history().empty() || servo.history().back().overlapBased ? 1.0 : 0.0;
 }
 
-// The same final approach without its first iteration (the overlap's search from several starts, once per run): the
-// periods that follow the overlap and the part from the previous one, with the part's search every 8th period (one
-// of these 9), as in a run.
+// The whole final approach: the overlap searched from starts over +-10 deg (its first iteration), then refined from
+// the last offset.
+void BM_morphIterationDeformed(benchmark::State &state)
+{
+  deformedIterations(state, deformedRecording().finalApproach);
+}
+
+// The same without its first iteration (the overlap's search, once per run): the periods that follow the overlap and
+// the part from the previous one, with the part's search every 8th period (one of these 9), as in a run.
 void BM_morphIterationDeformedFollow(benchmark::State &state)
 {
-  const Recording &r = deformedRecording();
-  vpServoMorph servo;
-  configure(servo, r);
-  std::size_t k = r.contours.size();
-  for (auto _ : state) {
-    if (k == r.contours.size()) {
-      state.PauseTiming(); // reach the last sub-goal and make its first fit again, untimed
-      servo.restart();
-      for (k = 0; k <= r.finalApproach; ++k)
-        servo.computeControlLaw(r.contours[k]);
-      state.ResumeTiming();
-    }
-    benchmark::DoNotOptimize(servo.computeControlLaw(r.contours[k++])[0]);
-  }
-  state.counters["contours"] = static_cast<double>(r.contours.size() - r.finalApproach - 1);
-  state.counters["overlap"] = servo.history().empty() || servo.history().back().overlapBased ? 1.0 : 0.0;
+  deformedIterations(state, deformedRecording().finalApproach + 1);
 }
 
 void BM_morphStart(benchmark::State &state)
