@@ -7,8 +7,8 @@
 #define VP_MORPH_REGION_OVERLAP_H
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -32,8 +32,14 @@ inline std::vector<Eigen::Vector2d> vpMorphPoints(const vpMorphContour &c)
 class vpMorphOverlapPolygon
 {
 public:
-  explicit vpMorphOverlapPolygon(std::vector<Eigen::Vector2d> p) : m_p(std::move(p))
+  vpMorphOverlapPolygon() = default;
+  explicit vpMorphOverlapPolygon(const std::vector<Eigen::Vector2d> &p) { assign(p); }
+
+  //! Rebuilds for the points \e p (not empty), in the storage already held: an optimisation moves a polygon and
+  //! rebuilds it at every step.
+  void assign(const std::vector<Eigen::Vector2d> &p)
   {
+    m_p.assign(p.begin(), p.end());
     double a = 0.0;
     for (std::size_t k = 0; k < m_p.size(); ++k)
       a += cross(m_p[k], m_p[(k + 1) % m_p.size()]);
@@ -53,20 +59,22 @@ public:
     m_nx = std::min(512, int((hi.x() - lo.x()) / m_h) + 1);
     m_ny = std::min(512, int((hi.y() - lo.y()) / m_h) + 1);
     m_h = std::max((hi.x() - lo.x()) / m_nx, (hi.y() - lo.y()) / m_ny) * (1.0 + 1e-12) + 1e-300;
-    // Each edge's first cell (lowest column and row of its bounding box), for the queries' "each edge once" tests.
-    m_first.resize(m_p.size());
+    // Each edge's cells (the columns and rows of its bounding box), computed once for the grid and for the queries'
+    // "each edge once" tests (a floor and a division per candidate edge were most of the queries' time).
+    m_box.resize(m_p.size());
     for (std::size_t k = 0; k < m_p.size(); ++k) {
       const Eigen::Vector2d &a = m_p[k], &b = m_p[(k + 1) % m_p.size()];
-      m_first[k] = {cellX(std::min(a.x(), b.x())), cellY(std::min(a.y(), b.y()))};
+      m_box[k] = {cellX(std::min(a.x(), b.x())), cellX(std::max(a.x(), b.x())), cellY(std::min(a.y(), b.y())),
+                  cellY(std::max(a.y(), b.y()))};
     }
-    // Cells in one array (counted, then filled): rebuilt at every step of an optimisation, so no allocation a cell.
+    // Cells in one array (counted, then filled).
     m_start.assign(std::size_t(m_nx) * std::size_t(m_ny) + 1, 0);
     forEachCell([&](std::size_t c, std::size_t) { ++m_start[c + 1]; });
     for (std::size_t c = 1; c < m_start.size(); ++c)
       m_start[c] += m_start[c - 1];
     m_edges.resize(m_start.back());
-    std::vector<std::size_t> fill(m_start.begin(), m_start.end() - 1);
-    forEachCell([&](std::size_t c, std::size_t k) { m_edges[fill[c]++] = k; });
+    m_fill.assign(m_start.begin(), m_start.end() - 1);
+    forEachCell([&](std::size_t c, std::size_t k) { m_edges[m_fill[c]++] = k; });
   }
 
   const std::vector<Eigen::Vector2d> &points() const { return m_p; }
@@ -83,7 +91,7 @@ public:
       for (std::size_t e = m_start[index(i, j)]; e < m_start[index(i, j) + 1]; ++e) {
         const std::size_t k = m_edges[e];
         const Eigen::Vector2d &a = m_p[k], &b = m_p[(k + 1) % m_p.size()];
-        if ((a.y() > q.y()) == (b.y() > q.y()) || i != std::max(i0, m_first[k].first))
+        if ((a.y() > q.y()) == (b.y() > q.y()) || i != std::max(i0, m_box[k][0]))
           continue; // not across the ray's line, or met before in this row
         const double x = a.x() + (q.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
         if (x > q.x())
@@ -106,7 +114,7 @@ public:
         for (std::size_t c = m_start[index(i, j)]; c < m_start[index(i, j) + 1]; ++c) {
           const std::size_t k = m_edges[c];
           // Each edge once: in the first cell of the scan (row by row) that holds it.
-          if (j != std::max(j0, m_first[k].second) || i != std::max(i0, m_first[k].first))
+          if (j != std::max(j0, m_box[k][2]) || i != std::max(i0, m_box[k][0]))
             continue;
           const Eigen::Vector2d &a = m_p[k], &b = m_p[(k + 1) % m_p.size()], d = b - a;
           const double den = cross(e, d);
@@ -134,12 +142,10 @@ private:
   // f(cell, edge) for every cell of every edge's bounding box.
   template <class F> void forEachCell(F f) const
   {
-    for (std::size_t k = 0; k < m_p.size(); ++k) {
-      const Eigen::Vector2d &a = m_p[k], &b = m_p[(k + 1) % m_p.size()];
-      for (int j = cellY(std::min(a.y(), b.y())); j <= cellY(std::max(a.y(), b.y())); ++j)
-        for (int i = cellX(std::min(a.x(), b.x())); i <= cellX(std::max(a.x(), b.x())); ++i)
+    for (std::size_t k = 0; k < m_p.size(); ++k)
+      for (int j = m_box[k][2]; j <= m_box[k][3]; ++j)
+        for (int i = m_box[k][0]; i <= m_box[k][1]; ++i)
           f(index(i, j), k);
-    }
   }
 
   std::vector<Eigen::Vector2d> m_p;
@@ -148,7 +154,8 @@ private:
   double m_h = 1.0;
   int m_nx = 1, m_ny = 1;
   std::vector<std::size_t> m_start, m_edges; // edges of cell c: m_edges[m_start[c] .. m_start[c + 1])
-  std::vector<std::pair<int, int>> m_first;  // each edge's first cell (column, row), computed once, not per query
+  std::vector<std::array<int, 4>> m_box;     // each edge's first and last column, first and last row
+  std::vector<std::size_t> m_fill;           // the fill's cursor per cell, kept for its storage
 };
 
 /*

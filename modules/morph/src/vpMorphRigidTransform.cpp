@@ -558,12 +558,14 @@ vpMorphRigidTransform vpMorphRigidTransform::refineOnOverlap(const vpMorphContou
     return initial;
   const vpMorphOverlapPolygon B(vpMorphPoints(target));
 
+  std::vector<Eigen::Vector2d> Q(P.size());
+  vpMorphOverlapPolygon A; // the moved input, rebuilt in place at each evaluation
   auto evaluate = [&](const Eigen::Vector3d &z, Eigen::Vector3d &g) {
     const Eigen::Rotation2Dd R(z[0] / r);
-    std::vector<Eigen::Vector2d> Q(P.size());
     for (std::size_t k = 0; k < P.size(); ++k)
       Q[k] = R * (P[k] - c) + c + z.tail<2>();
-    const double f = vpMorphOverlapArea(vpMorphOverlapPolygon(std::move(Q)), B, c + z.tail<2>(), &g);
+    A.assign(Q);
+    const double f = vpMorphOverlapArea(A, B, c + z.tail<2>(), &g);
     g[0] /= r;
     return f;
   };
