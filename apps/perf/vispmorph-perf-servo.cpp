@@ -253,7 +253,7 @@ public:
     const double base = m_time["BM_ibvs4Points"];
     os << "\nper call, CPU time of the fastest repetition, and ratio to a stock 4-point IBVS computeControlLaw()\n";
     for (const auto &t : m_time)
-      os << std::setw(20) << std::left << t.first << std::right << std::fixed << std::setprecision(3) << std::setw(12)
+      os << std::setw(32) << std::left << t.first << std::right << std::fixed << std::setprecision(3) << std::setw(12)
          << t.second / 1000.0 << " ms" << std::setprecision(1) << std::setw(10) << t.second / base << " x\n";
   }
 };
