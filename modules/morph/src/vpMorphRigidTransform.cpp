@@ -638,11 +638,14 @@ vpMorphRigidTransform vpMorphRigidTransform::fitOnOverlap(const vpMorphContour &
 
 namespace
 {
-void checkRigidPart(const vpMorphContour &input, const vpMorphContour &target, double tolerance, const char *who)
+// The input, once the arguments of fitRigidPart() or refineRigidPart() are checked.
+const vpMorphContour &checkedRigidPartInput(const vpMorphContour &input, const vpMorphContour &target, double tolerance,
+                                            const char *who)
 {
   checkContourPair(input, target, 1, who);
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     badParameter(std::string(who) + ": tolerance must be finite and > 0");
+  return input;
 }
 
 /*
@@ -663,7 +666,7 @@ public:
   // beyond the doubles' range.
   RigidPartProblem(const vpMorphContour &input, const vpMorphContour &target, const vpMorphRigidTransform &initial,
                    double tolerance, const char *who)
-    : m_P((checkRigidPart(input, target, tolerance, who), edgeSamples(input, m_cx, m_cy))), m_nearest(target),
+    : m_P(edgeSamples(checkedRigidPartInput(input, target, tolerance, who), m_cx, m_cy)), m_nearest(target),
       m_tol(tolerance), m_n(m_P.size()), m_gap(std::max<std::size_t>(1, m_P.size() / 64))
   {
     m_x0 = linearParameters(initial, m_cx, m_cy, target, m_spread);
@@ -779,7 +782,7 @@ private:
     return v > 0.0 && std::isfinite(v) ? 1.0 / v : 0.0;
   }
 
-  double m_cx = 0.0, m_cy = 0.0, m_spread = 0.0, m_s0 = 1.0;
+  double m_cx = 0.0, m_cy = 0.0, m_spread = 0.0, m_s0 = 1.0; // before m_P: its initialiser sets m_cx, m_cy
   std::vector<Eigen::Vector2d> m_P;
   vpMorphNearestEdge m_nearest;
   double m_tol;
