@@ -22,20 +22,25 @@ namespace
 {
 const double Zd = 0.5;
 
-// Start \e index of \e set (seed 1, 10 starts) servoed by `morph` on the Viper850, its object checked, its result
+// Start \e index of \e set (seed 1, 10 starts) servoed by `morph` on \e robot, its object checked, its result
 // printed.
-vpMorphBenchResult viperRun(const std::string &set, std::size_t index, const std::string &object)
+vpMorphBenchResult benchRun(const std::string &set, std::size_t index, const std::string &object,
+                            vpMorphSimRobot::Kind robot)
 {
   const std::string data = VISPMORPH_DATA_DIR;
   const vpMorphBenchScenario sc = vpMorphBenchScenario::generate(set, 10, 1, data)[index];
   REQUIRE(sc.object == object);
   vpMorphBench::Settings st;
-  st.robot = vpMorphSimRobot::VIPER850;
+  st.robot = robot;
   const vpMorphBenchResult r = vpMorphBench(data, st).run(sc, "morph");
-  std::printf("[%s] %s, start %zu on the Viper850: %s, final error %.3f mm %.3f deg\n", set.c_str(), object.c_str(),
-              index, r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation,
-              r.finalRotation * 180 / M_PI);
+  std::printf("[%s] %s, start %zu on the %s: %s, final error %.3f mm %.3f deg\n", set.c_str(), object.c_str(), index,
+              robot == vpMorphSimRobot::VIPER850 ? "Viper850" : "free camera",
+              r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation, r.finalRotation * 180 / M_PI);
   return r;
+}
+vpMorphBenchResult viperRun(const std::string &set, std::size_t index, const std::string &object)
+{
+  return benchRun(set, index, object, vpMorphSimRobot::VIPER850);
 }
 
 // The silhouette of the scene seen from cMo, the tag masked at its true corners.
@@ -107,6 +112,17 @@ TEST_CASE("vpServoMorph stops following a tilt estimate that its own commands do
   // barely show. Near the goal the estimate settled at 0.7-1.5 deg beyond its dead zone and stayed there while the
   // camera, turned by it, went from 0.1 to 0.54 deg off (the success threshold is 0.5 deg).
   CHECK(viperRun("planar-hard", 0, "pliers").success);
+}
+
+TEST_CASE("A view judged unlike its target only because it was tilted is judged again once the tilt is corrected",
+          "[bench][tilt]")
+{
+  // 6dof set, seed 1, start 8 on the free camera: the key seen 22 deg tilted. Its region's moments are not the
+  // target's, so the view was taken for a hidden or bent one for the whole run, and the tilt fits held to explain
+  // 99 % of the outline: they explained 99.0-99.6 % on the way, then near the goal one fell short and the
+  // correction stopped with the camera 2.0 deg off. The outlines' homography explained the whole outline
+  // all along, and the regions compare alike again once the tilt is down to a few degrees: then 0.26 deg.
+  CHECK(benchRun("6dof", 8, "key", vpMorphSimRobot::FREE_CAMERA).success);
 }
 
 TEST_CASE("An occluded object's depth at the goal comes from its edge outline", "[bench][outline]")

@@ -374,6 +374,7 @@ void vpServoMorph::setRigidPath(RigidPath p)
 void vpServoMorph::start(const vpMorphContour &current)
 {
   m_regionsAlike = UNDECIDED;
+  m_regionsRejudged = false;
   if (m_nSub == 0) {
     m_subGoals = {m_target};
   } else {
@@ -892,6 +893,16 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
         return false;
     }
     m_tiltDeadZoneUsed = m_tiltDeadZone;
+    // A homography that explains the whole outline (a fit held to kNotAlikeMinInliers) shows a rigid, unhidden object
+    // seen in perspective: the regions were not alike because of the tilt. Once it is corrected enough for the
+    // measured regions to compare alike again, the verdicts made on the tilted view are withdrawn (once per sequence:
+    // no chatter): areas and centroids stand for the pose again, and the view is not taken for a bent one.
+    if (m_regionsAlike == NOT_ALIKE && !m_regionsRejudged && targetN.hasRegion() && currentN.hasRegion() &&
+        regionsAlike(targetN, currentN, 1.0, m_regionMismatch)) {
+      m_regionsRejudged = true;
+      m_regionsAlike = ALIKE;
+      forgetDeformation();
+    }
     if (dense) {
       m_tiltG = G;
       m_tiltWarm = true;
