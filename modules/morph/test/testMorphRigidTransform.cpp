@@ -634,3 +634,86 @@ TEST_CASE("vpMorphRigidTransform::fitRigidPart takes the part whose scale is bes
   CHECK_THROWS_AS(vpMorphRigidTransform::refineRigidPart(input, straight, near, -1.0), vpMorphException);
   CHECK_THROWS_AS(vpMorphRigidTransform::refineRigidPart(input, vpMorphContour(), near, 0.1), vpMorphException);
 }
+
+// vpMorphNearestEdge (internal to the module, behind every outline and overlap fit) against a plain scan of every
+// edge, which is what its grid must reproduce: query points on, near and far from a dense outline, inside and outside
+// the grid's box (a bent limb mapped beyond the template's box; the grid used to fall back on the scan there).
+#include "../src/vpMorphNearestEdge.h"
+
+TEST_CASE("vpMorphNearestEdge finds the scan's nearest point, inside and outside its grid", "[rigid][nearest]")
+{
+  auto scan = [](const vpMorphContour &c, double px, double py, double &mx, double &my) {
+    const std::size_t n = c.size();
+    double best = std::numeric_limits<double>::max(), fx = 0, fy = 0;
+    bool interior = true;
+    std::size_t kb = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double ax = c.x(k), ay = c.y(k), dx = c.x((k + 1) % n) - ax, dy = c.y((k + 1) % n) - ay;
+      const double l2 = dx * dx + dy * dy;
+      const double t = l2 > 0 ? std::min(1.0, std::max(0.0, ((px - ax) * dx + (py - ay) * dy) / l2)) : 0.0;
+      const double qx = ax + t * dx, qy = ay + t * dy, d2 = (px - qx) * (px - qx) + (py - qy) * (py - qy);
+      if (d2 < best) {
+        best = d2;
+        fx = qx;
+        fy = qy;
+        kb = k;
+        interior = t > 0.0 && t < 1.0;
+      }
+    }
+    const double dx = c.x((kb + 1) % n) - c.x(kb), dy = c.y((kb + 1) % n) - c.y(kb), len = std::hypot(dx, dy);
+    const double nx = len > 0 ? -dy / len : 0.0, ny = len > 0 ? dx / len : 1.0;
+    const double ex = px - fx, ey = py - fy, e = std::hypot(ex, ey);
+    if (interior || e <= 0.0) {
+      mx = nx;
+      my = ny;
+      return nx * ex + ny * ey;
+    }
+    mx = ex / e;
+    my = ey / e;
+    return e;
+  };
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 6; ++trial) {
+    // A dense outline (a point per pixel or so), thin or round: a grid of many cells.
+    const vpMorphContour c = starPolygon(rng, 24, trial % 2 ? 4.0 : 1.2).resampled(600);
+    const vpMorphNearestEdge nearest(c);
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      x0 = std::min(x0, c.x(k));
+      x1 = std::max(x1, c.x(k));
+      y0 = std::min(y0, c.y(k));
+      y1 = std::max(y1, c.y(k));
+    }
+    const double w = x1 - x0, h = y1 - y0;
+    std::uniform_real_distribution<double> ux(x0 - 1.5 * w, x1 + 1.5 * w), uy(y0 - 1.5 * h, y1 + 1.5 * h);
+    std::normal_distribution<double> off(0.0, 2.0);
+    std::uniform_int_distribution<std::size_t> vertex(0, c.size() - 1);
+    int outside = 0;
+    for (int q = 0; q < 4000; ++q) {
+      double px, py;
+      if (q % 2) { // near the outline (where the fits query), some of it beyond the box
+        const std::size_t k = vertex(rng);
+        px = c.x(k) + off(rng);
+        py = c.y(k) + off(rng);
+      } else {
+        px = ux(rng);
+        py = uy(rng);
+      }
+      outside += px < x0 || px > x1 || py < y0 || py > y1;
+      double mx, my, sx, sy;
+      const double d = nearest(px, py, mx, my), s = scan(c, px, py, sx, sy);
+      INFO("query (" << px << ", " << py << ")");
+      REQUIRE(d == Approx(s).margin(1e-9));
+      CHECK(mx == Approx(sx).margin(1e-9));
+      CHECK(my == Approx(sy).margin(1e-9));
+    }
+    CHECK(outside > 1000);
+    // Far away and non-finite: a distance, then NaN.
+    double mx, my, sx, sy;
+    CHECK(nearest(1e12, -3e11, mx, my) == Approx(scan(c, 1e12, -3e11, sx, sy)).epsilon(1e-12));
+    CHECK(std::isnan(nearest(std::numeric_limits<double>::quiet_NaN(), 0.0, mx, my)));
+    CHECK(std::isnan(nearest(0.0, std::numeric_limits<double>::infinity(), mx, my)));
+    CHECK(mx == 0.0);
+    CHECK(my == 0.0);
+  }
+}
