@@ -1,6 +1,7 @@
 // Tests of vpMorphRigidTransform: the similarity itself, and the elongation vs least-squares estimators.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -642,11 +643,17 @@ TEST_CASE("vpMorphRigidTransform::fitRigidPart takes the part whose scale is bes
 
 TEST_CASE("vpMorphNearestEdge finds the scan's nearest point, inside and outside its grid", "[rigid][nearest]")
 {
-  auto scan = [](const vpMorphContour &c, double px, double py, double &mx, double &my) {
-    const std::size_t n = c.size();
-    double best = std::numeric_limits<double>::max(), fx = 0, fy = 0;
+  // The plain scan: the nearest point of every edge, the first of equal distances.
+  struct Nearest
+  {
+    double fx = 0, fy = 0;
+    std::size_t edge = 0;
     bool interior = true;
-    std::size_t kb = 0;
+  };
+  auto scan = [](const vpMorphContour &c, double px, double py) {
+    const std::size_t n = c.size();
+    double best = std::numeric_limits<double>::max();
+    Nearest r;
     for (std::size_t k = 0; k < n; ++k) {
       const double ax = c.x(k), ay = c.y(k), dx = c.x((k + 1) % n) - ax, dy = c.y((k + 1) % n) - ay;
       const double l2 = dx * dx + dy * dy;
@@ -654,36 +661,37 @@ TEST_CASE("vpMorphNearestEdge finds the scan's nearest point, inside and outside
       const double qx = ax + t * dx, qy = ay + t * dy, d2 = (px - qx) * (px - qx) + (py - qy) * (py - qy);
       if (d2 < best) {
         best = d2;
-        fx = qx;
-        fy = qy;
-        kb = k;
-        interior = t > 0.0 && t < 1.0;
+        r = {qx, qy, k, t > 0.0 && t < 1.0};
       }
     }
-    const double dx = c.x((kb + 1) % n) - c.x(kb), dy = c.y((kb + 1) % n) - c.y(kb), len = std::hypot(dx, dy);
-    const double nx = len > 0 ? -dy / len : 0.0, ny = len > 0 ? dx / len : 1.0;
-    const double ex = px - fx, ey = py - fy, e = std::hypot(ex, ey);
-    if (interior || e <= 0.0) {
-      mx = nx;
-      my = ny;
-      return nx * ex + ny * ey;
+    return r;
+  };
+  // The answer expected from the nearest point: inside an edge, the distance signed along the edge's left normal;
+  // at a vertex, the distance itself, along the direction from the vertex to p.
+  auto check = [](const vpMorphContour &c, const Nearest &o, double px, double py, double d, double mx, double my) {
+    const std::size_t j = (o.edge + 1) % c.size();
+    const double len = std::hypot(c.x(j) - c.x(o.edge), c.y(j) - c.y(o.edge));
+    const double off = std::hypot(px - o.fx, py - o.fy);
+    INFO("query (" << px << ", " << py << "), edge " << o.edge << (o.interior ? " (inside)" : " (at a vertex)"));
+    REQUIRE(std::fabs(d) == Approx(off).margin(1e-9));
+    if (o.interior || off == 0.0) {
+      CHECK(mx == Approx((c.y(o.edge) - c.y(j)) / len).margin(1e-9));
+      CHECK(my == Approx((c.x(j) - c.x(o.edge)) / len).margin(1e-9));
+      CHECK(d == Approx(mx * (px - o.fx) + my * (py - o.fy)).margin(1e-9));
+    } else {
+      CHECK(d == Approx(off).margin(1e-9));
+      CHECK(mx * off == Approx(px - o.fx).margin(1e-9));
+      CHECK(my * off == Approx(py - o.fy).margin(1e-9));
     }
-    mx = ex / e;
-    my = ey / e;
-    return e;
   };
   std::mt19937 rng(5);
   for (int trial = 0; trial < 6; ++trial) {
     // A dense outline (a point per pixel or so), thin or round: a grid of many cells.
     const vpMorphContour c = starPolygon(rng, 24, trial % 2 ? 4.0 : 1.2).resampled(600);
     const vpMorphNearestEdge nearest(c);
-    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-    for (std::size_t k = 0; k < c.size(); ++k) {
-      x0 = std::min(x0, c.x(k));
-      x1 = std::max(x1, c.x(k));
-      y0 = std::min(y0, c.y(k));
-      y1 = std::max(y1, c.y(k));
-    }
+    const auto bx = std::minmax_element(c.xs().begin(), c.xs().end());
+    const auto by = std::minmax_element(c.ys().begin(), c.ys().end());
+    const double x0 = *bx.first, x1 = *bx.second, y0 = *by.first, y1 = *by.second;
     const double w = x1 - x0, h = y1 - y0;
     std::uniform_real_distribution<double> ux(x0 - 1.5 * w, x1 + 1.5 * w), uy(y0 - 1.5 * h, y1 + 1.5 * h);
     std::normal_distribution<double> off(0.0, 2.0);
@@ -700,17 +708,15 @@ TEST_CASE("vpMorphNearestEdge finds the scan's nearest point, inside and outside
         py = uy(rng);
       }
       outside += px < x0 || px > x1 || py < y0 || py > y1;
-      double mx, my, sx, sy;
-      const double d = nearest(px, py, mx, my), s = scan(c, px, py, sx, sy);
-      INFO("query (" << px << ", " << py << ")");
-      REQUIRE(d == Approx(s).margin(1e-9));
-      CHECK(mx == Approx(sx).margin(1e-9));
-      CHECK(my == Approx(sy).margin(1e-9));
+      double mx, my;
+      const double d = nearest(px, py, mx, my);
+      check(c, scan(c, px, py), px, py, d, mx, my);
     }
     CHECK(outside > 1000);
     // Far away and non-finite: a distance, then NaN.
-    double mx, my, sx, sy;
-    CHECK(nearest(1e12, -3e11, mx, my) == Approx(scan(c, 1e12, -3e11, sx, sy)).epsilon(1e-12));
+    double mx, my;
+    const Nearest far = scan(c, 1e12, -3e11);
+    CHECK(nearest(1e12, -3e11, mx, my) == Approx(std::hypot(1e12 - far.fx, -3e11 - far.fy)).epsilon(1e-12));
     CHECK(std::isnan(nearest(std::numeric_limits<double>::quiet_NaN(), 0.0, mx, my)));
     CHECK(std::isnan(nearest(0.0, std::numeric_limits<double>::infinity(), mx, my)));
     CHECK(mx == 0.0);
