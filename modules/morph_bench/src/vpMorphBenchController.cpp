@@ -1,7 +1,6 @@
 #include <visp3/morph_bench/vpMorphBenchController.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include <visp3/core/vpMomentCommon.h>
@@ -10,6 +9,7 @@
 #include <visp3/core/vpVelocityTwistMatrix.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
+#include <visp3/morph_sim/vpMorphThreadCpuClock.h>
 #include <visp3/morph_vs/vpFeatureMorph.h>
 #include <visp3/morph_vs/vpServoMorph.h>
 #include <visp3/visual_features/vpFeatureBuilder.h>
@@ -21,8 +21,9 @@
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+// Compute times are the CPU time of the run's thread: starts run on every core (see vpMorphThreadCpuClock).
+using Clock = vpMorphThreadCpuClock;
+double msSince(Clock::time_point t0) { return Clock::millisecondsSince(t0); }
 
 //! The tag seen in an image: its pose (from the estimated intrinsics) and its corners.
 struct TagView

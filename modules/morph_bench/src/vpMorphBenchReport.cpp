@@ -84,16 +84,22 @@ std::vector<vpMorphBenchReport::Summary> vpMorphBenchReport::summarize() const
     s.controller = first.controller;
     std::vector<double> its, path, ratio, ft, fr, tt, tr;
     double sumM = 0, sumC = 0;
+    unsigned int started = 0;
     for (const vpMorphBenchResult *r : g.second) {
       ++s.runs;
-      ft.push_back(r->finalTranslation);
-      fr.push_back(r->finalRotation);
-      if (r->tagMeasured) {
-        tt.push_back(r->finalTagTranslation);
-        tr.push_back(r->finalTagRotation);
+      // A start the robot could not reach ran no iteration: it has no final pose of its own and no compute time,
+      // and its zeros would pull the medians and means down (the Afma6 reaches fewer than half of the starts).
+      if (r->iterations > 0) {
+        ++started;
+        ft.push_back(r->finalTranslation);
+        fr.push_back(r->finalRotation);
+        if (r->tagMeasured) {
+          tt.push_back(r->finalTagTranslation);
+          tr.push_back(r->finalTagRotation);
+        }
+        sumM += r->measureMs;
+        sumC += r->controlMs;
       }
-      sumM += r->measureMs;
-      sumC += r->controlMs;
       s.holds += r->holds;
       s.replans += r->replans;
       s.rerecognitions += r->rerecognitions;
@@ -114,8 +120,8 @@ std::vector<vpMorphBenchReport::Summary> vpMorphBenchReport::summarize() const
     s.medianFinalRotation = median(fr);
     s.medianFinalTagTranslation = median(tt);
     s.medianFinalTagRotation = median(tr);
-    s.meanMeasureMs = sumM / s.runs;
-    s.meanControlMs = sumC / s.runs;
+    s.meanMeasureMs = started ? sumM / started : kNaN; // none started: no time, as no median
+    s.meanControlMs = started ? sumC / started : kNaN;
     out.push_back(s);
   }
   return out;
@@ -180,8 +186,8 @@ std::string vpMorphBenchReport::summaryJson(const std::map<std::string, std::str
     e["median_final_r_deg"] = jnum(vpMath::deg(s.medianFinalRotation));
     e["median_final_tag_t_mm"] = jnum(1000 * s.medianFinalTagTranslation);
     e["median_final_tag_r_deg"] = jnum(vpMath::deg(s.medianFinalTagRotation));
-    e["mean_measure_ms"] = s.meanMeasureMs;
-    e["mean_control_ms"] = s.meanControlMs;
+    e["mean_measure_ms"] = jnum(s.meanMeasureMs);
+    e["mean_control_ms"] = jnum(s.meanControlMs);
     e["max_control_ms"] = s.maxControlMs;
     e["failures"] = s.failures;
     e["holds"] = s.holds;
@@ -209,8 +215,8 @@ std::string vpMorphBenchReport::summaryMarkdown() const
        << dash(num(1000 * s.medianPathLength, 4)) << " | " << dash(num(s.medianPathRatio, 3)) << " | "
        << dash(num(1000 * s.medianFinalTranslation, 3)) << " / " << dash(num(vpMath::deg(s.medianFinalRotation), 3))
        << " | " << dash(num(1000 * s.medianFinalTagTranslation, 3)) << " / "
-       << dash(num(vpMath::deg(s.medianFinalTagRotation), 3)) << " | " << num(s.meanMeasureMs, 3) << " / "
-       << num(s.meanControlMs, 3) << " | " << dash(fails.str()) << " | " << s.holds << " / " << s.replans << " / "
+       << dash(num(vpMath::deg(s.medianFinalTagRotation), 3)) << " | " << dash(num(s.meanMeasureMs, 3)) << " / "
+       << dash(num(s.meanControlMs, 3)) << " | " << dash(fails.str()) << " | " << s.holds << " / " << s.replans << " / "
        << s.rerecognitions << " |\n";
   }
   return os.str();

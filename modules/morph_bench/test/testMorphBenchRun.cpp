@@ -192,9 +192,20 @@ TEST_CASE("bench report: CSV rows match the header, summaries count and aggregat
   b.straightLine = 0; // pure rotation: no ratio
   vpMorphBenchResult c = a;
   c.controller = "pbvs";
+  a.iterations = b.iterations = c.iterations = 60;
+  a.measureMs = 1.0;
+  b.measureMs = 3.0;
+  b.finalTranslation = 0.0004;
+  // A start the robot cannot reach: no iteration, zeros everywhere, counted as a failure only.
+  vpMorphBenchResult u;
+  u.scenario = a.scenario;
+  u.robot = "camera";
+  u.controller = "morph";
+  u.failure = "unreachable";
   rep.add(a);
   rep.add(b);
   rep.add(c);
+  rep.add(u);
 
   const std::size_t n = fields(vpMorphBenchReport::runsHeader());
   CHECK(n == 31);
@@ -212,21 +223,34 @@ TEST_CASE("bench report: CSV rows match the header, summaries count and aggregat
   const auto sums = rep.summarize();
   REQUIRE(sums.size() == 2);
   CHECK(sums[0].controller == "morph"); // names() order: morph before pbvs
-  CHECK(sums[0].runs == 2);
+  CHECK(sums[0].runs == 3);
   CHECK(sums[0].successes == 1);
-  CHECK(sums[0].successRate() == Approx(0.5));
+  CHECK(sums[0].successRate() == Approx(1.0 / 3.0));
   CHECK(sums[0].failures.at("out-of-view") == 1);
+  CHECK(sums[0].failures.at("unreachable") == 1);
   CHECK(sums[0].medianPathRatio == Approx(2.0));
+  // Medians and means over the two runs that started, not pulled to 0 by the unreachable one.
+  CHECK(sums[0].medianFinalTranslation == Approx(0.0003));
+  CHECK(sums[0].meanMeasureMs == Approx(2.0));
   CHECK(sums[1].controller == "pbvs");
 
   const nlohmann::json j = nlohmann::json::parse(rep.summaryJson({{"seed", "1"}}));
   CHECK(j["version"] == 1);
   CHECK(j["meta"]["seed"] == "1");
   CHECK(j["summaries"].size() == 2);
-  CHECK(j["summaries"][0]["success_rate"] == Approx(0.5));
+  CHECK(j["summaries"][0]["success_rate"] == Approx(1.0 / 3.0));
   const std::string md = rep.summaryMarkdown();
-  CHECK(md.find("| planar | camera | morph | 1/2 (50 %)") != std::string::npos);
+  CHECK(md.find("| planar | camera | morph | 1/3 (33.3 %)") != std::string::npos);
   CHECK(md.find("out-of-view 1") != std::string::npos);
+
+  // A group where no start was reachable: no final error, no time (not 0 ms).
+  vpMorphBenchReport none;
+  none.add(u);
+  const auto only = none.summarize();
+  REQUIRE(only.size() == 1);
+  CHECK(std::isnan(only[0].meanMeasureMs));
+  CHECK(none.summaryMarkdown().find("| - / - | - / - | - / - | unreachable 1 |") != std::string::npos);
+  CHECK(nlohmann::json::parse(none.summaryJson({}))["summaries"][0]["mean_measure_ms"].is_null());
 }
 
 TEST_CASE("bench: the settling iteration does not depend on recording the curves", "[bench]")

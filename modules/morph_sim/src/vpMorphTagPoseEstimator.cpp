@@ -1,7 +1,7 @@
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
+#include <visp3/morph_sim/vpMorphThreadCpuClock.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <mutex>
 #include <sstream>
@@ -103,7 +103,7 @@ vpMorphContour vpMorphTagPoseEstimator::silhouette(const vpImage<unsigned char> 
   vpImage<unsigned char> J = I;
   if (corners.size() == 4)
     maskTag(J, corners);
-  const auto t0 = std::chrono::steady_clock::now();
+  const vpMorphThreadCpuClock::time_point t0 = vpMorphThreadCpuClock::now();
   vpMorphContour c;
   try {
     c = vpMorphContourExtractor().extractJoined(J);
@@ -113,7 +113,7 @@ vpMorphContour vpMorphTagPoseEstimator::silhouette(const vpImage<unsigned char> 
     c = vpMorphContour(); // no object in the image
   }
   if (extractionMs)
-    *extractionMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    *extractionMs = vpMorphThreadCpuClock::millisecondsSince(t0);
   return c;
 }
 

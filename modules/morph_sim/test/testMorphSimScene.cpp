@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -14,6 +15,7 @@
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 #include <visp3/morph_sim/vpMorphTagTexture.h>
+#include <visp3/morph_sim/vpMorphThreadCpuClock.h>
 
 namespace
 {
@@ -522,4 +524,22 @@ TEST_CASE("the silhouette joins the pieces an occluder cut from the object", "[m
     }
   }
   CHECK(severed > 0); // the card did cut the tool somewhere
+}
+
+TEST_CASE("the benchmark's clock counts the thread's CPU time, not the time it waits", "[morph_sim][clock]")
+{
+  // What the bench's compute columns rely on: a thread that sleeps uses (almost) no CPU, one that computes does.
+  const vpMorphThreadCpuClock::time_point t0 = vpMorphThreadCpuClock::now();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  const double asleep = vpMorphThreadCpuClock::millisecondsSince(t0);
+  CHECK(asleep >= 0.0);
+  CHECK(asleep < 100.0);
+  const auto w0 = std::chrono::steady_clock::now();
+  const vpMorphThreadCpuClock::time_point t1 = vpMorphThreadCpuClock::now();
+  volatile double sink = 0.0;
+  while (std::chrono::steady_clock::now() - w0 < std::chrono::milliseconds(50))
+    for (int k = 0; k < 1000; ++k)
+      sink = sink + std::sqrt(double(k));
+  CHECK(vpMorphThreadCpuClock::millisecondsSince(t1) > 0.0);
+  CHECK(vpMorphThreadCpuClock::now() >= t1);
 }

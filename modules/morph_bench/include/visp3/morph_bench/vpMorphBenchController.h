@@ -91,8 +91,8 @@ public:
     std::string reason;     //!< short word when stop (e.g. "recognition", "unreliable-correspondence")
     bool replanned = false;    //!< the view jumped and the controller re-planned from it (zero velocity)
     bool rerecognized = false; //!< the target was found wrong and the object recognised anew
-    double measureMs = 0;   //!< time to measure the features (tag masking for silhouettes excluded)
-    double controlMs = 0;   //!< time of the control law
+    double measureMs = 0;      //!< CPU time to measure the features (tag masking for silhouettes excluded)
+    double controlMs = 0;      //!< CPU time of the control law (vpMorphThreadCpuClock)
   };
 
   virtual ~vpMorphBenchController() = default;

@@ -32,8 +32,9 @@ public:
     double medianIterations = 0; //!< settling iteration of the successful runs (NaN if none)
     double medianPathLength = 0; //!< m, successful runs
     double medianPathRatio = 0;  //!< successful runs with a defined ratio (NaN if none)
-    double medianFinalTranslation = 0, medianFinalRotation = 0;       //!< truth, all runs (m, rad)
-    double medianFinalTagTranslation = 0, medianFinalTagRotation = 0; //!< tag, runs where it was seen
+    double medianFinalTranslation = 0, medianFinalRotation = 0;       //!< truth, runs that started (m, rad)
+    double medianFinalTagTranslation = 0, medianFinalTagRotation = 0; //!< tag, runs that started where it was seen
+    //! Means over the runs that started (an unreachable start runs no iteration; NaN when none did), and the worst.
     double meanMeasureMs = 0, meanControlMs = 0, maxControlMs = 0;
     std::map<std::string, unsigned int> failures; //!< reason -> count (without "none")
     unsigned int holds = 0, replans = 0, rerecognitions = 0; //!< sums over the runs (timed faults)

@@ -42,8 +42,8 @@ public:
   double finalTagTranslation = 0; //!< final error measured through the AprilTag (true intrinsics), m
   double finalTagRotation = 0;    //!< rad
   std::string recognized;         //!< template chosen by recognition (VISPMorph controllers), else empty
-  double measureMs = 0;           //!< mean feature measurement time per iteration
-  double controlMs = 0;           //!< mean control-law time per iteration
+  double measureMs = 0;           //!< mean feature measurement time per iteration (CPU time of the run's thread)
+  double controlMs = 0;           //!< mean control-law time per iteration (CPU time of the run's thread)
   double maxControlMs = 0;        //!< worst control-law time
   unsigned int jointLimitHits = 0;
   double maxSpeed = 0;             //!< largest commanded translation speed (end-effector twist), m/s

@@ -62,7 +62,8 @@ public:
     occlusion starts (a cut-off pliers head looks like a wedge); joined, the servo aligns the joined outline by
     vpServoMorph's trimmed outline fit. Empty when the image shows no object (the
     extractor's bad-image errors), so that a control loop can hold or stop instead of unwinding. \e extractionMs,
-    when given, receives the time of the extraction alone: masking the tag is an artefact of the scene.
+    when given, receives the CPU time of the extraction alone (vpMorphThreadCpuClock): masking the tag is an artefact
+    of the scene.
   */
   static vpMorphContour silhouette(const vpImage<unsigned char> &I, const std::vector<vpImagePoint> &corners,
                                    double *extractionMs = nullptr);
