@@ -17,10 +17,10 @@
   measured (the edge normal when the nearest point is inside an edge, towards p when it is a vertex). The edges are
   bucketed in a uniform grid of cells about four mean edges wide, searched in rings around p's cell (the nearest cell
   when p is outside the grid): a dense outline (a point per boundary pixel) is queried in constant time instead of
-  scanning its hundreds of edges. The cell size
-  only sets the cost, not the result: four edges were 7 % faster than two on the outline fits (their query points
-  lie up to pixels off the outline, where small cells need more rings). The result is the exhaustive scan's (equal
-  distances: the lowest edge index). A non-finite query point gives NaN (and m = 0).
+  scanning its hundreds of edges. The cell size only sets the cost, not the result: four edges were 7 % faster than
+  two on the outline fits (their query points lie up to pixels off the outline, where small cells need more rings).
+  The result is the exhaustive scan's (equal distances: the lowest edge index). A non-finite query point gives NaN
+  (and m = 0).
 */
 class vpMorphNearestEdge
 {
@@ -119,7 +119,7 @@ private:
   // Clamped before the conversion: a point far outside would overflow int.
   int cellX(double x) const { return clampCell((x - m_x0) / m_h, m_nx); }
   int cellY(double y) const { return clampCell((y - m_y0) / m_h, m_ny); }
-  static int clampCell(double f, int n) { return f <= 0.0 ? 0 : (f >= double(n - 1) ? n - 1 : int(f)); }
+  static int clampCell(double f, int n) { return !(f > 0.0) ? 0 : (f >= double(n - 1) ? n - 1 : int(f)); }
   void visit(std::size_t k, double px, double py, Best &b) const
   {
     const Edge &e = m_edges[k];
