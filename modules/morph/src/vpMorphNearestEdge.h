@@ -12,6 +12,8 @@
 
 #include <visp3/morph/vpMorphContour.h>
 
+#include "vpMorphGridCell.h"
+
 /*
   Signed distance from p to the nearest point of the closed polygon c, and the unit direction m along which it is
   measured (the edge normal when the nearest point is inside an edge, towards p when it is a vertex). The edges are
@@ -116,10 +118,8 @@ private:
     bool interior = true;
     std::size_t k = std::numeric_limits<std::size_t>::max();
   };
-  // Clamped before the conversion: a point far outside would overflow int.
-  int cellX(double x) const { return clampCell((x - m_x0) / m_h, m_nx); }
-  int cellY(double y) const { return clampCell((y - m_y0) / m_h, m_ny); }
-  static int clampCell(double f, int n) { return !(f > 0.0) ? 0 : (f >= double(n - 1) ? n - 1 : int(f)); }
+  int cellX(double x) const { return vpMorphGridCell((x - m_x0) / m_h, m_nx); }
+  int cellY(double y) const { return vpMorphGridCell((y - m_y0) / m_h, m_ny); }
   void visit(std::size_t k, double px, double py, Best &b) const
   {
     const Edge &e = m_edges[k];

@@ -15,6 +15,8 @@
 
 #include <visp3/morph/vpMorphContour.h>
 
+#include "vpMorphGridCell.h"
+
 //! A contour's vertices as points.
 inline std::vector<Eigen::Vector2d> vpMorphPoints(const vpMorphContour &c)
 {
@@ -130,14 +132,8 @@ public:
   static double cross(const Eigen::Vector2d &a, const Eigen::Vector2d &b) { return a.x() * b.y() - a.y() * b.x(); }
 
 private:
-  // Clamped in floating point first: a query point may lie arbitrarily far from the grid (or be NaN).
-  static int clampCell(double v, int n)
-  {
-    v = std::floor(v);
-    return !(v >= 0.0) ? 0 : v >= double(n - 1) ? n - 1 : int(v);
-  }
-  int cellX(double x) const { return clampCell((x - m_lo.x()) / m_h, m_nx); }
-  int cellY(double y) const { return clampCell((y - m_lo.y()) / m_h, m_ny); }
+  int cellX(double x) const { return vpMorphGridCell((x - m_lo.x()) / m_h, m_nx); }
+  int cellY(double y) const { return vpMorphGridCell((y - m_lo.y()) / m_h, m_ny); }
   std::size_t index(int i, int j) const { return std::size_t(j) * std::size_t(m_nx) + std::size_t(i); }
   // f(cell, edge) for every cell of every edge's bounding box.
   template <class F> void forEachCell(F f) const
