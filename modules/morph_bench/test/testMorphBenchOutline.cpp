@@ -34,8 +34,8 @@ vpMorphBenchResult benchRun(const std::string &set, std::size_t index, const std
   st.robot = robot;
   const vpMorphBenchResult r = vpMorphBench(data, st).run(sc, "morph");
   std::printf("[%s] %s, start %zu on the %s: %s, final error %.3f mm %.3f deg\n", set.c_str(), object.c_str(), index,
-              robot == vpMorphSimRobot::VIPER850 ? "Viper850" : "free camera",
-              r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation, r.finalRotation * 180 / M_PI);
+              vpMorphSimRobot::kindName(robot).c_str(), r.success ? "success" : r.failure.c_str(),
+              1000 * r.finalTranslation, r.finalRotation * 180 / M_PI);
   return r;
 }
 vpMorphBenchResult viperRun(const std::string &set, std::size_t index, const std::string &object)
