@@ -107,7 +107,13 @@
   of a pixel), which see the tilt of a compact object to about a tenth of a degree; the dead zone is then
   outlineTiltDeadZone() (0.15 deg), widened to twice the tilt's standard deviation from the fit's covariance
   (vpMorphHomography::covariance(): noise, blur, or a thin object whose tilt about its long axis barely changes its
-  outline). The planar law runs alone for an iteration when the homography is not trusted: a triangle, a poor
+  outline). On the final approach the outlines' estimates of the last periods (up to 16, each with the tilt commands
+  executed since taken off, while those stay within its dead zone) are also averaged, weighted by their covariances
+  scaled by the reduced chi-square of their scatter (a thin object's estimate jumps by twice its reported deviation
+  from one view to the next). Only what both this period's estimate and the average show beyond their dead zones is
+  commanded: averaging removes noise but not a bias (blur moves a thin object's edges the same way in every view), so
+  it only ever withholds commands (measured: planar pliers starts 0.3-0.46 deg -> 0.18-0.30 deg off). The planar law
+  runs alone for an iteration when the homography is not trusted: a triangle, a poor
   polygon fit (under 60 % inliers or 2 px RMS), a poor outline fit (under 90 % inliers or 0.5 px RMS), regions that
   are not alike (see above: a tilted view, or a part hidden or bent) unless the homography explains the whole
   outline (99 % inliers: an occluder's edge fitted away by the robust weights still pulls the perspective part), or
@@ -396,6 +402,7 @@ private:
   void forgetDeformation();
   bool tiltActive() const;
   bool estimateTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &cMct, double &Zp);
+  void fuseTilt(const vpMatrix &C, double &angle, double &ax, double &ay, double &sa);
   void record();
   bool targetMismatch(const vpMorphContour &current);
 
@@ -457,6 +464,16 @@ private:
   // command, and the periods in a row the estimate has not come down along it (see estimateTilt()).
   double m_tiltSumX = 0.0, m_tiltSumY = 0.0, m_tiltRefX = 0.0, m_tiltRefY = 0.0;
   unsigned int m_tiltNoProgress = 0;
+  // The outlines' tilt estimates of the final approach, fused by fuseTilt().
+  struct TiltSample
+  {
+    double ex = 0, ey = 0;            // rotation vector that levels the camera (rad)
+    double c00 = 0, c01 = 0, c11 = 0; // its covariance, from the homography's
+    double sx = 0, sy = 0;            // m_tiltSumX, m_tiltSumY then
+    double deadZone = 0;              // this period's own dead zone
+  };
+  std::vector<TiltSample> m_tiltWindow;
+  double m_tiltKappa = 1.0; // reduced chi-square of the last window of three or more
   vpHomogeneousMatrix m_cMcdH;
   // For the distance-jump test and the calibration: the previous iteration to the same sub-goal.
   bool m_haveWork = false, m_haveMove = false;
