@@ -80,8 +80,9 @@ public:
 
   /*! Distances of the chain pixels from index \e w on (up to kBlock of them, contiguous: not past the chain's end, nor
     past unwrapped index \e b) to the segment [pa, pb], into \e d; returns how many. Two at a time where SSE2 is
-    there: its square roots and divisions round as the scalar ones do, and no operation is fused, so each distance is
-    segDist()'s to the bit, whichever path computes it. */
+    there: its square roots and divisions round as the scalar ones do, so each distance is segDist()'s to the bit,
+    whichever path computes it (as long as the compiler fuses no multiply-add: x86-64 without -mfma, this project's
+    flags). */
   static constexpr std::ptrdiff_t kBlock = 16;
   std::ptrdiff_t blockDistances(const Pt &pa, const Pt &pb, std::ptrdiff_t i, std::ptrdiff_t w, std::ptrdiff_t b,
                                 double *d) const
