@@ -7,6 +7,8 @@
   tag masked, silhouette extracted, vpServoMorph), and the contours it extracted are recorded once. The benchmarks
   then replay them:
   - BM_extract: the silhouette extraction of one 640x480 image (vpMorphContourExtractor, tag masking excluded);
+  - BM_approximate: its polygonal approximation alone (vpMorphPolygonApproximation on that image's boundary chain),
+    the part of the extraction that grows with the boundary's length;
   - BM_morphIteration: vpServoMorph::computeControlLaw() over the recorded run (tracked correspondence, fit,
     calibration update, Eq. 11), restarted at the end of the run; the first call of each pass also builds the
     morph and its sub-goals, so the mean includes them once per run;
@@ -38,6 +40,7 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpVelocityTwistMatrix.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphPolygonApproximation.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 #include <visp3/morph_sim/vpMorphSimRobot.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
@@ -136,6 +139,17 @@ void BM_extract(benchmark::State &state)
   vpMorphContourExtractor extractor;
   for (auto _ : state)
     benchmark::DoNotOptimize(extractor.extract(masked).size());
+}
+
+void BM_approximate(benchmark::State &state)
+{
+  const Recording &r = recording();
+  vpImage<unsigned char> masked = r.firstImage;
+  vpMorphTagPoseEstimator::maskTag(masked, r.firstCorners);
+  const std::vector<vpImagePoint> chain = vpMorphContourExtractor().boundary(masked);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(vpMorphPolygonApproximation::vertexIndices(chain).size());
+  state.counters["pixels"] = double(chain.size());
 }
 
 void BM_morphIteration(benchmark::State &state)
@@ -260,6 +274,7 @@ public:
 } // namespace
 
 BENCHMARK(BM_extract)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_approximate)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIteration)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIterationTilt)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIterationDeformed)->Unit(benchmark::kMicrosecond);
