@@ -19,6 +19,11 @@ namespace
 const double kTiltSigmas = 2.0;
 // Periods of the final approach fused into one tilt estimate at most (see fuseTilt()).
 const std::size_t kTiltWindow = 16;
+// The largest standard deviation of a 2x2 covariance [c00 c01; c01 c11] (its largest eigenvalue's square root).
+double largestDeviation(double c00, double c01, double c11)
+{
+  return std::sqrt(std::max(0.0, 0.5 * (c00 + c11) + std::sqrt(0.25 * (c00 - c11) * (c00 - c11) + c01 * c01)));
+}
 // Acceptance of the homography refined on edge outlines: inlier share and RMS residual (pixels).
 const double kOutlineMinInliers = 0.9, kOutlineMaxResidualPx = 0.5;
 // Inlier share the homography needs when the regions are not alike (see estimateTilt()).
@@ -906,8 +911,7 @@ void vpServoMorph::fuseTilt(const vpMatrix &C, double &angle, double &ax, double
     m_tiltKappa = std::max(1.0, chi2 / (2.0 * double(info.size() - 1)));
   }
   const double c00 = m_tiltKappa * i11 / det, c01 = -m_tiltKappa * i01 / det, c11 = m_tiltKappa * i00 / det;
-  const double sd =
-      std::sqrt(std::max(0.0, 0.5 * (c00 + c11) + std::sqrt(0.25 * (c00 - c11) * (c00 - c11) + c01 * c01)));
+  const double sd = largestDeviation(c00, c01, c11);
   const double fused = std::hypot(mx, my), fusedDeadZone = std::max(m_outlineTiltDeadZone, kTiltSigmas * sd);
   // Averaging takes the noise off, not a bias (blur or an illumination change moves a thin object's edges in ways no
   // homography explains, the same in every view): only what both this period's estimate and the fused one show beyond
@@ -992,8 +996,7 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
       // radians of tilt near the goal). Noise, blur, or a thin object (whose tilt about its long axis barely
       // changes its outline) widen it; the estimate is not followed within kTiltSigmas of it.
       const vpMatrix &C = G.covariance();
-      const double a = C[6][6], b = C[6][7], d = C[7][7];
-      const double sd = std::sqrt(std::max(0.0, 0.5 * (a + d) + std::sqrt(0.25 * (a - d) * (a - d) + b * b)));
+      const double sd = largestDeviation(C[6][6], C[6][7], C[7][7]);
       m_tiltDeadZoneUsed = std::max(m_outlineTiltDeadZone, kTiltSigmas * sd);
     }
     const vpHomogeneousMatrix cMcd = G.inputMtarget(m_Zd);
