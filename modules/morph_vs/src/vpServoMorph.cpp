@@ -870,14 +870,13 @@ void vpServoMorph::fuseTilt(const vpMatrix &C, double &angle, double &ax, double
   cur.deadZone = m_tiltDeadZoneUsed;
   // An earlier period stands for the tilt now once the commands executed since are taken off, while they are smaller
   // than its dead zone (an execution off by a few percent then moves it by a few percent of its noise).
-  std::vector<TiltSample> kept;
-  for (const TiltSample &s : m_tiltWindow)
-    if (std::hypot(cur.sx - s.sx, cur.sy - s.sy) <= s.deadZone)
-      kept.push_back(s);
-  kept.push_back(cur);
-  if (kept.size() > kTiltWindow)
-    kept.erase(kept.begin(), kept.end() - static_cast<std::ptrdiff_t>(kTiltWindow));
-  m_tiltWindow = kept;
+  m_tiltWindow.erase(
+      std::remove_if(m_tiltWindow.begin(), m_tiltWindow.end(),
+                     [&](const TiltSample &s) { return !(std::hypot(cur.sx - s.sx, cur.sy - s.sy) <= s.deadZone); }),
+      m_tiltWindow.end());
+  m_tiltWindow.push_back(cur);
+  if (m_tiltWindow.size() > kTiltWindow)
+    m_tiltWindow.erase(m_tiltWindow.begin(), m_tiltWindow.end() - static_cast<std::ptrdiff_t>(kTiltWindow));
 
   // Information-weighted mean.
   double i00 = 0, i01 = 0, i11 = 0, b0 = 0, b1 = 0;
