@@ -34,7 +34,7 @@ vpMorphException ioError(const std::string &msg) { return vpMorphException(vpMor
 // rotation about its centroid; \e cut (if not empty) is a polygon painted back to background (an occluder).
 // Returns the largest object's polygon, re-extracted: what a camera would see of the same outline.
 vpMorphContour renderAndExtract(const vpMorphContour &c, double theta, double noiseSigma, unsigned int seed,
-                                const std::vector<cv::Point> &cut)
+                                const std::vector<cv::Point2d> &cut)
 {
   double cx, cy;
   c.centroid(cx, cy);
@@ -62,7 +62,7 @@ vpMorphContour renderAndExtract(const vpMorphContour &c, double theta, double no
   if (!cut.empty()) {
     // The cut is given in the unrotated contour's coordinates (theta is 0 for occlusions).
     std::vector<cv::Point> cp;
-    for (const cv::Point &p : cut)
+    for (const cv::Point2d &p : cut)
       cp.push_back(toPix(p.x, p.y));
     cv::fillPoly(img, std::vector<std::vector<cv::Point>>{cp}, cv::Scalar(0));
   }
@@ -82,15 +82,15 @@ vpMorphContour renderAndExtract(const vpMorphContour &c, double theta, double no
 
 // The piece of outline from arc length s0 to s0 + fraction of the perimeter, closed by its chord: painting it
 // with the background hides that part of the outline behind a straight edge.
-std::vector<cv::Point> chordCut(const vpMorphContour &c, double s0, double fraction)
+std::vector<cv::Point2d> chordCut(const vpMorphContour &c, double s0, double fraction)
 {
   const std::size_t n = 400;
   const vpMorphContour d = c.resampled(n);
-  std::vector<cv::Point> cut;
+  std::vector<cv::Point2d> cut;
   const std::size_t a = static_cast<std::size_t>(s0 * n) % n, len = static_cast<std::size_t>(fraction * n);
   for (std::size_t k = 0; k <= len; ++k) {
     const std::size_t i = (a + k) % n;
-    cut.emplace_back(static_cast<int>(std::lround(d.x(i))), static_cast<int>(std::lround(d.y(i))));
+    cut.emplace_back(d.x(i), d.y(i));
   }
   return cut;
 }

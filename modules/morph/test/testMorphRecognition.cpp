@@ -198,6 +198,38 @@ TEST_CASE("recognition: the calibration follows the documented rule", "[recognit
   CHECK_THROWS_AS(copy.threshold(99), vpMorphException);
 }
 
+TEST_CASE("recognition: the calibration occludes a template in normalised units as one in pixels", "[recognition]")
+{
+  // A template taught in the metric image plane (x = X/Z) is a few hundredths wide: its occluding edges must
+  // not be rounded to whole units, which would hide nothing and calibrate its threshold on whole outlines.
+  const vpMorphContour px = extract(readGray(objectPath("key")));
+  std::vector<double> x = px.xs(), y = px.ys();
+  for (std::size_t k = 0; k < x.size(); ++k)
+    x[k] = (x[k] - 320.0) / 800.0, y[k] = (y[k] - 240.0) / 800.0;
+  const vpMorphContour normalized(x, y, vpMorphContour::NORMALIZED);
+  const std::vector<vpMorphContour> p = vpMorphDatabase::perturbations(px),
+                                    q = vpMorphDatabase::perturbations(normalized);
+  REQUIRE(p.size() == q.size());
+  REQUIRE(p.size() > 16);
+  // The last sixteen copies are the occluded ones. Their renderings' scales differ between the units, so each
+  // copy's area is compared with the largest of them (the least hidden): the edges hide as much in both units.
+  auto shares = [](const std::vector<vpMorphContour> &v) {
+    std::vector<double> a;
+    for (std::size_t k = v.size() - 16; k < v.size(); ++k)
+      a.push_back(v[k].area());
+    const double most = *std::max_element(a.begin(), a.end());
+    for (double &x : a)
+      x = 1.0 - x / most;
+    return a;
+  };
+  const std::vector<double> a = shares(p), b = shares(q);
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    CAPTURE(k, a[k], b[k]);
+    CHECK(b[k] == Approx(a[k]).margin(0.03));
+  }
+  CHECK(*std::max_element(a.begin(), a.end()) > 0.2);
+}
+
 TEST_CASE("recognition: the pruned search equals the exhaustive search", "[recognition]")
 {
   // 24 templates and 40 queries: noisy, rotated, occluded views of the tools and of their deformed variants,
