@@ -18,6 +18,9 @@
 #include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
+
+#include "vpMorphNearestEdge.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -93,6 +96,29 @@ std::vector<cv::Point2d> chordCut(const vpMorphContour &c, double s0, double fra
     cut.emplace_back(d.x(i), d.y(i));
   }
   return cut;
+}
+
+// vpMorphDatabase::support() of view q on template t, from the correspondence q -> t.
+double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorphCorrespondence &correspondence)
+{
+  const std::size_t n = 512;
+  const double tol = t.perimeter() / 256.0;
+  try {
+    // The scale of the robust fits is floored at a quarter of the tolerance: the vertices of both polygons lie on
+    // the pixel grid, and a scale of zero would keep only those that coincide.
+    const vpMorphRigidTransform T0 = vpMorphRigidTransform::fitLeastSquares(
+        q, t, correspondence, true, vpMorphRigidTransform::TUKEY, 30, 0.25 * tol);
+    const vpMorphNearestEdge onView(vpMorphRigidTransform::refineOnOutline(q, t, T0, true, 0.25 * tol).apply(q));
+    const vpMorphContour s = t.resampled(n);
+    std::size_t on = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      double mx, my;
+      on += std::fabs(onView(s.x(i), s.y(i), mx, my)) <= tol ? 1 : 0; // NaN (an overflowed fit): not on it
+    }
+    return static_cast<double>(on) / static_cast<double>(n);
+  } catch (const vpException &) {
+    return 0.0; // no similarity aligns them (a degenerate fit): the view shows nothing of the template
+  }
 }
 
 json poseToJson(const vpHomogeneousMatrix &M)
@@ -239,6 +265,45 @@ void vpMorphDatabase::setThreshold(double t)
   m_manual = true;
 }
 
+void vpMorphDatabase::setMinimumSupport(double s)
+{
+  if (!(s > 0.0 && (s <= 1.0 || s == kInf)))
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphDatabase::setMinimumSupport: the support must be in (0, 1] or +inf");
+  m_minSupport = s;
+}
+
+double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mirrored) const
+{
+  const vpMorphContour &t = operator[](k).contour();
+  if (c.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::support: empty contour");
+  if (c.units() != t.units())
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphDatabase::support: the contour's units are not those of template '" +
+                               m_templates[k].name() + "'");
+  const vpMorphContour q = mirrored ? c.mirrored() : c;
+  return shownShare(q, t, m_distance.matcher().match(q, t));
+}
+
+bool vpMorphDatabase::accepts(const vpMorphContour &c, std::size_t k, double slack, double *distance) const
+{
+  if (!std::isfinite(slack) || slack < 1.0)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphDatabase::accepts: the slack must be finite and >= 1");
+  (void)operator[](k);
+  if (c.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::accepts: empty contour");
+  vpMorphMatcher matcher = m_distance.matcher();
+  bool mirrored = false;
+  const double d = m_distance.distance(m_distance.prepare(c), m_shapes[k], matcher, -1.0, &mirrored);
+  if (distance)
+    *distance = d;
+  if (d <= slack * threshold(k))
+    return true;
+  return std::isfinite(m_minSupport) && support(c, k, mirrored) >= m_minSupport;
+}
+
 std::vector<vpMorphContour> vpMorphDatabase::perturbations(const vpMorphContour &c)
 {
   std::vector<vpMorphContour> out;
@@ -335,6 +400,11 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   r.threshold = threshold(r.index);
   r.accepted = r.distance <= r.threshold;
   r.correspondence = matcher.match(c, m_templates[r.index].contour());
+  if (!r.accepted && std::isfinite(m_minSupport)) {
+    r.support =
+        r.mirrored ? support(c, r.index, true) : shownShare(c, m_templates[r.index].contour(), r.correspondence);
+    r.accepted = r.support >= m_minSupport;
+  }
   return r;
 }
 
@@ -431,6 +501,7 @@ std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
   cal["slack"] = calibrationSlack();
   cal["within"] = finiteOrNull(m_within);
   cal["between"] = finiteOrNull(m_between);
+  cal["support"] = std::isfinite(m_minSupport) ? json(m_minSupport) : json(nullptr);
   j["calibration"] = cal;
   json ts = json::array();
   for (const vpMorphTemplate &t : m_templates) {
@@ -633,6 +704,12 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
     db.m_calibrated = calibrated;
     db.m_manual = manual;
     db.m_threshold = manual ? th.get<double>() : kInf;
+    if (cal.contains("support")) { // absent from the files written before it existed: the default
+      const json &su = cal["support"];
+      if (!su.is_null() && !(su.is_number() && su.get<double>() > 0.0 && su.get<double>() <= 1.0))
+        throw ioError("vpMorphDatabase: \"calibration\": support must be a number in (0, 1] or null");
+      db.m_minSupport = su.is_null() ? kInf : su.get<double>();
+    }
   }
   return db;
 }

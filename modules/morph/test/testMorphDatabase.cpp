@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -91,6 +92,7 @@ TEST_CASE("database: JSON round trip keeps every field", "[database]")
   t.setMetadata("part", "A-12");
   db.add(t);
   db.calibrate();
+  db.setMinimumSupport(0.8);
   const fs::path dir = scratch("roundtrip");
   const fs::path file = dir / "db.json";
   db.save(file.string());
@@ -111,6 +113,7 @@ TEST_CASE("database: JSON round trip keeps every field", "[database]")
   CHECK(back.withinDistances() == db.withinDistances());
   CHECK(back.betweenDistances() == db.betweenDistances());
   CHECK(back.isCalibrated());
+  CHECK(back.minimumSupport() == 0.8);
   CHECK(back.distance().name() == db.distance().name());
   for (std::size_t k = 0; k < db.size(); ++k) {
     CHECK(back[k].name() == db[k].name());
@@ -157,8 +160,11 @@ TEST_CASE("database: JSON round trip keeps every field", "[database]")
   CHECK(vpMorphDatabase::load(file.string()).size() == 12);
   // A resampling model is saved with its settings.
   db.setDistance(vpMorphShapeDistance(vpMorphShapeDistance::MULTISCALE));
+  db.setMinimumSupport(std::numeric_limits<double>::infinity()); // the distance alone: written as null
   db.save(file.string());
+  CHECK(readText(file).find("\"support\": null") != std::string::npos);
   const vpMorphDatabase m = vpMorphDatabase::load(file.string());
+  CHECK(std::isinf(m.minimumSupport()));
   CHECK(m.distance().name() == "multiscale");
   CHECK(m.distance().scales() == db.distance().scales());
   CHECK(m.distance().points() == db.distance().points());
@@ -209,6 +215,20 @@ TEST_CASE("database: bad files give clear errors", "[database]")
   std::string negArea = text;
   negArea.replace(negArea.find("\"area\": "), 8, "\"area\": -");
   expectIo(loadText(negArea), "finite positive area");
+  REQUIRE(text.find("\"support\": 0.75") != std::string::npos);
+  for (const char *bad : {"1.5", "0", "\"high\""}) {
+    std::string badSupport = text;
+    badSupport.replace(badSupport.find("\"support\": 0.75"), 15, std::string("\"support\": ") + bad);
+    expectIo(loadText(badSupport), "support must be a number in (0, 1] or null");
+  }
+  // Files written before the support existed have the default.
+  std::string noSupport = text;
+  noSupport.replace(noSupport.find("\"support\": 0.75"), 15, "\"supporx\": 0.75");
+  {
+    const fs::path p = dir / "old.json";
+    writeText(p, noSupport);
+    CHECK(vpMorphDatabase::load(p.string()).minimumSupport() == 0.75);
+  }
   expectIo(errorOf([&] { vpMorphDatabase::load((dir / "absent.json").string()); }), "cannot open");
   // Found by fuzz_database_json: a number beyond double made the JSON parser throw out_of_range, which escaped
   // as a nlohmann exception instead of a vpMorphException (regressions/database_json/).

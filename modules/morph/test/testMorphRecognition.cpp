@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -42,6 +43,16 @@ vpMorphContour extract(const cv::Mat &m)
     for (int u = 0; u < m.cols; ++u)
       I[v][u] = m.at<unsigned char>(v, u);
   return vpMorphContourExtractor().extract(I);
+}
+
+// The pieces of an object that an occluder split, joined across the occluder (as the benchmark's silhouettes).
+vpMorphContour extractJoined(const cv::Mat &m)
+{
+  vpImage<unsigned char> I(static_cast<unsigned int>(m.rows), static_cast<unsigned int>(m.cols));
+  for (int v = 0; v < m.rows; ++v)
+    for (int u = 0; u < m.cols; ++u)
+      I[v][u] = m.at<unsigned char>(v, u);
+  return vpMorphContourExtractor().extractJoined(I);
 }
 
 // The database of the six objects, built from their images (default distance, calibrated once per process).
@@ -97,6 +108,31 @@ cv::Mat occlude(const cv::Mat &src, double where, double fraction)
   cv::Mat out = src.clone();
   cv::fillPoly(out, std::vector<std::vector<cv::Point>>{piece}, cv::Scalar(255));
   cv::polylines(out, std::vector<std::vector<cv::Point>>{piece}, false, cv::Scalar(255), 2);
+  return out;
+}
+
+// Hides \e share of the object's outline behind a grey square (neither background nor object) centred on the
+// outline point at \e where (fraction of the perimeter), grown until that share of the outline lies inside it: the
+// benchmark scene's occluder, which bites a notch into a straight side instead of cutting it off.
+cv::Mat squareOccluder(const cv::Mat &src, double where, double share)
+{
+  cv::Mat bin = src < 128;
+  std::vector<std::vector<cv::Point>> cs;
+  cv::findContours(bin, cs, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  REQUIRE_FALSE(cs.empty());
+  const auto &c = *std::max_element(
+      cs.begin(), cs.end(), [](const auto &a, const auto &b) { return cv::contourArea(a) < cv::contourArea(b); });
+  const cv::Point o = c[static_cast<std::size_t>(where * c.size()) % c.size()];
+  int h = 1;
+  for (;; ++h) {
+    std::size_t in = 0;
+    for (const cv::Point &p : c)
+      in += (std::abs(p.x - o.x) <= h && std::abs(p.y - o.y) <= h) ? 1 : 0;
+    if (in >= share * c.size())
+      break;
+  }
+  cv::Mat out = src.clone();
+  cv::rectangle(out, cv::Point(o.x - h, o.y - h), cv::Point(o.x + h, o.y + h), cv::Scalar(170), cv::FILLED);
   return out;
 }
 
@@ -166,6 +202,75 @@ TEST_CASE("recognition: objects that are not in the database are rejected", "[re
   CHECK_FALSE(r.accepted);
 }
 
+TEST_CASE("recognition: a view with a square bitten out of its outline is accepted by its support", "[recognition]")
+{
+  const vpMorphDatabase &db = objectDatabase();
+  vpMorphDatabase distanceOnly = db;
+  distanceOnly.setMinimumSupport(std::numeric_limits<double>::infinity());
+  int byDistance = 0, bySupport = 0;
+  for (std::size_t k = 0; k < db.size(); ++k) {
+    const cv::Mat src = readGray(objectPath(kObjects[k]));
+    for (double where : {0.1, 0.35, 0.6, 0.85})
+      for (double share : {0.1, 0.15}) {
+        const vpMorphContour c = extractJoined(squareOccluder(view(src, 40.0 * where, 10, -5, 4, 3), where, share));
+        const vpMorphRecognition r = db.recognize(c);
+        CAPTURE(kObjects[k], where, share, r.distance, r.threshold, r.support, db[r.index].name());
+        if (distanceOnly.recognize(c).accepted) {
+          ++byDistance;
+          CHECK(std::isnan(r.support)); // measured only when the distance rejects
+        } else if (r.accepted) {
+          ++bySupport;
+          // What the support accepts is the object shown, and it shows most of its outline.
+          CHECK(r.index == k);
+          CHECK(r.support >= db.minimumSupport());
+        }
+      }
+  }
+  // Why the support is there: the distance alone rejects some of these views (a notch costs far more work than
+  // the calibration's straight edges), and the support accepts them.
+  CHECK(bySupport > 0);
+  CHECK(byDistance + bySupport >= 46); // of 48
+  // It accepts nothing that is not one of the tools: the unknown shapes show little of their best template.
+  for (int kind = 0; kind < 2; ++kind) {
+    const vpMorphRecognition r = db.recognize(extract(unknownObject(kind)));
+    CAPTURE(kind, r.distance, r.threshold, r.support, db[r.index].name());
+    CHECK_FALSE(r.accepted);
+    CHECK(r.support < 0.5);
+  }
+}
+
+TEST_CASE("recognition: support and acceptance of a given template, and bad input", "[recognition]")
+{
+  const vpMorphDatabase &db = objectDatabase();
+  const std::size_t key = db.find("key"), wedge = db.find("wedge");
+  const vpMorphContour c = extract(view(readGray(objectPath("key")), 120, 5, 5, 6, 2));
+  CHECK(db.support(c, key) > 0.95);
+  CHECK(db.support(c, wedge) < 0.5);
+  double d = -1.0;
+  CHECK(db.accepts(c, key, 1.0, &d));
+  CHECK(d == Approx(db.distance().distance(c, db[key].contour())));
+  CHECK_FALSE(db.accepts(c, wedge));
+  // The slack widens the distance's side only.
+  CHECK(db.accepts(c, wedge, 100.0));
+  // A part turned over: its mirror image is aligned when asked (as recognize() does when the mirror matched).
+  const vpMorphContour turned = c.mirrored();
+  CHECK(db.support(turned, key, true) > 0.95);
+  CHECK(db.accepts(turned, key));
+  CHECK_THROWS_AS(db.support(vpMorphContour(), key), vpMorphException);
+  CHECK_THROWS_AS(db.support(c, 99), vpMorphException);
+  const vpMorphContour normalized(c.xs(), c.ys(), vpMorphContour::NORMALIZED);
+  CHECK_THROWS_AS(db.support(normalized, key), vpMorphException);
+  CHECK_THROWS_AS(db.accepts(c, key, 0.5), vpMorphException);
+  CHECK_THROWS_AS(db.accepts(c, key, std::nan("")), vpMorphException);
+  CHECK_THROWS_AS(db.accepts(vpMorphContour(), key), vpMorphException);
+  vpMorphDatabase copy = db;
+  CHECK(copy.minimumSupport() == 0.75);
+  for (double bad : {0.0, -0.5, 1.5, std::nan("")})
+    CHECK_THROWS_AS(copy.setMinimumSupport(bad), vpMorphException);
+  copy.setMinimumSupport(1.0);
+  CHECK(copy.minimumSupport() == 1.0);
+}
+
 TEST_CASE("recognition: the calibration follows the documented rule", "[recognition]")
 {
   const vpMorphDatabase &db = objectDatabase();
@@ -188,7 +293,15 @@ TEST_CASE("recognition: the calibration follows the documented rule", "[recognit
   copy.setThreshold(1e-9);
   CHECK(copy.isThresholdManual());
   CHECK(copy.recognize(db[0].contour()).accepted); // distance 0
-  CHECK_FALSE(copy.recognize(extract(view(readGray(objectPath(kObjects[0])), 40, 0, 0, 10, 1))).accepted);
+  // A new view is beyond that threshold, but it shows the whole outline: the support accepts it, unless disabled.
+  const vpMorphContour other = extract(view(readGray(objectPath(kObjects[0])), 40, 0, 0, 10, 1));
+  const vpMorphRecognition bySupport = copy.recognize(other);
+  CHECK(bySupport.accepted);
+  CHECK(bySupport.support > 0.95);
+  copy.setMinimumSupport(std::numeric_limits<double>::infinity());
+  const vpMorphRecognition byDistance = copy.recognize(other);
+  CHECK_FALSE(byDistance.accepted);
+  CHECK(std::isnan(byDistance.support));
   copy.calibrate();
   CHECK(copy.threshold(0) == 1e-9);
   copy.clearThreshold();

@@ -16,8 +16,9 @@
   \brief Result of a recognition (value type, public fields as it only carries data).
 
   The best template alone does not say whether the object is known: \e accepted compares its distance with
-  the database's threshold, and \e margin tells how clearly it beat the runner-up, so that a caller can ask
-  for another view when two templates are nearly as good.
+  the database's threshold (and, for a view the distance rejects, its \e support: an occluded view), and
+  \e margin tells how clearly it beat the runner-up, so that a caller can ask for another view when two
+  templates are nearly as good.
 */
 class vpMorphRecognition
 {
@@ -31,7 +32,10 @@ public:
   //! Relative gap (secondDistance - distance) / secondDistance in [0, 1]; 1 with a single template.
   double margin = 0.0;
   double threshold = std::numeric_limits<double>::infinity(); //!< acceptance threshold used
-  bool accepted = false;                                      //!< distance <= threshold
+  //! Share of the best template's outline that the query shows (vpMorphDatabase::support()), measured only when
+  //! the distance rejects it (NaN otherwise).
+  double support = std::numeric_limits<double>::quiet_NaN();
+  bool accepted = false; //!< distance <= threshold, or else support >= vpMorphDatabase::minimumSupport()
   bool mirrored = false;                                      //!< the template's mirror image matched best
   /*!
     Minimal-work correspondence from the query contour to the best template's contour (as stored, not
