@@ -180,7 +180,8 @@ protected:
   }
   /*!
     True when \e c is not the current template's shape (vpServoMorph's target check, for the adapter without
-    vpServoMorph): beyond the template's acceptance threshold times kCheckSlack, or the database clearly prefers
+    vpServoMorph): not accepted by the database as that template with kCheckSlack (vpMorphDatabase::accepts():
+    beyond its threshold times kCheckSlack, and not an occluded view of it), or the database clearly prefers
     another template (its best, accepted, at least kSwitchRatio times cheaper). The thresholds alone cannot
     tell every pair apart: calibrated on 20 % occlusions, the pliers' threshold (1.57) is above its distance to
     the screwdriver (1.44), so a screwdriver taken for the pliers passes it.
@@ -192,12 +193,12 @@ protected:
     const vpMorphRecognition r = db.recognize(c);
     if (r.index == vpMorphRecognition::npos || r.index == cur)
       return false;
-    const double d = db.distance().distance(c, m_template->contour());
-    return !(d <= kCheckSlack * db.threshold(cur)) || (r.accepted && d >= kSwitchRatio * r.distance);
+    double d = 0.0;
+    return !db.accepts(c, cur, kCheckSlack, &d) || (r.accepted && d >= kSwitchRatio * r.distance);
   }
   /*!
     The current template was found wrong for \e c: recognises \e c again without the templates already
-    rejected (the best, else the runner-up, if within its acceptance threshold). False when none is left.
+    rejected (the best, else the runner-up, if the database accepts it). False when none is left.
   */
   bool rerecognize(const vpMorphContour &c)
   {
@@ -205,11 +206,10 @@ protected:
     m_rejected.push_back(db.find(m_template->name()));
     const vpMorphRecognition r = db.recognize(c);
     const std::size_t idx[2] = {r.index, r.secondIndex};
-    const double dist[2] = {r.distance, r.secondDistance};
     for (int k = 0; k < 2; ++k) {
       if (idx[k] == vpMorphRecognition::npos ||
           std::find(m_rejected.begin(), m_rejected.end(), idx[k]) != m_rejected.end() ||
-          !(dist[k] <= db.threshold(idx[k])))
+          !(k == 0 ? r.accepted : db.accepts(c, idx[k])))
         continue;
       m_template = &db[idx[k]];
       m_object = m_template->name();

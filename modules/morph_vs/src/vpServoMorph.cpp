@@ -342,8 +342,9 @@ bool vpServoMorph::targetMismatch(const vpMorphContour &current)
     return false;
   const vpMorphRecognition r = m_checkDb.recognize(current);
   m_targetDistance = m_checkDb.distance().distance(current, m_target);
-  if (!(m_targetDistance <= m_checkSlack * m_checkDb.threshold(m_checkIndex)))
-    return true; // NaN too
+  if (!(m_targetDistance <= m_checkSlack * m_checkDb.threshold(m_checkIndex)) &&
+      !(m_checkDb.support(current, m_checkIndex, r.index == m_checkIndex && r.mirrored) >= m_checkDb.minimumSupport()))
+    return true; // NaN too; an occluded view of the target (it shows enough of its outline) is not a mismatch
   return r.index != vpMorphRecognition::npos && r.index != m_checkIndex && r.accepted &&
          m_targetDistance >= mismatchRatio() * r.distance;
 }
