@@ -5,18 +5,22 @@
   \code
   vispmorph-db build DIR --out db.json [--model multiscale|paper|polygon] [--threshold T]
   vispmorph-db info db.json
-  vispmorph-db recognize db.json IMAGE [--json] [--exhaustive]
+  vispmorph-db recognize db.json IMAGE... [--json] [--exhaustive] [--min-support S|off]
   \endcode
   build: one template per image of DIR (named after the file), the largest object of each, calibrated
   acceptance thresholds (vpMorphDatabase::calibrate()), saved atomically; progress on stderr.
   info: templates, vertex counts, calibration (within, nearest other template, threshold).
-  recognize: the best template, its distance and threshold, the runner-up, the margin, and ACCEPTED or
-  REJECTED. Exit status: 0 on success (also when the object is rejected), 1 on an error, 2 on bad arguments.
+  recognize: per image, the best template, its distance and threshold, the share of its outline shown when the
+  distance rejects it (vpMorphDatabase::support()), the runner-up, the margin, and ACCEPTED (by the distance or by
+  the support) or REJECTED; with several images, how many were accepted each way. --min-support replaces the
+  database's minimum support for this query (off: the distance alone).
+  Exit status: 0 on success (also when objects are rejected), 1 on an error, 2 on bad arguments.
 */
 #include <cmath>
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -36,10 +40,11 @@ void usage(std::ostream &os)
 {
   os << "Usage: vispmorph-db build DIR --out db.json [--model multiscale|paper|polygon] [--threshold T]\n"
         "       vispmorph-db info db.json\n"
-        "       vispmorph-db recognize db.json IMAGE [--json] [--exhaustive]\n"
+        "       vispmorph-db recognize db.json IMAGE... [--json] [--exhaustive] [--min-support S|off]\n"
         "  build      one template per image of DIR, calibrated, written atomically to db.json\n"
         "  info       templates and calibration of a database\n"
-        "  recognize  the template of the largest object of IMAGE, accepted or rejected\n";
+        "  recognize  the template of the largest object of each IMAGE, accepted (by the distance, or by the share\n"
+        "             of the template's outline it shows: --min-support, off for the distance alone) or rejected\n";
 }
 
 struct Args
@@ -47,6 +52,7 @@ struct Args
   std::string verb, out, model = "multiscale";
   std::vector<std::string> positional;
   double threshold = 0.0;
+  double minSupport = 0.0; // 0: the database's; +inf: off
   bool json = false, exhaustive = false;
 };
 
@@ -71,7 +77,7 @@ bool parse(int argc, char **argv, Args &a)
       a.json = true;
     } else if (s == "--exhaustive") {
       a.exhaustive = true;
-    } else if (s == "--out" || s == "--model" || s == "--threshold") {
+    } else if (s == "--out" || s == "--model" || s == "--threshold" || s == "--min-support") {
       if (k + 1 >= argc) {
         std::cerr << "vispmorph-db: " << s << " needs a value\n";
         return false;
@@ -81,6 +87,13 @@ bool parse(int argc, char **argv, Args &a)
         a.out = v;
       } else if (s == "--model") {
         a.model = v;
+      } else if (s == "--min-support") {
+        char *end = nullptr;
+        a.minSupport = v == "off" ? std::numeric_limits<double>::infinity() : std::strtod(v.c_str(), &end);
+        if (v != "off" && (v.empty() || *end != '\0' || !(a.minSupport > 0.0 && a.minSupport <= 1.0))) {
+          std::cerr << "vispmorph-db: --min-support needs a number in (0, 1] or off (got '" << v << "')\n";
+          return false;
+        }
       } else {
         char *end = nullptr;
         a.threshold = std::strtod(v.c_str(), &end);
@@ -97,9 +110,13 @@ bool parse(int argc, char **argv, Args &a)
     }
   }
   const std::size_t need = a.verb == "recognize" ? 2 : 1;
-  if (a.positional.size() != need) {
-    std::cerr << "vispmorph-db " << a.verb << ": expected " << need << " argument(s), got " << a.positional.size()
-              << "\n";
+  if (a.verb == "recognize" ? a.positional.size() < need : a.positional.size() != need) {
+    std::cerr << "vispmorph-db " << a.verb << ": expected " << (a.verb == "recognize" ? "at least " : "") << need
+              << " argument(s), got " << a.positional.size() << "\n";
+    return false;
+  }
+  if (a.minSupport > 0.0 && a.verb != "recognize") {
+    std::cerr << "vispmorph-db: --min-support is an option of recognize\n";
     return false;
   }
   if (a.verb == "build" && a.out.empty()) {
@@ -161,41 +178,70 @@ int main(int argc, char **argv)
                   << (cal ? fmt(db.betweenDistances()[k]) : "-") << std::setw(11) << fmt(db.threshold(k)) << "  "
                   << db[k].imagePath() << "\n";
       }
+      std::cout << "minimum support (share of a template's outline that accepts a view its distance rejects): "
+                << fmt(db.minimumSupport()) << "\n";
     } else {
-      const vpMorphDatabase db = vpMorphDatabase::load(a.positional[0]);
-      vpImage<unsigned char> I;
-      try {
-        vpImageIo::read(I, a.positional[1]);
-      } catch (const vpException &e) {
-        throw vpMorphException(vpMorphException::ioError,
-                               "cannot read image '" + a.positional[1] + "': " + e.getStringMessage());
+      vpMorphDatabase db = vpMorphDatabase::load(a.positional[0]);
+      if (a.minSupport > 0.0)
+        db.setMinimumSupport(a.minSupport);
+      nlohmann::json all = nlohmann::json::array();
+      std::size_t byDistance = 0, bySupport = 0;
+      for (std::size_t i = 1; i < a.positional.size(); ++i) {
+        const std::string &path = a.positional[i];
+        vpImage<unsigned char> I;
+        try {
+          vpImageIo::read(I, path);
+        } catch (const vpException &e) {
+          throw vpMorphException(vpMorphException::ioError,
+                                 "cannot read image '" + path + "': " + e.getStringMessage());
+        }
+        const double t0 = vpTime::measureTimeMs();
+        const vpMorphRecognition r = db.recognize(vpMorphContourExtractor().extract(I), !a.exhaustive);
+        const double ms = vpTime::measureTimeMs() - t0;
+        const bool supported = r.accepted && !std::isnan(r.support);
+        byDistance += r.accepted && !supported ? 1 : 0;
+        bySupport += supported ? 1 : 0;
+        if (a.json) {
+          nlohmann::json j;
+          j["image"] = path;
+          j["best"] = db[r.index].name();
+          j["distance"] = r.distance;
+          j["threshold"] = r.threshold;
+          j["support"] = std::isnan(r.support) ? nlohmann::json(nullptr) : nlohmann::json(r.support);
+          j["minimum_support"] =
+              std::isfinite(db.minimumSupport()) ? nlohmann::json(db.minimumSupport()) : nlohmann::json(nullptr);
+          j["accepted"] = r.accepted;
+          j["accepted_by"] = !r.accepted ? nlohmann::json(nullptr) : nlohmann::json(supported ? "support" : "distance");
+          j["mirrored"] = r.mirrored;
+          j["runner_up"] = r.secondIndex == vpMorphRecognition::npos ? nlohmann::json(nullptr)
+                                                                     : nlohmann::json(db[r.secondIndex].name());
+          j["runner_up_distance"] = std::isfinite(r.secondDistance) ? nlohmann::json(r.secondDistance) : nullptr;
+          j["margin"] = r.margin;
+          j["templates_evaluated"] = r.evaluated;
+          j["templates"] = db.size();
+          j["ms"] = ms;
+          all.push_back(j);
+        } else {
+          std::cout << (a.positional.size() > 2 ? path + ": " : std::string())
+                    << (r.accepted ? (supported ? "ACCEPTED (support) " : "ACCEPTED ") : "REJECTED ")
+                    << db[r.index].name() << (r.mirrored ? " (mirrored)" : "") << ": distance " << fmt(r.distance)
+                    << " (threshold " << fmt(r.threshold) << ")";
+          if (!std::isnan(r.support))
+            std::cout << ", support " << std::setprecision(2) << std::fixed << r.support << " (minimum "
+                      << fmt(db.minimumSupport()) << ")";
+          std::cout << ", runner-up "
+                    << (r.secondIndex == vpMorphRecognition::npos ? std::string("none") : db[r.secondIndex].name())
+                    << " " << fmt(r.secondDistance) << ", margin " << std::setprecision(1) << std::fixed
+                    << 100.0 * r.margin << " %; " << r.evaluated << " of " << db.size() << " templates matched in "
+                    << ms << " ms\n";
+        }
       }
-      const double t0 = vpTime::measureTimeMs();
-      const vpMorphRecognition r = db.recognize(vpMorphContourExtractor().extract(I), !a.exhaustive);
-      const double ms = vpTime::measureTimeMs() - t0;
-      if (a.json) {
-        nlohmann::json j;
-        j["image"] = a.positional[1];
-        j["best"] = db[r.index].name();
-        j["distance"] = r.distance;
-        j["threshold"] = r.threshold;
-        j["accepted"] = r.accepted;
-        j["mirrored"] = r.mirrored;
-        j["runner_up"] = r.secondIndex == vpMorphRecognition::npos ? nlohmann::json(nullptr)
-                                                                   : nlohmann::json(db[r.secondIndex].name());
-        j["runner_up_distance"] = std::isfinite(r.secondDistance) ? nlohmann::json(r.secondDistance) : nullptr;
-        j["margin"] = r.margin;
-        j["templates_evaluated"] = r.evaluated;
-        j["templates"] = db.size();
-        j["ms"] = ms;
-        std::cout << j.dump(2) << std::endl;
-      } else {
-        std::cout << (r.accepted ? "ACCEPTED " : "REJECTED ") << db[r.index].name() << (r.mirrored ? " (mirrored)" : "")
-                  << ": distance " << fmt(r.distance) << " (threshold " << fmt(r.threshold) << "), runner-up "
-                  << (r.secondIndex == vpMorphRecognition::npos ? std::string("none") : db[r.secondIndex].name()) << " "
-                  << fmt(r.secondDistance) << ", margin " << std::setprecision(1) << std::fixed << 100.0 * r.margin
-                  << " %; " << r.evaluated << " of " << db.size() << " templates matched in " << ms << " ms\n";
-      }
+      const std::size_t n = a.positional.size() - 1;
+      if (a.json)
+        std::cout << (n == 1 ? all[0] : all).dump(2) << std::endl;
+      else if (n > 1)
+        std::cout << "accepted " << byDistance + bySupport << " of " << n << " (" << byDistance << " by the distance, "
+                  << bySupport << " by the support)\n";
     }
   } catch (const vpException &e) {
     std::cerr << "vispmorph-db: " << e.getStringMessage() << std::endl;
