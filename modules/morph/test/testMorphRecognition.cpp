@@ -36,24 +36,19 @@ cv::Mat readGray(const std::string &path)
   return m;
 }
 
-vpMorphContour extract(const cv::Mat &m)
+vpImage<unsigned char> toVisp(const cv::Mat &m)
 {
   vpImage<unsigned char> I(static_cast<unsigned int>(m.rows), static_cast<unsigned int>(m.cols));
   for (int v = 0; v < m.rows; ++v)
     for (int u = 0; u < m.cols; ++u)
       I[v][u] = m.at<unsigned char>(v, u);
-  return vpMorphContourExtractor().extract(I);
+  return I;
 }
 
+vpMorphContour extract(const cv::Mat &m) { return vpMorphContourExtractor().extract(toVisp(m)); }
+
 // The pieces of an object that an occluder split, joined across the occluder (as the benchmark's silhouettes).
-vpMorphContour extractJoined(const cv::Mat &m)
-{
-  vpImage<unsigned char> I(static_cast<unsigned int>(m.rows), static_cast<unsigned int>(m.cols));
-  for (int v = 0; v < m.rows; ++v)
-    for (int u = 0; u < m.cols; ++u)
-      I[v][u] = m.at<unsigned char>(v, u);
-  return vpMorphContourExtractor().extractJoined(I);
-}
+vpMorphContour extractJoined(const cv::Mat &m) { return vpMorphContourExtractor().extractJoined(toVisp(m)); }
 
 // The database of the six objects, built from their images (default distance, calibrated once per process).
 const vpMorphDatabase &objectDatabase()
@@ -89,17 +84,23 @@ cv::Mat view(const cv::Mat &src, double deg, double tx, double ty, double sigma,
   return out;
 }
 
-// Hides \e fraction of the object's outline, the contiguous arc starting at \e where (fraction of the
-// perimeter), behind an occluder of the background colour with a straight edge: the region between the arc and
-// its chord is painted white, so that the chord replaces the arc in the new outline.
-cv::Mat occlude(const cv::Mat &src, double where, double fraction)
+// The pixel boundary of the largest dark object.
+std::vector<cv::Point> largestBoundary(const cv::Mat &src)
 {
   cv::Mat bin = src < 128;
   std::vector<std::vector<cv::Point>> cs;
   cv::findContours(bin, cs, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
   REQUIRE_FALSE(cs.empty());
-  const auto &c = *std::max_element(
-      cs.begin(), cs.end(), [](const auto &a, const auto &b) { return cv::contourArea(a) < cv::contourArea(b); });
+  return *std::max_element(cs.begin(), cs.end(),
+                           [](const auto &a, const auto &b) { return cv::contourArea(a) < cv::contourArea(b); });
+}
+
+// Hides \e fraction of the object's outline, the contiguous arc starting at \e where (fraction of the
+// perimeter), behind an occluder of the background colour with a straight edge: the region between the arc and
+// its chord is painted white, so that the chord replaces the arc in the new outline.
+cv::Mat occlude(const cv::Mat &src, double where, double fraction)
+{
+  const std::vector<cv::Point> c = largestBoundary(src);
   const std::size_t a = static_cast<std::size_t>(where * c.size()) % c.size();
   const std::size_t len = static_cast<std::size_t>(fraction * c.size());
   std::vector<cv::Point> piece;
@@ -116,12 +117,7 @@ cv::Mat occlude(const cv::Mat &src, double where, double fraction)
 // benchmark scene's occluder, which bites a notch into a straight side instead of cutting it off.
 cv::Mat squareOccluder(const cv::Mat &src, double where, double share)
 {
-  cv::Mat bin = src < 128;
-  std::vector<std::vector<cv::Point>> cs;
-  cv::findContours(bin, cs, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-  REQUIRE_FALSE(cs.empty());
-  const auto &c = *std::max_element(
-      cs.begin(), cs.end(), [](const auto &a, const auto &b) { return cv::contourArea(a) < cv::contourArea(b); });
+  const std::vector<cv::Point> c = largestBoundary(src);
   const cv::Point o = c[static_cast<std::size_t>(where * c.size()) % c.size()];
   int h = 1;
   for (;; ++h) {
