@@ -161,6 +161,21 @@ TEST_CASE("An occluded wedge that its distance rejects is recognised by the shar
   // Occlusion set, seed 1, start 7: a card bites a notch into the wedge's long side (14 % of its outline). D_morph
   // to its template is 1.70, beyond its threshold (1.15; the runner-up, the wrench, is at 1.95): the run stopped at
   // the first image ("recognition"). The view still shows 81 % of the wedge's outline where it should be.
+  const std::string data = VISPMORPH_DATA_DIR;
+  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("occlusion", 10, 1, data)[7];
+  const vpMorphPlanarScene scene = sc.scene();
+  const vpHomogeneousMatrix cMo = sc.cdMc.inverse() * sc.cdMo;
+  vpImage<unsigned char> I;
+  scene.render(cMo, I);
+  const vpMorphBench bench(data, vpMorphBench::Settings());
+  const vpMorphDatabase &db = bench.database();
+  const vpMorphRecognition rec = db.recognize(vpMorphTagPoseEstimator::silhouette(I, scene.projectedTagCorners(cMo)));
+  std::printf("[outline] occluded wedge: distance %.2f (threshold %.2f), support %.2f\n", rec.distance, rec.threshold,
+              rec.support);
+  CHECK(db[rec.index].name() == "wedge");
+  CHECK(rec.distance > rec.threshold);
+  CHECK(rec.support >= db.minimumSupport());
+  CHECK(rec.accepted);
   const vpMorphBenchResult r = benchRun("occlusion", 7, "wedge", vpMorphSimRobot::FREE_CAMERA);
   CHECK(r.recognized == "wedge");
   CHECK(r.success);
