@@ -118,15 +118,18 @@ def polygon_correspondence(out):
 def database_json(out):
     t = "database_json"
 
-    def db(model, templates, points=48, scales=(0.01, 0.05, 0.1), mirrors=True, calibrated=False):
+    def db(model, templates, points=48, scales=(0.01, 0.05, 0.1), mirrors=True, calibrated=False, support=None):
         within = [0.1] * len(templates) if calibrated else []
         between = ([None] if len(templates) == 1 else [0.5] * len(templates)) if calibrated else []
+        calibration = {"calibrated": calibrated, "manual": False, "threshold": None, "slack": 1.25,
+                       "within": within, "between": between}
+        if support is not None:  # absent: the files written before the support existed
+            calibration["support"] = support
         return {
             "format": "vispmorph-template-database", "version": 1,
             "distance": {"model": model, "points": points, "mirrors": mirrors, "scales": list(scales),
                          "ks": 1.0, "kb": 0.2, "cs": 0.5},
-            "calibration": {"calibrated": calibrated, "manual": False, "threshold": None, "slack": 1.25,
-                            "within": within, "between": between},
+            "calibration": calibration,
             "templates": templates,
         }
 
@@ -143,7 +146,7 @@ def database_json(out):
     key = [(50 + x, 60 + y) for x, y in KEY]
     write(out, t, "polygon-two", json.dumps(db("polygon", [tpl("square", sq), tpl("triangle", tri)]), indent=1))
     write(out, t, "multiscale-calibrated",
-          json.dumps(db("multiscale", [tpl("key", key), tpl("l", L_SHAPE)], calibrated=True), indent=1))
+          json.dumps(db("multiscale", [tpl("key", key), tpl("l", L_SHAPE)], calibrated=True, support=0.75), indent=1))
     write(out, t, "paper-one", json.dumps(db("paper", [tpl("star", [(p[0] + 80, p[1] + 80) for p in star(5, 40, 15)])],
                                              points=64, scales=(0.0,), calibrated=True)))
     write(out, t, "region-normalized",
