@@ -103,22 +103,30 @@ double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorp
 {
   const std::size_t n = 512;
   const double tol = t.perimeter() / 256.0;
+  double best = 0.0;
   try {
     // The scale of the robust fits is floored at a quarter of the tolerance: the vertices of both polygons lie on
     // the pixel grid, and a scale of zero would keep only those that coincide.
     const vpMorphRigidTransform T0 = vpMorphRigidTransform::fitLeastSquares(
         q, t, correspondence, true, vpMorphRigidTransform::TUKEY, 30, 0.25 * tol);
-    const vpMorphNearestEdge onView(vpMorphRigidTransform::refineOnOutline(q, t, T0, true, 0.25 * tol).apply(q));
     const vpMorphContour s = t.resampled(n);
-    std::size_t on = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      double mx, my;
-      on += std::fabs(onView(s.x(i), s.y(i), mx, my)) <= tol ? 1 : 0; // NaN (an overflowed fit): not on it
+    double cx, cy;
+    t.centroid(cx, cy);
+    // From the fit and from it turned half a turn about the template's centre: the correspondence of a nearly
+    // symmetric outline (a wedge, end for end) can put the view the wrong way round, where the refinement stays.
+    for (const vpMorphRigidTransform &start : {T0, vpMorphRigidTransform(M_PI, 0.0, 0.0, 1.0, cx, cy) * T0}) {
+      const vpMorphNearestEdge onView(vpMorphRigidTransform::refineOnOutline(q, t, start, true, 0.25 * tol).apply(q));
+      std::size_t on = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        double mx, my;
+        on += std::fabs(onView(s.x(i), s.y(i), mx, my)) <= tol ? 1 : 0; // NaN (an overflowed fit): not on it
+      }
+      best = std::max(best, static_cast<double>(on) / static_cast<double>(n));
     }
-    return static_cast<double>(on) / static_cast<double>(n);
   } catch (const vpException &) {
-    return 0.0; // no similarity aligns them (a degenerate fit): the view shows nothing of the template
+    // no similarity aligns them (a degenerate fit): the view shows nothing more of the template
   }
+  return best;
 }
 
 json poseToJson(const vpHomogeneousMatrix &M)

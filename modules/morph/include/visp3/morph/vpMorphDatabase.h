@@ -157,12 +157,13 @@ public:
 
   /*!
     Share, in [0, 1], of template \e k's outline that contour \e c shows: \e c is aligned on the template by a
-    similarity (the minimal-work correspondence, fitted robustly, then refined point to edge on the outlines), and
-    512 points spread evenly along the template's outline are counted when they lie within 1/256 of its perimeter
-    of the aligned \e c (2 px on a 500-px outline). \e mirrored aligns \e c's mirror image (a part turned over,
-    vpMorphRecognition::mirrored). 0 when \e c cannot be aligned (a degenerate fit).
-    \throw vpMorphException::notFoundError if \e k is out of range, badContourError on an empty contour or
-    badParameterError on units that differ from the template's.
+    similarity (the minimal-work correspondence, fitted robustly, then refined point to edge on the outlines; also
+    from that fit turned half a turn, as a nearly symmetric outline can be matched end for end), and 512 points
+    spread evenly along the template's outline are counted when they lie within 1/256 of its perimeter of the
+    aligned \e c (2 px on a 500-px outline); the better of the two alignments counts. \e mirrored aligns \e c's mirror
+    image (a part turned over, vpMorphRecognition::mirrored). 0 when \e c cannot be aligned (a degenerate fit). \throw
+    vpMorphException::notFoundError if \e k is out of range, badContourError on an empty contour or badParameterError on
+    units that differ from the template's.
   */
   double support(const vpMorphContour &c, std::size_t k, bool mirrored = false) const;
   //! Least support() that accepts a view its distance rejects (an occluded view); +inf: the distance alone decides.
