@@ -14,7 +14,8 @@
   distance rejects it (vpMorphDatabase::support()), the runner-up, the margin, and ACCEPTED (by the distance or by
   the support) or REJECTED; with several images, how many were accepted each way. --min-support replaces the
   database's minimum support for this query (off: the distance alone).
-  Exit status: 0 on success (also when objects are rejected), 1 on an error, 2 on bad arguments.
+  Exit status: 0 on success (also when objects are rejected), 1 on an error (with several images, after recognising
+  all the others), 2 on bad arguments.
 */
 #include <cmath>
 #include <cstdlib>
@@ -185,19 +186,31 @@ int main(int argc, char **argv)
       if (a.minSupport > 0.0)
         db.setMinimumSupport(a.minSupport);
       nlohmann::json all = nlohmann::json::array();
-      std::size_t byDistance = 0, bySupport = 0;
-      for (std::size_t i = 1; i < a.positional.size(); ++i) {
+      const std::size_t n = a.positional.size() - 1;
+      std::size_t byDistance = 0, bySupport = 0, errors = 0;
+      for (std::size_t i = 1; i <= n; ++i) {
         const std::string &path = a.positional[i];
-        vpImage<unsigned char> I;
+        vpMorphRecognition r;
+        double ms = 0.0;
         try {
-          vpImageIo::read(I, path);
+          vpImage<unsigned char> I;
+          try {
+            vpImageIo::read(I, path);
+          } catch (const vpException &e) {
+            throw vpMorphException(vpMorphException::ioError,
+                                   "cannot read image '" + path + "': " + e.getStringMessage());
+          }
+          const double t0 = vpTime::measureTimeMs();
+          r = db.recognize(vpMorphContourExtractor().extract(I), !a.exhaustive);
+          ms = vpTime::measureTimeMs() - t0;
         } catch (const vpException &e) {
-          throw vpMorphException(vpMorphException::ioError,
-                                 "cannot read image '" + path + "': " + e.getStringMessage());
+          if (n == 1)
+            throw;
+          // One bad image among many (unreadable, no object): said, counted, and the others still recognised.
+          std::cerr << "vispmorph-db: " << path << ": " << e.getStringMessage() << std::endl;
+          ++errors;
+          continue;
         }
-        const double t0 = vpTime::measureTimeMs();
-        const vpMorphRecognition r = db.recognize(vpMorphContourExtractor().extract(I), !a.exhaustive);
-        const double ms = vpTime::measureTimeMs() - t0;
         const bool supported = r.accepted && !std::isnan(r.support);
         byDistance += r.accepted && !supported ? 1 : 0;
         bySupport += supported ? 1 : 0;
@@ -236,12 +249,14 @@ int main(int argc, char **argv)
                     << ms << " ms\n";
         }
       }
-      const std::size_t n = a.positional.size() - 1;
       if (a.json)
         std::cout << (n == 1 ? all[0] : all).dump(2) << std::endl;
       else if (n > 1)
         std::cout << "accepted " << byDistance + bySupport << " of " << n << " (" << byDistance << " by the distance, "
-                  << bySupport << " by the support)\n";
+                  << bySupport << " by the support" << (errors ? ", " + std::to_string(errors) + " in error" : "")
+                  << ")\n";
+      if (errors)
+        return 1;
     }
   } catch (const vpException &e) {
     std::cerr << "vispmorph-db: " << e.getStringMessage() << std::endl;
