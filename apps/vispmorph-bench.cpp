@@ -23,6 +23,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -34,6 +35,8 @@
 #include <visp3/morph_bench/vpMorphBench.h>
 #include <visp3/morph_bench/vpMorphBenchController.h>
 #include <visp3/morph_bench/vpMorphBenchReport.h>
+#include <visp3/morph_sim/vpMorphPlanarScene.h>
+#include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 
 namespace fs = std::filesystem;
 
@@ -108,6 +111,31 @@ std::string scenarioRow(const vpMorphBenchScenario &s)
      << 1000 * s.eMcError.getTranslationVector().frobeniusNorm() << ','
      << vpMath::deg(vpThetaUVector(s.eMcError.getRotationMatrix()).getTheta()) << ",\"" << s.describe() << "\"";
   return os.str();
+}
+
+/*
+  CPU time (ms) of one silhouette extraction of the pliers' taught view, the fastest of 5 batches of 20: a yardstick
+  of the machine's speed. The per-set compute times move with it (the development machine's slowed by 1.8 times in
+  one session), so runs on different days or machines are compared through their ratio to it.
+*/
+double yardstickMs(const std::string &dataDir)
+{
+  const vpMorphPlanarScene scene(dataDir + "/objects/pliers.png");
+  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose("pliers");
+  vpImage<unsigned char> I;
+  scene.render(cdMo, I);
+  const std::vector<vpImagePoint> corners = scene.projectedTagCorners(cdMo);
+  double best = std::numeric_limits<double>::infinity();
+  for (int batch = 0; batch < 5; ++batch) {
+    double sum = 0.0;
+    for (int k = 0; k < 20; ++k) {
+      double ms = 0.0;
+      vpMorphTagPoseEstimator::silhouette(I, corners, &ms);
+      sum += ms;
+    }
+    best = std::min(best, sum / 20.0);
+  }
+  return best;
 }
 } // namespace
 
@@ -227,6 +255,7 @@ int main(int argc, char **argv)
       curvesFile << vpMorphBenchReport::curvesHeader() << "\n";
     }
     const bool tty = isatty(STDERR_FILENO);
+    const double yardstickBefore = yardstickMs(dataDir);
     const auto t0 = std::chrono::steady_clock::now();
     std::cerr << "vispmorph-bench: " << scenarios.size() << " scenarios x " << controllers.size() << " controllers on "
               << robotName << ", seed " << seed << std::endl;
@@ -251,6 +280,11 @@ int main(int argc, char **argv)
     if (tty)
       std::cerr << "\n";
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double yardstickAfter = yardstickMs(dataDir);
+    std::ostringstream yardstick;
+    yardstick << std::fixed << std::setprecision(3) << "Machine yardstick (CPU time of one silhouette extraction of "
+              << "the taught pliers view, fastest of 5 x 20): " << yardstickBefore << " ms before the runs, "
+              << yardstickAfter << " ms after. Compare compute times across runs through their ratio to it.\n";
 
     std::map<std::string, std::string> meta;
     std::ostringstream cmd;
@@ -264,8 +298,10 @@ int main(int argc, char **argv)
     meta["max_iterations"] = std::to_string(settings.maxIterations);
     meta["wall_time_s"] = std::to_string(wall);
     meta["hardware_threads"] = std::to_string(std::thread::hardware_concurrency());
+    meta["yardstick_extract_ms_before"] = std::to_string(yardstickBefore);
+    meta["yardstick_extract_ms_after"] = std::to_string(yardstickAfter);
     std::ofstream(out + "/summary.json") << report.summaryJson(meta) << "\n";
-    const std::string md = report.summaryMarkdown();
+    const std::string md = report.summaryMarkdown() + "\n" + yardstick.str();
     std::ofstream(out + "/summary.md") << md;
     std::cout << md << "wall time " << std::fixed << std::setprecision(1) << wall << " s; results in " << out << "/"
               << std::endl;
