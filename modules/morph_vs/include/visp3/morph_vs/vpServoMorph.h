@@ -160,14 +160,16 @@
   - <em>Wrong target</em> (recognition chose another object's template): with setTargetCheck() (the template
     database and the target's name), the current contour is recognised again at each new sequence and when the
     final goal would be reached. It is not the target when its distance to the target exceeds the target's
-    acceptance threshold times the slack and it shows less than the database's minimum support of the target's
-    outline (vpMorphDatabase::accepts(): an occluded view of the target is the target), or when the database's
-    best template is another one, accepted, that costs at least mismatchRatio() (1.2) times less work: the
-    thresholds alone do not separate near neighbours (calibrated on 20 % occlusions, they can exceed the distance
-    between two objects: 1.73 for a tee against 1.44 between the tee and the bracket of the tests). Then the status is
-  TARGET_MISMATCH (a stop: the servo would otherwise align the best-fitting similarity of two different shapes and
-  report CONVERGED); the caller recognises anew or gives up. LOST_TOO_LONG, TOO_MANY_REPLANS and TARGET_MISMATCH are
-  stops: every later call returns zero velocity with the same status until restart() or setTarget().
+    acceptance threshold times the slack and it shows less than the database's minimum support of the target
+    template's outline (the rule of vpMorphDatabase::accepts(), with the distance to the target contour: an
+    occluded view of the target is the target), or when the database's best template is another one, accepted,
+    that costs at least mismatchRatio() (1.2) times less work: the thresholds alone do not separate near
+    neighbours (calibrated on 20 % occlusions, they can exceed the distance between two objects: 1.73 for a tee
+    against 1.44 between the tee and the bracket of the tests). Then the status is TARGET_MISMATCH (a stop: the
+    servo would otherwise align the best-fitting similarity of two different shapes and report CONVERGED); the
+    caller recognises anew or gives up.
+  LOST_TOO_LONG, TOO_MANY_REPLANS and TARGET_MISMATCH are stops: every later call returns zero velocity with the
+  same status until restart() or setTarget().
 
   Not copyable (it owns a vpServo that points to its own features).
 */
