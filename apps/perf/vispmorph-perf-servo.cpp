@@ -7,6 +7,8 @@
   tag masked, silhouette extracted, vpServoMorph), and the contours it extracted are recorded once. The benchmarks
   then replay them:
   - BM_extract: the silhouette extraction of one 640x480 image (vpMorphContourExtractor, tag masking excluded);
+  - BM_extractNoisy: the same view with the benchmark's noise set at its worst (grey-level noise of std 6, blur of
+    std 1.5 px, gain 0.7, offset -25), where the mask is ragged and the edge is found under noise;
   - BM_approximate: its polygonal approximation alone (vpMorphPolygonApproximation on that image's boundary chain),
     the part of the extraction that grows with the boundary's length;
   - BM_morphIteration: vpServoMorph::computeControlLaw() over the recorded run (tracked correspondence, fit,
@@ -58,6 +60,7 @@ struct Recording
   double Zd = 0.5;
   vpImage<unsigned char> firstImage;
   std::vector<vpImagePoint> firstCorners;
+  vpHomogeneousMatrix firstcMo; //!< the camera's pose for the first image
   std::vector<vpMorphContour> contours;
   std::size_t finalApproach = 0; //!< index of the first contour recorded on the last sub-goal
 };
@@ -96,6 +99,7 @@ Recording record(const std::string &objectImage, const std::string &templateImag
     if (it == 0) {
       r.firstImage = I;
       r.firstCorners = corners;
+      r.firstcMo = robot.get_cMo();
     }
     r.contours.push_back(c);
     robot.setVelocity(vpRobot::END_EFFECTOR_FRAME, servo.computeControlLaw(c));
@@ -145,6 +149,29 @@ void BM_extract(benchmark::State &state)
   vpMorphContourExtractor extractor;
   for (auto _ : state)
     benchmark::DoNotOptimize(extractor.extract(masked).size());
+}
+
+void BM_extractNoisy(benchmark::State &state)
+{
+  const Recording &r = recording();
+  vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
+  vpMorphPlanarScene::Faults f;
+  f.noiseSigma = 6.0;
+  f.blurSigma = 1.5;
+  f.gain = 0.7;
+  f.offset = -25.0;
+  f.seed = 1;
+  scene.setFaults(f);
+  vpImage<unsigned char> I;
+  scene.render(r.firstcMo, I);
+  std::vector<vpImagePoint> corners;
+  vpHomogeneousMatrix cMt;
+  if (!scene.tagPoseEstimator().estimate(I, cMt, &corners))
+    state.SkipWithError("tag not found in the noisy view");
+  vpMorphTagPoseEstimator::maskTag(I, corners);
+  vpMorphContourExtractor extractor;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(extractor.extract(I).size());
 }
 
 void BM_approximate(benchmark::State &state)
@@ -277,6 +304,7 @@ public:
 } // namespace
 
 BENCHMARK(BM_extract)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_extractNoisy)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_approximate)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIteration)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIterationTilt)->Unit(benchmark::kMicrosecond);

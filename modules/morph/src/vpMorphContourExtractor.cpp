@@ -173,8 +173,10 @@ double antisymmetricLevel(const cv::Mat &g, const std::vector<cv::Vec4d> &profil
   }
   auto sample = [&](const std::array<double, 2 * half + 1> &p, double t, double &v) {
     const double f = t / h + half;
-    const int i = static_cast<int>(std::floor(f));
-    if (i < 0 || i + 1 > 2 * half)
+    if (!(f >= 0.0)) // then the truncation below is the floor
+      return false;
+    const int i = static_cast<int>(f);
+    if (i + 1 > 2 * half)
       return false;
     v = p[i] + (f - i) * (p[i + 1] - p[i]);
     return std::isfinite(v);
@@ -184,14 +186,22 @@ double antisymmetricLevel(const cv::Mat &g, const std::vector<cv::Vec4d> &profil
     double cost = 0.0;
     std::size_t n = 0;
     for (const auto &p : prof) {
-      // The crossing of L nearest the maximum (g rises along the profile).
+      // The crossing of L nearest the maximum (g rises along the profile), searched outwards: ring k holds the two
+      // intervals whose crossings lie k to k + 1 steps from it, so once one is found strictly nearer than k steps,
+      // ring k cannot do better (a crossing on a ring's boundary is found in the inner ring): the same crossing as a
+      // scan of all 24 intervals, from the few nearest.
       double x0 = INFINITY;
-      for (int i = 0; i < 2 * half; ++i)
+      auto crossing = [&](int i) {
         if (std::isfinite(p[i]) && std::isfinite(p[i + 1]) && (p[i] - L) * (p[i + 1] - L) <= 0.0 && p[i] != p[i + 1]) {
           const double t = (i - half + (L - p[i]) / (p[i + 1] - p[i])) * h;
           if (std::fabs(t) < std::fabs(x0))
             x0 = t;
         }
+      };
+      for (int k = 0; k < half && k * h <= 1.0 && !(std::fabs(x0) < k * h); ++k) {
+        crossing(half - 1 - k);
+        crossing(half + k);
+      }
       if (!std::isfinite(x0) || std::fabs(x0) > 1.0)
         continue;
       for (double u = 0.5; u <= umax; u += 0.5) {
@@ -211,7 +221,7 @@ double antisymmetricLevel(const cv::Mat &g, const std::vector<cv::Vec4d> &profil
   for (int pass = 0; pass < 2; ++pass) {
     const double centre = bestLevel, step = pass == 0 ? coarse : coarse / 8.0;
     for (int j = -16; j <= 16; ++j) {
-      if (pass == 1 && std::abs(j) > 8)
+      if (pass == 1 && (std::abs(j) > 8 || j == 0)) // the centre's cost is known
         continue;
       const double L = centre + j * step, c = asymmetry(L);
       if (c < bestCost) {
