@@ -10,10 +10,10 @@
   build: one template per image of DIR (named after the file), the largest object of each, calibrated
   acceptance thresholds (vpMorphDatabase::calibrate()), saved atomically; progress on stderr.
   info: templates, vertex counts, calibration (within, nearest other template, threshold).
-  recognize: per image, the best template, its distance and threshold, the share of its outline shown when the
-  distance rejects it (vpMorphDatabase::support()), the runner-up, the margin, and ACCEPTED (by the distance or by
-  the support) or REJECTED; with several images, how many were accepted each way. --min-support replaces the
-  database's minimum support for this query (off: the distance alone).
+  recognize: per image, the template, its distance and threshold, the share of its outline shown
+  (vpMorphDatabase::support()), the runner-up (the distance's choice when the support re-ranked them), the margin,
+  and ACCEPTED (by the distance or by the support) or REJECTED; with several images, how many were accepted each way.
+  --min-support replaces the database's minimum support for this query (off: the distance alone).
   Exit status: 0 on success (also when objects are rejected), 1 on an error (with several images, after recognising
   all the others), 2 on bad arguments.
 */
@@ -211,7 +211,8 @@ int main(int argc, char **argv)
           ++errors;
           continue;
         }
-        const bool supported = r.accepted && !std::isnan(r.support);
+        // By the support: beyond its threshold, or put in place of the distance's choice (re-ranked).
+        const bool supported = r.accepted && (r.reranked || !(r.distance <= r.threshold));
         byDistance += r.accepted && !supported ? 1 : 0;
         bySupport += supported ? 1 : 0;
         if (a.json) {
@@ -226,6 +227,7 @@ int main(int argc, char **argv)
           j["accepted"] = r.accepted;
           j["accepted_by"] = !r.accepted ? nlohmann::json(nullptr) : nlohmann::json(supported ? "support" : "distance");
           j["mirrored"] = r.mirrored;
+          j["reranked"] = r.reranked;
           j["runner_up"] = r.secondIndex == vpMorphRecognition::npos ? nlohmann::json(nullptr)
                                                                      : nlohmann::json(db[r.secondIndex].name());
           j["runner_up_distance"] = std::isfinite(r.secondDistance) ? nlohmann::json(r.secondDistance) : nullptr;
@@ -242,6 +244,8 @@ int main(int argc, char **argv)
           if (!std::isnan(r.support))
             std::cout << ", support " << std::setprecision(2) << std::fixed << r.support << " (minimum "
                       << fmt(db.minimumSupport()) << ")";
+          if (r.reranked)
+            std::cout << ", re-ranked from " << db[r.secondIndex].name();
           std::cout << ", runner-up "
                     << (r.secondIndex == vpMorphRecognition::npos ? std::string("none") : db[r.secondIndex].name())
                     << " " << fmt(r.secondDistance) << ", margin " << std::setprecision(1) << std::fixed

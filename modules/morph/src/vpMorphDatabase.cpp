@@ -408,11 +408,55 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   r.threshold = threshold(r.index);
   r.accepted = r.distance <= r.threshold;
   r.correspondence = matcher.match(c, m_templates[r.index].contour());
-  if (!r.accepted && std::isfinite(m_minSupport)) {
-    r.support =
-        r.mirrored ? support(c, r.index, true) : shownShare(c, m_templates[r.index].contour(), r.correspondence);
+  if (!std::isfinite(m_minSupport))
+    return r;
+  r.support = r.mirrored ? support(c, r.index, true) : shownShare(c, m_templates[r.index].contour(), r.correspondence);
+  if (!r.accepted) {
     r.accepted = r.support >= m_minSupport;
+    return r;
   }
+  if (r.support >= m_minSupport || T == 1)
+    return r;
+  // The distance accepted a template whose outline the view does not show: a notch bitten into an occluded view can
+  // cost less work on another tool's outline than on its own (a key under a card taken for the wrench). The nearest
+  // other templates are aligned on the view too, and the one it shows most replaces the distance's choice if it
+  // reaches the minimum; if none does (a deformed view, which shows no outline whole), the distance's choice stands.
+  // No bound on their distance: the notch can put the right template at over twice its threshold (a wedge, 2.3).
+  std::vector<std::pair<double, std::size_t>> others;
+  std::vector<bool> mirroredOther(T, false);
+  for (std::size_t k = 0; k < T; ++k)
+    if (k != r.index) {
+      bool mir = false;
+      others.emplace_back(m_distance.distance(q, m_shapes[k], matcher, -1.0, &mir), k);
+      mirroredOther[k] = mir;
+    }
+  r.evaluated = T;
+  std::sort(others.begin(), others.end());
+  if (others.size() > rerankCandidates())
+    others.resize(rerankCandidates());
+  double bestSupport = r.support;
+  std::size_t bestIndex = r.index;
+  double bestDistance = r.distance;
+  for (const auto &o : others) {
+    const double s = support(c, o.second, mirroredOther[o.second]);
+    if (s > bestSupport) {
+      bestSupport = s;
+      bestIndex = o.second;
+      bestDistance = o.first;
+    }
+  }
+  if (bestIndex == r.index || !(bestSupport >= m_minSupport))
+    return r;
+  r.secondIndex = r.index;
+  r.secondDistance = r.distance;
+  r.index = bestIndex;
+  r.distance = bestDistance;
+  r.mirrored = mirroredOther[bestIndex];
+  r.support = bestSupport;
+  r.margin = 0.0; // not the distance's choice
+  r.threshold = threshold(r.index);
+  r.reranked = true;
+  r.correspondence = matcher.match(c, m_templates[r.index].contour());
   return r;
 }
 

@@ -204,31 +204,52 @@ TEST_CASE("recognition: a view with a square bitten out of its outline is accept
   const vpMorphDatabase &db = objectDatabase();
   vpMorphDatabase distanceOnly = db;
   distanceOnly.setMinimumSupport(std::numeric_limits<double>::infinity());
-  int byDistance = 0, bySupport = 0;
+  int byDistance = 0, bySupport = 0, wrongByDistance = 0, reranked = 0, correct = 0;
   for (std::size_t k = 0; k < db.size(); ++k) {
     const cv::Mat src = readGray(objectPath(kObjects[k]));
     for (double where : {0.1, 0.35, 0.6, 0.85})
       for (double share : {0.1, 0.15}) {
         const vpMorphContour c = extractJoined(squareOccluder(view(src, 40.0 * where, 10, -5, 4, 3), where, share));
         const vpMorphRecognition r = db.recognize(c);
-        CAPTURE(kObjects[k], where, share, r.distance, r.threshold, r.support, db[r.index].name());
-        if (distanceOnly.recognize(c).accepted) {
+        const vpMorphRecognition d = distanceOnly.recognize(c);
+        CAPTURE(kObjects[k], where, share, r.distance, r.threshold, r.support, db[r.index].name(), r.reranked,
+                db[d.index].name());
+        CHECK(std::isnan(d.support)); // not measured with the support off
+        CHECK(std::isfinite(r.support));
+        if (d.accepted) {
           ++byDistance;
-          CHECK(std::isnan(r.support)); // measured only when the distance rejects
+          wrongByDistance += d.index != k ? 1 : 0;
+          CHECK(r.accepted); // the support never rejects what the distance accepts
         } else if (r.accepted) {
           ++bySupport;
+        }
+        if (r.reranked) {
+          // Re-ranked: the distance's choice showed too little of its outline, the new one enough.
+          ++reranked;
+          CHECK(r.secondIndex == d.index);
+          CHECK(r.support >= db.minimumSupport());
+          CHECK(r.margin == 0.0);
+          CHECK(r.index == k);
+        }
+        if (r.accepted && r.distance > r.threshold) {
           // What the support accepts is the object shown, and it shows most of its outline.
           CHECK(r.index == k);
           CHECK(r.support >= db.minimumSupport());
         }
+        correct += r.accepted && r.index == k ? 1 : 0;
       }
   }
   // Why the support is there: the distance alone rejects some of these views (a notch costs far more work than
-  // the calibration's straight edges), and the support accepts them.
-  std::printf("[recognition] square occluders: %d of 48 views accepted by the distance, %d more by the support\n",
-              byDistance, bySupport);
+  // the calibration's straight edges) and takes others for another tool; the support accepts the first and puts
+  // the right tool in place of the wrong one where the view shows enough of the right tool's outline.
+  std::printf("[recognition] square occluders: %d of 48 views accepted by the distance (%d as another tool), %d more "
+              "by the support; %d re-ranked; %d recognised as the right tool\n",
+              byDistance, wrongByDistance, bySupport, reranked, correct);
   CHECK(bySupport > 0);
+  CHECK(wrongByDistance > 0);
+  CHECK(reranked > 0);
   CHECK(byDistance + bySupport >= 46); // of 48
+  CHECK(correct >= 44);
   // It accepts nothing that is not one of the tools: the unknown shapes show little of their best template.
   for (int kind = 0; kind < 2; ++kind) {
     const vpMorphRecognition r = db.recognize(extract(unknownObject(kind)));

@@ -25,17 +25,20 @@ class vpMorphRecognition
 public:
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
-  std::size_t index = npos;                                        //!< best template
+  std::size_t index = npos;                                        //!< the template (the nearest unless reranked)
   double distance = std::numeric_limits<double>::infinity();       //!< its distance (vpMorphShapeDistance)
   std::size_t secondIndex = npos;                                  //!< runner-up (npos with one template)
   double secondDistance = std::numeric_limits<double>::infinity(); //!< its distance
-  //! Relative gap (secondDistance - distance) / secondDistance in [0, 1]; 1 with a single template.
+  //! Relative gap (secondDistance - distance) / secondDistance in [0, 1]; 1 with a single template, 0 if reranked.
   double margin = 0.0;
   double threshold = std::numeric_limits<double>::infinity(); //!< acceptance threshold used
-  //! Share of the best template's outline that the query shows (vpMorphDatabase::support()), measured only when
-  //! the distance rejects it (NaN otherwise).
+  //! Share of the template's outline that the query shows (vpMorphDatabase::support()); NaN when the database's
+  //! minimum support is off.
   double support = std::numeric_limits<double>::quiet_NaN();
   bool accepted = false; //!< distance <= threshold, or else support >= vpMorphDatabase::minimumSupport()
+  //! The distance's choice showed too little of its outline and was replaced by the template the query shows most
+  //! (vpMorphDatabase, re-ranking); then secondIndex is the distance's choice and margin is 0.
+  bool reranked = false;
   bool mirrored = false;                                      //!< the template's mirror image matched best
   /*!
     Minimal-work correspondence from the query contour to the best template's contour (as stored, not
