@@ -410,7 +410,15 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   r.correspondence = matcher.match(c, m_templates[r.index].contour());
   if (!std::isfinite(m_minSupport))
     return r;
-  r.support = r.mirrored ? support(c, r.index, true) : shownShare(c, m_templates[r.index].contour(), r.correspondence);
+  const vpMorphContour &t = m_templates[r.index].contour();
+  if (!r.mirrored)
+    r.support = shownShare(c, t, r.correspondence);
+  else if (c.units() == t.units())
+    r.support = support(c, r.index, true);
+  else { // support() refuses other units; the similarity fit does not need them equal
+    const vpMorphContour cm = c.mirrored();
+    r.support = shownShare(cm, t, matcher.match(cm, t));
+  }
   if (!r.accepted) {
     r.accepted = r.support >= m_minSupport;
     return r;
@@ -438,6 +446,8 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   std::size_t bestIndex = r.index;
   double bestDistance = r.distance;
   for (const auto &o : others) {
+    if (m_templates[o.second].contour().units() != c.units())
+      continue; // support() refuses them
     const double s = support(c, o.second, mirroredOther[o.second]);
     if (s > bestSupport) {
       bestSupport = s;
