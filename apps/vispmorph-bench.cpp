@@ -6,7 +6,7 @@
   vispmorph-bench --set planar|planar-hard|6dof|calib|noise|occlusion|deformable|faults|all[,...]
                   [--controllers morph,morph-planar,morph-vpservo,ibvs-current,ibvs-desired,ibvs-mean,pbvs,moments]
                   [--robot camera|viper850|afma6] [--count N] [--seed S] --out DIR
-                  [--threads T] [--max-iterations N] [--lambda L] [--no-curves] [--no-plots]
+                  [--threads T] [--max-iterations N] [--lambda L] [--no-curves] [--no-plots] [--recognition]
   \endcode
   Generates the scenarios of each set (vpMorphBenchScenario::generate, seeded), runs every controller on every
   scenario (vpMorphBench, all cores, progress on stderr) and writes in DIR:
@@ -15,6 +15,9 @@
   - curves.csv: the truth pose error at every iteration of every run;
   - summary.json and summary.md: per set, robot and controller (vpMorphBenchReport);
   - PNG plots made by vispmorph-bench-plots.py (Debian's /usr/bin/python3 with matplotlib) unless --no-plots.
+  With --recognition, no run: the first view of every scenario is recognised (vpMorphBench::recognizeStart()), one
+  row each in recognition.csv, and the counts per set (right tool, another tool, rejected, re-ranked) are printed and
+  written to recognition.md: the recognition checked on more starts than the servo can afford.
   Exit status: 0 when the bench ran (whatever the controllers did), 1 on an error, 2 on bad arguments.
 */
 #include <chrono>
@@ -58,6 +61,7 @@ void usage(std::ostream &os)
         "  --lambda L         gain of every controller, 1/s (default 2.5)\n"
         "  --data DIR         the data/ folder (default: the repository's)\n"
         "  --no-curves        do not write curves.csv\n"
+        "  --recognition      no runs: recognise each scenario's first view (recognition.csv, recognition.md)\n"
         "  --no-plots         do not run the plot script\n";
 }
 
@@ -137,6 +141,62 @@ double yardstickMs(const std::string &dataDir)
   }
   return best;
 }
+/*
+  --recognition: the first view of each scenario recognised, a row each in recognition.csv, and the counts per set in
+  recognition.md and on stdout. Progress on stderr every 10 views.
+*/
+int recognizeStarts(const vpMorphBench &bench, const std::vector<vpMorphBenchScenario> &scenarios,
+                    const std::string &out)
+{
+  const vpMorphDatabase &db = bench.database();
+  vpMorphDatabase distanceAlone = db; // the same database without the support, for comparison
+  distanceAlone.setMinimumSupport(std::numeric_limits<double>::infinity());
+  std::ofstream f(out + "/recognition.csv");
+  f << "set,scenario,seed,object,recognized,accepted,correct,distance,threshold,support,reranked,runner_up,"
+       "distance_alone_recognized,distance_alone_accepted\n";
+  struct Counts
+  {
+    int views = 0, right = 0, wrong = 0, rejected = 0, reranked = 0, empty = 0, aloneRight = 0, aloneWrong = 0;
+  };
+  std::vector<std::pair<std::string, Counts>> perSet;
+  for (std::size_t k = 0; k < scenarios.size(); ++k) {
+    const vpMorphBenchScenario &sc = scenarios[k];
+    vpMorphContour c;
+    const vpMorphRecognition r = bench.recognizeStart(sc, &c);
+    const vpMorphRecognition a = c.empty() ? vpMorphRecognition() : distanceAlone.recognize(c);
+    const std::string aloneName = c.empty() ? std::string() : db[a.index].name();
+    if (perSet.empty() || perSet.back().first != sc.set)
+      perSet.emplace_back(sc.set, Counts());
+    Counts &n = perSet.back().second;
+    ++n.views;
+    const bool none = r.index == vpMorphRecognition::npos;
+    const std::string name = none ? std::string() : db[r.index].name();
+    n.empty += none ? 1 : 0;
+    n.right += r.accepted && name == sc.object ? 1 : 0;
+    n.wrong += r.accepted && name != sc.object ? 1 : 0;
+    n.rejected += !none && !r.accepted ? 1 : 0;
+    n.reranked += r.reranked ? 1 : 0;
+    n.aloneRight += a.accepted && aloneName == sc.object ? 1 : 0;
+    n.aloneWrong += a.accepted && aloneName != sc.object ? 1 : 0;
+    f << std::setprecision(6) << sc.set << ',' << sc.index << ',' << sc.seed << ',' << sc.object << ',' << name << ','
+      << r.accepted << ',' << (r.accepted && name == sc.object) << ',' << r.distance << ',' << r.threshold << ','
+      << r.support << ',' << r.reranked << ','
+      << (r.secondIndex == vpMorphRecognition::npos ? std::string() : db[r.secondIndex].name()) << ',' << aloneName
+      << ',' << a.accepted << "\n";
+    if ((k + 1) % 10 == 0 || k + 1 == scenarios.size())
+      std::cerr << "[" << k + 1 << "/" << scenarios.size() << "] first views recognised" << std::endl;
+  }
+  std::ostringstream md;
+  md << "| set | first views | right tool | another tool | rejected | re-ranked | no silhouette | distance alone: "
+        "right / another tool |\n|---|---|---|---|---|---|---|---|\n";
+  for (const auto &p : perSet)
+    md << "| " << p.first << " | " << p.second.views << " | " << p.second.right << " | " << p.second.wrong << " | "
+       << p.second.rejected << " | " << p.second.reranked << " | " << p.second.empty << " | " << p.second.aloneRight
+       << " / " << p.second.aloneWrong << " |\n";
+  std::ofstream(out + "/recognition.md") << md.str();
+  std::cout << md.str() << "results in " << out << "/recognition.csv" << std::endl;
+  return EXIT_SUCCESS;
+}
 } // namespace
 
 int main(int argc, char **argv)
@@ -146,7 +206,7 @@ int main(int argc, char **argv)
   unsigned int count = 10, seed = 1, threads = 0;
   std::vector<unsigned int> only;
   vpMorphBench::Settings settings;
-  bool curves = true, plots = true;
+  bool curves = true, plots = true, recognitionOnly = false;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -204,6 +264,8 @@ int main(int argc, char **argv)
         curves = false;
       else if (a == "--no-plots")
         plots = false;
+      else if (a == "--recognition")
+        recognitionOnly = true;
       else if (a == "--help" || a == "-h") {
         usage(std::cout);
         return EXIT_SUCCESS;
@@ -246,6 +308,9 @@ int main(int argc, char **argv)
       for (const vpMorphBenchScenario &s : scenarios)
         f << scenarioRow(s) << "\n";
     }
+
+    if (recognitionOnly)
+      return recognizeStarts(bench, scenarios, out);
 
     std::ofstream runs(out + "/runs.csv");
     runs << vpMorphBenchReport::runsHeader() << "\n" << std::flush;

@@ -12,7 +12,8 @@
   info: templates, vertex counts, calibration (within, nearest other template, threshold).
   recognize: per image, the template, its distance and threshold, the share of its outline shown
   (vpMorphDatabase::support()), the runner-up (the distance's choice when the support re-ranked them), the margin,
-  and ACCEPTED (by the distance or by the support) or REJECTED; with several images, how many were accepted each way.
+  and ACCEPTED (by the distance or by the support) or REJECTED (beyond the threshold and short of the minimum
+  support, or within it but under the support floor); with several images, how many were accepted each way.
   --min-support replaces the database's minimum support for this query (off: the distance alone).
   Exit status: 0 on success (also when objects are rejected), 1 on an error (with several images, after recognising
   all the others), 2 on bad arguments.
@@ -181,6 +182,8 @@ int main(int argc, char **argv)
       }
       std::cout << "minimum support (share of a template's outline that accepts a view its distance rejects): "
                 << fmt(db.minimumSupport()) << "\n";
+      std::cout << "support floor (share under which a view its distance accepts is rejected): "
+                << fmt(db.supportFloor()) << "\n";
     } else {
       vpMorphDatabase db = vpMorphDatabase::load(a.positional[0]);
       if (a.minSupport > 0.0)
@@ -228,6 +231,7 @@ int main(int argc, char **argv)
           j["accepted_by"] = !r.accepted ? nlohmann::json(nullptr) : nlohmann::json(supported ? "support" : "distance");
           j["mirrored"] = r.mirrored;
           j["reranked"] = r.reranked;
+          j["support_floor"] = db.supportFloor();
           j["runner_up"] = r.secondIndex == vpMorphRecognition::npos ? nlohmann::json(nullptr)
                                                                      : nlohmann::json(db[r.secondIndex].name());
           j["runner_up_distance"] = std::isfinite(r.secondDistance) ? nlohmann::json(r.secondDistance) : nullptr;
@@ -246,6 +250,8 @@ int main(int argc, char **argv)
                       << fmt(db.minimumSupport()) << ")";
           if (r.reranked)
             std::cout << ", re-ranked from " << db[r.secondIndex].name();
+          if (!r.accepted && r.distance <= r.threshold)
+            std::cout << ", under the support floor " << fmt(db.supportFloor());
           std::cout << ", runner-up "
                     << (r.secondIndex == vpMorphRecognition::npos ? std::string("none") : db[r.secondIndex].name())
                     << " " << fmt(r.secondDistance) << ", margin " << std::setprecision(1) << std::fixed

@@ -281,6 +281,14 @@ void vpMorphDatabase::setMinimumSupport(double s)
   m_minSupport = s;
 }
 
+void vpMorphDatabase::setSupportFloor(double s)
+{
+  if (!(s >= 0.0 && s <= 1.0))
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphDatabase::setSupportFloor: the floor must be in [0, 1]");
+  m_supportFloor = s;
+}
+
 double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mirrored) const
 {
   const vpMorphContour &t = operator[](k).contour();
@@ -290,8 +298,13 @@ double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mir
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphDatabase::support: the contour's units are not those of template '" +
                                m_templates[k].name() + "'");
-  const vpMorphContour q = mirrored ? c.mirrored() : c;
-  return shownShare(q, t, m_distance.matcher().match(q, t));
+  vpMorphMatcher matcher = m_distance.matcher();
+  if (!mirrored)
+    return shownShare(c, t, matcher.match(c, t));
+  // A nearly symmetric part (the screwdriver) can be matched by its mirror image for a hair less work, and the
+  // polygons of its mirror image then align badly (0.05 of the outline shown): the view itself is aligned too.
+  const vpMorphContour q = c.mirrored();
+  return std::max(shownShare(q, t, matcher.match(q, t)), shownShare(c, t, matcher.match(c, t)));
 }
 
 bool vpMorphDatabase::accepts(const vpMorphContour &c, std::size_t k, double slack, double *distance) const
@@ -411,19 +424,16 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   if (!std::isfinite(m_minSupport))
     return r;
   const vpMorphContour &t = m_templates[r.index].contour();
-  if (!r.mirrored)
-    r.support = shownShare(c, t, r.correspondence);
-  else if (c.units() == t.units())
-    r.support = support(c, r.index, true);
-  else { // support() refuses other units; the similarity fit does not need them equal
+  r.support = shownShare(c, t, r.correspondence);
+  if (r.mirrored) { // as support(), which refuses other units: the similarity fit does not need them equal
     const vpMorphContour cm = c.mirrored();
-    r.support = shownShare(cm, t, matcher.match(cm, t));
+    r.support = std::max(shownShare(cm, t, matcher.match(cm, t)), r.support);
   }
   if (!r.accepted) {
     r.accepted = r.support >= m_minSupport;
     return r;
   }
-  if (r.support >= m_minSupport || T == 1)
+  if (r.support >= m_minSupport)
     return r;
   // The distance accepted a template whose outline the view does not show: a notch bitten into an occluded view can
   // cost less work on another tool's outline than on its own (a key under a card taken for the wrench). The nearest
@@ -455,8 +465,11 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
       bestDistance = o.first;
     }
   }
-  if (bestIndex == r.index || !(bestSupport >= m_minSupport))
+  if (bestIndex == r.index || !(bestSupport >= m_minSupport)) {
+    // Nothing verified: the distance's choice stands, unless the view shows almost nothing of it (an unknown shape).
+    r.accepted = r.support >= m_supportFloor;
     return r;
+  }
   r.secondIndex = r.index;
   r.secondDistance = r.distance;
   r.index = bestIndex;
@@ -564,6 +577,7 @@ std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
   cal["within"] = finiteOrNull(m_within);
   cal["between"] = finiteOrNull(m_between);
   cal["support"] = std::isfinite(m_minSupport) ? json(m_minSupport) : json(nullptr);
+  cal["support_floor"] = m_supportFloor;
   j["calibration"] = cal;
   json ts = json::array();
   for (const vpMorphTemplate &t : m_templates) {
@@ -771,6 +785,12 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
       if (!su.is_null() && !(su.is_number() && su.get<double>() > 0.0 && su.get<double>() <= 1.0))
         throw ioError("vpMorphDatabase: \"calibration\": support must be a number in (0, 1] or null");
       db.m_minSupport = su.is_null() ? kInf : su.get<double>();
+    }
+    if (cal.contains("support_floor")) { // idem
+      const json &fl = cal["support_floor"];
+      if (!(fl.is_number() && fl.get<double>() >= 0.0 && fl.get<double>() <= 1.0))
+        throw ioError("vpMorphDatabase: \"calibration\": support_floor must be a number in [0, 1]");
+      db.m_supportFloor = fl.get<double>();
     }
   }
   return db;

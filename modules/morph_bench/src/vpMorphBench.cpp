@@ -72,6 +72,21 @@ vpMorphBench::vpMorphBench(const std::string &dataDir, const Settings &settings)
   m_db.calibrate(1);
 }
 
+vpMorphRecognition vpMorphBench::recognizeStart(const vpMorphBenchScenario &sc, vpMorphContour *shown) const
+{
+  const vpMorphPlanarScene scene = sc.scene();
+  vpImage<unsigned char> I;
+  scene.render(sc.cdMc.inverse() * sc.cdMo, I); // frame 0, as a run's first image
+  vpHomogeneousMatrix cMt;
+  std::vector<vpImagePoint> corners;
+  if (!scene.tagPoseEstimator().estimate(I, cMt, &corners))
+    corners.clear(); // nothing to mask
+  const vpMorphContour c = vpMorphTagPoseEstimator::silhouette(I, corners);
+  if (shown)
+    *shown = c;
+  return c.empty() ? vpMorphRecognition() : m_db.recognize(c);
+}
+
 vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::string &controllerName) const
 {
   std::unique_ptr<vpMorphBenchController> controller = vpMorphBenchController::create(controllerName);

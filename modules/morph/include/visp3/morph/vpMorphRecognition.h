@@ -35,7 +35,9 @@ public:
   //! Share of the template's outline that the query shows (vpMorphDatabase::support()); NaN when the database's
   //! minimum support is off.
   double support = std::numeric_limits<double>::quiet_NaN();
-  bool accepted = false; //!< distance <= threshold, or else support >= vpMorphDatabase::minimumSupport()
+  //! distance <= threshold and support >= vpMorphDatabase::supportFloor(), or else support >=
+  //! vpMorphDatabase::minimumSupport()
+  bool accepted = false;
   //! The distance's choice showed too little of its outline and was replaced by the template the query shows most
   //! (vpMorphDatabase, re-ranking); then secondIndex is the distance's choice and margin is 0.
   bool reranked = false;

@@ -64,6 +64,14 @@ public:
   const Settings &settings() const { return m_settings; }
   const vpMorphDatabase &database() const { return m_db; }
 
+  /*!
+    The recognition of a scenario's first view, as the controllers see it before they move: its scene rendered from
+    the start pose (the free camera's), the tag found and masked, the silhouette extracted and recognised by
+    database(). \e shown, if not null, receives the silhouette (empty when there is none; then the recognition has no
+    template, index npos). A check of the recognition on many starts without servoing them.
+  */
+  vpMorphRecognition recognizeStart(const vpMorphBenchScenario &scenario, vpMorphContour *shown = nullptr) const;
+
   //! One run; never throws for a controller's failure (it is the result), only for bad arguments.
   vpMorphBenchResult run(const vpMorphBenchScenario &scenario, const std::string &controller) const;
   /*!
