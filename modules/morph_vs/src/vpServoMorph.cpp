@@ -37,6 +37,12 @@ const double kDeformedOutside = 0.02;
 // straight edge outran.
 const double kRigidPartTolerancePx = 0.25, kRigidPartMinShare = 0.1;
 const unsigned int kRigidPartPeriod = 8;
+// Least share of the outline that the largest part lying on the target's must cover for its scale to replace the
+// edge fit's on a view whose region is not the target's (a wedge with a sagging top: 0.69).
+const double kEdgePartMinShare = 0.5;
+// Searches in a row for that part before waiting kRigidPartPeriod periods again (a view that has none: an occluded
+// one showing less than that share of its outline on the target's, or one still far from it).
+const unsigned int kEdgePartRetries = 3;
 // Largest change of the outline's length that a bend explains (relative): the drawn bends change it by under 0.5 %.
 const double kBendLengthChange = 0.01;
 // Points of the resampled outlines the overlap is measured on (about 5 pixels apart: 0.025 ms an evaluation).
@@ -497,8 +503,32 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
       // Not for a deformed view (see overlapFit(): its scale comes from its undeformed part).
       if (m_k + 1 == m_subGoals.size() && currentN.hasOutline() && m_target.hasOutline() && m_deformed != DEFORMED) {
         const vpMorphContour &o = currentN.outline();
+        const vpMorphContour targetOutline = m_target.toNormalized(m_cam).outline();
         const vpMorphRigidTransform Te =
-            vpMorphRigidTransform::refineOnOutline(o, m_target.toNormalized(m_cam).outline(), T, true, 0.2 * halfPixel);
+            vpMorphRigidTransform::refineOnOutline(o, targetOutline, T, true, 0.2 * halfPixel);
+        // A bend that only takes area away (a wedge whose top sags) is not found deformed by overlapFit() (nothing
+        // of the view lies outside the target), and the edge fit, pulled by the bent stretch, ended 1.6 % off in
+        // scale (8 mm deep). So the pose is the fit of the largest part of the outline lying on the target's, when
+        // it is at least kEdgePartMinShare of it (an occluded view: the part it shows, about the edge fit itself).
+        // Searched every kRigidPartPeriod periods (milliseconds), and once found followed from its last offset to the
+        // edge fit in between. When lost, searched again at the next periods (kEdgePartRetries times): falling back
+        // to the edge fit for a period or two is enough to make the loop chatter, the two fits being millimetres
+        // apart on a bent view (a wedge wandering 5-7 mm off until the budget ran out).
+        const bool search =
+            m_edgePartCount++ % kRigidPartPeriod == 0 || (!m_edgePartKnown && m_edgePartMisses < kEdgePartRetries);
+        if (search || m_edgePartKnown) {
+          const vpMorphContour dense = o.resampled(2 * kOverlapPoints);
+          const double tolerance = kRigidPartTolerancePx / std::max(m_cam.get_px(), m_cam.get_py());
+          double share = 0.0;
+          const vpMorphRigidTransform R =
+              search ? vpMorphRigidTransform::fitRigidPart(dense, targetOutline, Te, tolerance, &share)
+                     : vpMorphRigidTransform::refineRigidPart(dense, targetOutline, m_edgePartOffset * Te, tolerance,
+                                                              &share);
+          m_edgePartKnown = share >= kEdgePartMinShare && R.scale() > 0.0;
+          if (m_edgePartKnown)
+            m_edgePartOffset = R * Te.inverse();
+          m_edgePartMisses = m_edgePartKnown ? 0 : m_edgePartMisses + 1;
+        }
         double moved = 0.0;
         for (std::size_t i = 0; i < o.size(); ++i) {
           double x0, y0, x1, y1;
@@ -506,7 +536,9 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
           Te.apply(o.x(i), o.y(i), x1, y1);
           moved = std::max(moved, std::hypot(x1 - x0, y1 - y0));
         }
-        if (moved <= 4.0 * halfPixel)
+        if (m_edgePartKnown)
+          T = m_edgePartOffset * Te;
+        else if (moved <= 4.0 * halfPixel)
           T = vpMorphRigidTransform(T.theta(), T.tx(), T.ty(), Te.scale(), T.cx(), T.cy());
       }
     } else {
@@ -549,6 +581,9 @@ void vpServoMorph::forgetDeformation()
   m_scaleBias = 1.0;
   m_rigidPartCount = 0;
   m_partKnown = false;
+  m_edgePartCount = 0;
+  m_edgePartKnown = false;
+  m_edgePartMisses = 0;
 }
 
 vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, const vpMorphContour &goalN,

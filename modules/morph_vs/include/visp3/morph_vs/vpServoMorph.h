@@ -460,6 +460,10 @@ private:
   unsigned int m_rigidPartCount = 0; // periods since the deformed view was found, for the part's search
   bool m_partKnown = false;          // the undeformed part was found at the last period
   vpMorphRigidTransform m_partOffset; // its fit o the overlap fit^-1, to follow it to the next period
+  unsigned int m_edgePartCount = 0;   // periods of the final approach of a view not alike its target
+  bool m_edgePartKnown = false;       // its largest part lying on the target's covers kEdgePartMinShare of it
+  vpMorphRigidTransform m_edgePartOffset; // that part's fit o the edge fit^-1, carried between its searches
+  unsigned int m_edgePartMisses = 0;      // searches in a row that did not find it
   double m_tiltRes = 0;
   bool m_tiltOk = false, m_tiltLatched = false;
   // Tilt executed since the first tilt command of the final approach (camera frame, rad), the estimate at that
