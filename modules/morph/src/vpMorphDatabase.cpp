@@ -129,6 +129,21 @@ double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorp
   return best;
 }
 
+/*
+  shownShare() of q from \e direct, the minimal-work correspondence of q itself, and when \e mirrored also of q's mirror
+  image: the better counts. A nearly symmetric part (the screwdriver) can be matched by its mirror image for a hair
+  less work, and the polygons of its mirror image then align badly (0.05 of the outline shown).
+*/
+double shownEitherWay(const vpMorphContour &q, const vpMorphContour &t, vpMorphMatcher &matcher, bool mirrored,
+                      const vpMorphCorrespondence &direct)
+{
+  const double s = shownShare(q, t, direct);
+  if (!mirrored)
+    return s;
+  const vpMorphContour m = q.mirrored();
+  return std::max(shownShare(m, t, matcher.match(m, t)), s);
+}
+
 json poseToJson(const vpHomogeneousMatrix &M)
 {
   json a = json::array();
@@ -299,12 +314,7 @@ double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mir
                            "vpMorphDatabase::support: the contour's units are not those of template '" +
                                m_templates[k].name() + "'");
   vpMorphMatcher matcher = m_distance.matcher();
-  if (!mirrored)
-    return shownShare(c, t, matcher.match(c, t));
-  // A nearly symmetric part (the screwdriver) can be matched by its mirror image for a hair less work, and the
-  // polygons of its mirror image then align badly (0.05 of the outline shown): the view itself is aligned too.
-  const vpMorphContour q = c.mirrored();
-  return std::max(shownShare(q, t, matcher.match(q, t)), shownShare(c, t, matcher.match(c, t)));
+  return shownEitherWay(c, t, matcher, mirrored, matcher.match(c, t));
 }
 
 bool vpMorphDatabase::accepts(const vpMorphContour &c, std::size_t k, double slack, double *distance) const
@@ -423,12 +433,8 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   r.correspondence = matcher.match(c, m_templates[r.index].contour());
   if (!std::isfinite(m_minSupport))
     return r;
-  const vpMorphContour &t = m_templates[r.index].contour();
-  r.support = shownShare(c, t, r.correspondence);
-  if (r.mirrored) { // as support(), which refuses other units: the similarity fit does not need them equal
-    const vpMorphContour cm = c.mirrored();
-    r.support = std::max(shownShare(cm, t, matcher.match(cm, t)), r.support);
-  }
+  // Not through support(), which refuses other units: the similarity fit does not need them equal.
+  r.support = shownEitherWay(c, m_templates[r.index].contour(), matcher, r.mirrored, r.correspondence);
   if (!r.accepted) {
     r.accepted = r.support >= m_minSupport;
     return r;

@@ -37,8 +37,8 @@ const double kDeformedOutside = 0.02;
 // straight edge outran.
 const double kRigidPartTolerancePx = 0.25, kRigidPartMinShare = 0.1;
 const unsigned int kRigidPartPeriod = 8;
-// Least share of the outline that the largest part lying on the target's must cover for its scale to replace the
-// edge fit's on a view whose region is not the target's (a wedge with a sagging top: 0.69).
+// Least share of the outline that the largest part lying on the target's must cover for its fit to replace the
+// edge fit on a view whose region is not the target's (a wedge with a sagging top: 0.69).
 const double kEdgePartMinShare = 0.5;
 // Searches in a row for that part before waiting kRigidPartPeriod periods again (a view that has none: an occluded
 // one showing less than that share of its outline on the target's, or one still far from it).
@@ -47,6 +47,16 @@ const unsigned int kEdgePartRetries = 3;
 const double kBendLengthChange = 0.01;
 // Points of the resampled outlines the overlap is measured on (about 5 pixels apart: 0.025 ms an evaluation).
 const std::size_t kOverlapPoints = 128;
+
+// The largest part of the outline \e dense lying within \e tolerance of \e target: searched over the whole outline, or
+// followed from its last \e offset to \e base (a few rounds).
+vpMorphRigidTransform rigidPart(const vpMorphContour &dense, const vpMorphContour &target,
+                                const vpMorphRigidTransform &base, bool search, const vpMorphRigidTransform &offset,
+                                double tolerance, double &share)
+{
+  return search ? vpMorphRigidTransform::fitRigidPart(dense, target, base, tolerance, &share)
+                : vpMorphRigidTransform::refineRigidPart(dense, target, offset * base, tolerance, &share);
+}
 
 void checkPositive(double v, const char *what)
 {
@@ -521,25 +531,25 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
           const double tolerance = kRigidPartTolerancePx / std::max(m_cam.get_px(), m_cam.get_py());
           double share = 0.0;
           const vpMorphRigidTransform R =
-              search ? vpMorphRigidTransform::fitRigidPart(dense, targetOutline, Te, tolerance, &share)
-                     : vpMorphRigidTransform::refineRigidPart(dense, targetOutline, m_edgePartOffset * Te, tolerance,
-                                                              &share);
+              rigidPart(dense, targetOutline, Te, search, m_edgePartOffset, tolerance, share);
           m_edgePartKnown = share >= kEdgePartMinShare && R.scale() > 0.0;
           if (m_edgePartKnown)
             m_edgePartOffset = R * Te.inverse();
           m_edgePartMisses = m_edgePartKnown ? 0 : m_edgePartMisses + 1;
         }
-        double moved = 0.0;
-        for (std::size_t i = 0; i < o.size(); ++i) {
-          double x0, y0, x1, y1;
-          T.apply(o.x(i), o.y(i), x0, y0);
-          Te.apply(o.x(i), o.y(i), x1, y1);
-          moved = std::max(moved, std::hypot(x1 - x0, y1 - y0));
-        }
-        if (m_edgePartKnown)
+        if (m_edgePartKnown) {
           T = m_edgePartOffset * Te;
-        else if (moved <= 4.0 * halfPixel)
-          T = vpMorphRigidTransform(T.theta(), T.tx(), T.ty(), Te.scale(), T.cx(), T.cy());
+        } else {
+          double moved = 0.0;
+          for (std::size_t i = 0; i < o.size(); ++i) {
+            double x0, y0, x1, y1;
+            T.apply(o.x(i), o.y(i), x0, y0);
+            Te.apply(o.x(i), o.y(i), x1, y1);
+            moved = std::max(moved, std::hypot(x1 - x0, y1 - y0));
+          }
+          if (moved <= 4.0 * halfPixel)
+            T = vpMorphRigidTransform(T.theta(), T.tx(), T.ty(), Te.scale(), T.cx(), T.cy());
+        }
       }
     } else {
       T = vpMorphRigidTransform(refinedRotation(goalN, currentN, Tfit.theta()), gx - cx, gy - cy, s, cx, cy);
@@ -642,9 +652,7 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
       const double tolerance = kRigidPartTolerancePx / std::max(m_cam.get_px(), m_cam.get_py());
       double share = 0.0;
       const vpMorphRigidTransform R =
-          search ? vpMorphRigidTransform::fitRigidPart(curDense, goalN.outline(), Tovl, tolerance, &share)
-                 : vpMorphRigidTransform::refineRigidPart(curDense, goalN.outline(), m_partOffset * Tovl, tolerance,
-                                                          &share);
+          rigidPart(curDense, goalN.outline(), Tovl, search, m_partOffset, tolerance, share);
       m_partKnown = share >= kRigidPartMinShare && std::fabs(R.scale() / lengthScale - 1.0) < kBendLengthChange;
       if (m_partKnown) {
         m_partOffset = R * Tovl.inverse();
