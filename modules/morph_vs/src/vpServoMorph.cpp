@@ -24,6 +24,30 @@ double largestDeviation(double c00, double c01, double c11)
 {
   return std::sqrt(std::max(0.0, 0.5 * (c00 + c11) + std::sqrt(0.25 * (c00 - c11) * (c00 - c11) + c01 * c01)));
 }
+/*
+  The tilt to command from the estimate e, given a second estimate f and the covariance S = [s00 s01; s01 s11] of one
+  period's estimate: along each principal axis of S, what both e and f show on the same side beyond k standard
+  deviations (and at least floor), the smaller of the two; nothing on an axis where they disagree. Per axis, because a
+  thin object's tilt about its long axis is seen ten times worse than about its short one (the pliers: 0.33 and
+  0.04 deg): one dead zone for both either left the short axis's tilt uncorrected or followed the long axis's noise.
+*/
+void tiltBeyondDeadZone(double ex, double ey, double fx, double fy, double s00, double s01, double s11, double floor,
+                        double k, double &cx, double &cy)
+{
+  const double mean = 0.5 * (s00 + s11), half = std::sqrt(0.25 * (s00 - s11) * (s00 - s11) + s01 * s01);
+  const double th = 0.5 * std::atan2(2.0 * s01, s00 - s11); // the axis of the larger variance
+  const double variance[2] = {mean + half, std::max(0.0, mean - half)};
+  const double axis[2][2] = {{std::cos(th), std::sin(th)}, {-std::sin(th), std::cos(th)}};
+  cx = cy = 0.0;
+  for (int i = 0; i < 2; ++i) {
+    const double a = ex * axis[i][0] + ey * axis[i][1], b = fx * axis[i][0] + fy * axis[i][1];
+    const double beyond = std::min(std::fabs(a), std::fabs(b)) - std::max(floor, k * std::sqrt(variance[i]));
+    if (a * b > 0.0 && beyond > 0.0) {
+      cx += std::copysign(beyond, a) * axis[i][0];
+      cy += std::copysign(beyond, a) * axis[i][1];
+    }
+  }
+}
 // Acceptance of the homography refined on edge outlines: inlier share and RMS residual (pixels).
 const double kOutlineMinInliers = 0.9, kOutlineMaxResidualPx = 0.5;
 // Inlier share the homography needs when the regions are not alike (see estimateTilt()).
@@ -287,6 +311,14 @@ void vpServoMorph::setFinalThresholds(double rotationRad, double translationPx)
   m_pxFine = translationPx;
 }
 
+void vpServoMorph::setFinalScaleThreshold(double relativeScale)
+{
+  if (!(relativeScale >= 0.0 && relativeScale < 1.0))
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpServoMorph::setFinalScaleThreshold: the relative scale error must be in [0, 1)");
+  m_scaleFine = relativeScale;
+}
+
 void vpServoMorph::setGain(double gain)
 {
   checkPositive(gain, "the gain");
@@ -361,8 +393,15 @@ bool vpServoMorph::targetMismatch(const vpMorphContour &current)
   if (!(m_targetDistance <= m_checkSlack * m_checkDb.threshold(m_checkIndex)) &&
       !(m_checkDb.support(current, m_checkIndex, r.index == m_checkIndex && r.mirrored) >= m_checkDb.minimumSupport()))
     return true; // NaN too; an occluded view of the target (it shows enough of its outline) is not a mismatch
-  return r.index != vpMorphRecognition::npos && r.index != m_checkIndex && r.accepted &&
-         m_targetDistance >= mismatchRatio() * r.distance;
+  if (!(r.index != vpMorphRecognition::npos && r.index != m_checkIndex && r.accepted &&
+        m_targetDistance >= mismatchRatio() * r.distance))
+    return false;
+  // Nearer by the distance, another template still does not replace the target when it explains less of the view:
+  // a bent view is far from its template by the distance, and may be nearer another (measured: a bent screwdriver at
+  // its goal, 0.89 from its template and 0.70 from the pliers, showing 0.65 of its own outline and 0.40 of theirs,
+  // was re-recognised as the pliers and servoed 17 cm away).
+  return !(std::isfinite(r.support) &&
+           m_checkDb.support(current, m_checkIndex, m_checkDb.distance().mirrors()) > r.support);
 }
 
 void vpServoMorph::restart()
@@ -611,8 +650,26 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   // Decided once, at the first fit to the target: a bend belongs to the scene, not to one frame, and an outline
   // fit that is off for one period (a region 3 % out on an occluded key) must not switch the pose estimate.
   if (m_deformed == SHAPE_UNDECIDED) {
-    const vpMorphContour laid = T.apply(cur);
-    m_deformed = 1.0 - laid.overlapArea(goal) / laid.area() > kDeformedOutside ? DEFORMED : UNDEFORMED;
+    auto outside = [&](const vpMorphRigidTransform &F) {
+      const vpMorphContour laid = F.apply(cur);
+      return 1.0 - laid.overlapArea(goal) / laid.area();
+    };
+    m_deformed = outside(T) > kDeformedOutside ? DEFORMED : UNDEFORMED;
+    // Regions found alike lay the view by their areas and centroids, which carry a part that a small occluder hides
+    // (its moments barely change) into the pose: laid off by that much, an occluded view sticks out of its target.
+    // If its outline, fitted robustly (the occluder's edge weighed out), lays it inside the target, it is occluded,
+    // not bent: from then on its regions are not alike (measured: a wrench whose jaw a card bit, taken for a bent one
+    // and scaled by its outline's length, which the cut had changed, ending 14.6 mm deep).
+    if (m_deformed == DEFORMED && m_regionsAlike == ALIKE && dense) {
+      const double halfPixel = 0.5 / std::max(m_cam.get_px(), m_cam.get_py());
+      const vpMorphRigidTransform To =
+          vpMorphRigidTransform::refineOnOutline(currentN.outline(), goalN.outline(), T, true, 0.2 * halfPixel);
+      if (outside(To) <= kDeformedOutside) {
+        m_regionsAlike = NOT_ALIKE;
+        m_deformed = UNDEFORMED;
+        return To;
+      }
+    }
   }
   if (m_deformed != DEFORMED)
     return T;
@@ -668,7 +725,8 @@ void vpServoMorph::residuals(const vpMorphRigidTransform &T, const vpMorphContou
 {
   m_rotRes = std::fabs(T.theta());
   m_transRes = std::hypot(T.tx() * m_cam.get_px(), T.ty() * m_cam.get_py());
-  m_scaleRes = std::fabs(T.scale() - 1.0) * rmsRadius(currentPx);
+  m_scaleRel = std::fabs(T.scale() - 1.0);
+  m_scaleRes = m_scaleRel * rmsRadius(currentPx);
 }
 
 vpHomogeneousMatrix vpServoMorph::cameraDisplacement(const vpMorphRigidTransform &T, double Z, double k) const
@@ -809,7 +867,8 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     double Zp = Z;
     const bool tilt = estimateTilt(currentN, cMct, Zp);
     if (m_k == last && m_rotRes < m_rotFine && m_transRes < m_pxFine && m_scaleRes < m_pxFine &&
-        (!tilt || m_tiltRes < std::max(m_tiltFine, m_tiltDeadZoneUsed))) {
+        (m_scaleFine == 0.0 || m_scaleRel < m_scaleFine) &&
+        (!tilt || m_tiltRes <= std::max(m_tiltFine, m_tiltDeadZoneUsed))) {
       m_prevWork = m_work;
       m_haveWork = true;
       if (targetMismatch(current)) { // aligned, but not the target's shape: never report CONVERGED on it
@@ -894,10 +953,11 @@ bool vpServoMorph::tiltActive() const
 
 /*
   The final approach's tilt from this period's outline estimate (angle, axis (ax, ay) of norm sa = sin(angle), the
-  homography's covariance C) and the recent periods': replaces them, and m_tiltDeadZoneUsed, by the fused ones. Why:
-  a thin object's tilt about its long axis jumps by twice its reported deviation from one view to the next (measured:
-  pliers at rest, estimates of -1.2..+1.4 deg, deviation 0.33 deg), and each jump beyond the dead zone was commanded:
-  planar starts ended 0.3-0.46 deg off.
+  homography's covariance C) and the recent periods': replaces them by the fused ones, and measures how much the
+  periods scatter beyond their covariances (m_tiltKappa). Why: a thin object's tilt about its long axis jumps by twice
+  its reported deviation from one view to the next (measured: pliers at rest, estimates of -1.2..+1.4 deg, deviation
+  0.33 deg), and each jump beyond the dead zone was commanded: planar starts ended 0.3-0.46 deg off. The mean only
+  smooths the estimate; it does not narrow the dead zone (see estimateTilt()).
 */
 void vpServoMorph::fuseTilt(const vpMatrix &C, double &angle, double &ax, double &ay, double &sa)
 {
@@ -953,14 +1013,7 @@ void vpServoMorph::fuseTilt(const vpMatrix &C, double &angle, double &ax, double
     }
     m_tiltKappa = std::max(1.0, chi2 / (2.0 * double(info.size() - 1)));
   }
-  const double c00 = m_tiltKappa * i11 / det, c01 = -m_tiltKappa * i01 / det, c11 = m_tiltKappa * i00 / det;
-  const double sd = largestDeviation(c00, c01, c11);
-  const double fused = std::hypot(mx, my), fusedDeadZone = std::max(m_outlineTiltDeadZone, kTiltSigmas * sd);
-  // Averaging takes the noise off, not a bias (blur or an illumination change moves a thin object's edges in ways no
-  // homography explains, the same in every view): only what both this period's estimate and the fused one show beyond
-  // their dead zones is commanded, so fusing only ever removes commands. The dead zone is set so that
-  // fused - deadZone is the smaller excess.
-  m_tiltDeadZoneUsed = std::max(fusedDeadZone, fused - angle + cur.deadZone);
+  const double fused = std::hypot(mx, my);
   angle = fused;
   sa = std::sin(angle);
   ax = angle > 0.0 ? sa * mx / angle : 0.0;
@@ -1037,7 +1090,8 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
       m_tiltWarm = true;
       // The tilt's uncertainty: the largest standard deviation of the perspective part (d6, d7 of the covariance,
       // radians of tilt near the goal). Noise, blur, or a thin object (whose tilt about its long axis barely
-      // changes its outline) widen it; the estimate is not followed within kTiltSigmas of it.
+      // changes its outline) widen it. Kept with this period's estimate in fuseTilt(); what is commanded is decided
+      // per axis below.
       const vpMatrix &C = G.covariance();
       const double sd = largestDeviation(C[6][6], C[6][7], C[7][7]);
       m_tiltDeadZoneUsed = std::max(m_outlineTiltDeadZone, kTiltSigmas * sd);
@@ -1055,9 +1109,25 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
     const vpColVector P = vpColVector({lambda * cx, lambda * cy, lambda});
     double angle = std::acos(std::max(-1.0, std::min(1.0, n[2])));
     double ax = -n[1], ay = n[0], sa = std::hypot(ax, ay); // the tilt's axis (in the image plane), |.| = sin(angle)
-    if (dense && m_k + 1 == m_subGoals.size())
-      fuseTilt(G.covariance(), angle, ax, ay, sa);
-    if (!dense && m_tiltDeadZoneUsed > 0.0 && angle <= m_tiltDeadZoneUsed && m_k + 1 == m_subGoals.size()) {
+    const bool final = m_k + 1 == m_subGoals.size();
+    double tx = 0.0, ty = 0.0; // the tilt commanded, as a rotation vector (its gain() share is executed)
+    if (dense) {
+      const vpMatrix &C = G.covariance();
+      const double ex = sa > 1e-12 ? angle * ax / sa : 0.0, ey = sa > 1e-12 ? angle * ay / sa : 0.0;
+      if (final)
+        fuseTilt(C, angle, ax, ay, sa);
+      // The dead zone is one period's deviation (scaled by the periods' scatter), not the mean's: near the goal the
+      // camera barely moves, consecutive views share their pixel phase, and their errors do not average out (the
+      // pliers' mean stayed 0.5-0.8 deg off along their long axis over 40 periods, at a deviation of 0.33 deg).
+      const double kappa = final ? m_tiltKappa : 1.0;
+      tiltBeyondDeadZone(sa > 1e-12 ? angle * ax / sa : 0.0, sa > 1e-12 ? angle * ay / sa : 0.0, ex, ey,
+                         kappa * C[7][7], -kappa * C[6][7], kappa * C[6][6], m_outlineTiltDeadZone, kTiltSigmas, tx,
+                         ty);
+      // As one number along the estimate (the convergence test and the calibration's compare the tilt left to it).
+      const double c = std::hypot(tx, ty);
+      m_tiltDeadZoneUsed = c > 0.0 ? std::max(0.0, angle - c) : std::max(angle, m_tiltDeadZoneUsed);
+    }
+    if (!dense && m_tiltDeadZoneUsed > 0.0 && angle <= m_tiltDeadZoneUsed && final) {
       // Within the dead zone on the final approach: what polygons show below it is the polygonisation, and
       // following it would random-walk the camera; the planar law finishes alone (latched until restart()).
       // Outlines are not latched: their estimate, still read, commands nothing within the dead zone, but a tilt
@@ -1068,12 +1138,17 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
       return false;
     }
     // Only the part beyond the dead zone is commanded: below it the estimate is not trusted (see setTiltDeadZone()).
-    const double cmd = std::max(0.0, angle - m_tiltDeadZoneUsed);
+    if (!dense && sa > 1e-12) {
+      const double cmd = std::max(0.0, angle - m_tiltDeadZoneUsed);
+      tx = cmd * ax / sa;
+      ty = cmd * ay / sa;
+    }
+    const double cmd = std::hypot(tx, ty);
     // An estimate that its own commands do not bring down is not the view's tilt: once half a dead zone has been
     // executed towards it, an estimate along that way still at least the first commanded one, three periods in a
     // row, latches the correction off (measured: a thin pliers whose tilt about its long axis the outlines barely
     // show, the estimate 0.7-1.5 deg while the camera, turned by it, went from 0.1 to 0.54 deg off).
-    if (sa > 1e-12 && m_k + 1 == m_subGoals.size()) {
+    if (sa > 1e-12 && final) {
       const double ex = angle * ax / sa, ey = angle * ay / sa, done = std::hypot(m_tiltSumX, m_tiltSumY);
       if (done == 0.0) {
         m_tiltRefX = ex;
@@ -1088,13 +1163,13 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
         }
       }
       if (cmd > 0.0) { // executed as a gain() share of it per period
-        m_tiltSumX += m_gain * cmd * ax / sa;
-        m_tiltSumY += m_gain * cmd * ay / sa;
+        m_tiltSumX += m_gain * tx;
+        m_tiltSumY += m_gain * ty;
       }
     }
     vpRotationMatrix Rt; // identity when already aligned
-    if (sa > 1e-12 && cmd > 0.0)
-      Rt = vpRotationMatrix(vpThetaUVector(cmd * ax / sa, cmd * ay / sa, 0.0));
+    if (cmd > 0.0)
+      Rt = vpRotationMatrix(vpThetaUVector(tx, ty, 0.0));
     const vpColVector RP = vpMatrix(Rt) * P;
     const vpTranslationVector tt(P[0] - RP[0], P[1] - RP[1], P[2] - RP[2]);
     cMct = vpHomogeneousMatrix(tt, Rt);

@@ -33,6 +33,8 @@ struct Setup
   bool online = true;
   int maxIterations = 400;
   double noisePx = 0; // Gaussian noise on the vertices (seeded)
+  double finalRotation = 0, finalPx = 0; // setFinalThresholds() when finalPx > 0
+  double finalScale = 0;                 // setFinalScaleThreshold()
 };
 
 struct Result
@@ -72,6 +74,9 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
   servo.setTarget(projectPixels(cdMo), depth(cdMo));
   if (st.noisePx > 0)
     servo.setFinalThresholds(0.004, 0.6); // a few times the noise of the fit
+  if (st.finalPx > 0)
+    servo.setFinalThresholds(st.finalRotation, st.finalPx);
+  servo.setFinalScaleThreshold(st.finalScale);
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0.0, st.noisePx > 0 ? st.noisePx : 1.0);
 
@@ -425,6 +430,29 @@ TEST_CASE("vpServoMorph sub-goal switching thresholds are configurable", "[servo
   CHECK(servo.subGoalIndex() == 9);
   CHECK_THROWS_AS(servo.setSubGoalThresholds(0, 5), vpMorphException);
   CHECK_THROWS_AS(servo.setFinalThresholds(0.001, -1), vpMorphException);
+  CHECK_THROWS_AS(servo.setFinalScaleThreshold(-1e-3), vpMorphException);
+  CHECK_THROWS_AS(servo.setFinalScaleThreshold(1.0), vpMorphException);
+  CHECK_THROWS_AS(servo.setFinalScaleThreshold(std::nan("")), vpMorphException);
+}
+
+TEST_CASE("vpServoMorph's final scale threshold holds CONVERGED until the depth is reached", "[servo]")
+{
+  // Final thresholds of a fraction of a pixel count a scale error at the object's RMS radius: on this object,
+  // 0.5 px there is about half a percent of the depth. The relative scale threshold keeps the loop going.
+  Setup loose;
+  loose.finalRotation = 0.002;
+  loose.finalPx = 0.5;
+  Setup tight = loose;
+  tight.finalScale = 1e-4;
+  const vpHomogeneousMatrix cMo0 = vpHomogeneousMatrix(0, 0, 0.08, 0, 0, 0) * planarPose(40, -0.02, 0.03);
+  const Result a = run(cMo0, cdMo, loose), b = run(cMo0, cdMo, tight);
+  std::printf("[servo] final scale threshold: none %.3f mm after %d iterations, 1e-4 %.3f mm after %d\n", 1000 * a.tErr,
+              a.iterations, 1000 * b.tErr, b.iterations);
+  REQUIRE(a.converged);
+  REQUIRE(b.converged);
+  CHECK(b.iterations > a.iterations);
+  CHECK(b.tErr < 0.5 * a.tErr);
+  CHECK(b.tErr < 2e-4 * depth(cdMo));
 }
 
 TEST_CASE("vpServoMorph with image noise (0.3 px) and calibration errors", "[servo][noise]")
