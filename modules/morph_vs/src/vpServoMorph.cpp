@@ -24,6 +24,12 @@ double largestDeviation(double c00, double c01, double c11)
 {
   return std::sqrt(std::max(0.0, 0.5 * (c00 + c11) + std::sqrt(0.25 * (c00 - c11) * (c00 - c11) + c01 * c01)));
 }
+// The tilt (angle, axis (ax, ay) of norm sa = sin(angle)) as a rotation vector (ex, ey); zero when untilted.
+void tiltVector(double angle, double ax, double ay, double sa, double &ex, double &ey)
+{
+  ex = sa > 1e-12 ? angle * ax / sa : 0.0;
+  ey = sa > 1e-12 ? angle * ay / sa : 0.0;
+}
 /*
   The tilt to command from the estimate e, given a second estimate f and the covariance S = [s00 s01; s01 s11] of one
   period's estimate: along each principal axis of S, what both e and f show on the same side beyond k standard
@@ -964,8 +970,7 @@ void vpServoMorph::fuseTilt(const vpMatrix &C, double &angle, double &ax, double
   // This period's tilt as a rotation vector e (angle along the axis) and its covariance. The perspective part
   // (d6, d7) of the homography is the plane normal's (n0, n1) near the goal, and e = (-n1, n0).
   TiltSample cur;
-  cur.ex = sa > 1e-12 ? angle * ax / sa : 0.0;
-  cur.ey = sa > 1e-12 ? angle * ay / sa : 0.0;
+  tiltVector(angle, ax, ay, sa, cur.ex, cur.ey);
   cur.c00 = C[7][7];
   cur.c01 = -C[6][7];
   cur.c11 = C[6][6];
@@ -1113,16 +1118,17 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
     double tx = 0.0, ty = 0.0; // the tilt commanded, as a rotation vector (its gain() share is executed)
     if (dense) {
       const vpMatrix &C = G.covariance();
-      const double ex = sa > 1e-12 ? angle * ax / sa : 0.0, ey = sa > 1e-12 ? angle * ay / sa : 0.0;
+      double ex, ey, mx, my; // this period's estimate, and the one commanded from (the average on the final approach)
+      tiltVector(angle, ax, ay, sa, ex, ey);
       if (final)
         fuseTilt(C, angle, ax, ay, sa);
       // The dead zone is one period's deviation (scaled by the periods' scatter), not the mean's: near the goal the
       // camera barely moves, consecutive views share their pixel phase, and their errors do not average out (the
       // pliers' mean stayed 0.5-0.8 deg off along their long axis over 40 periods, at a deviation of 0.33 deg).
       const double kappa = final ? m_tiltKappa : 1.0;
-      tiltBeyondDeadZone(sa > 1e-12 ? angle * ax / sa : 0.0, sa > 1e-12 ? angle * ay / sa : 0.0, ex, ey,
-                         kappa * C[7][7], -kappa * C[6][7], kappa * C[6][6], m_outlineTiltDeadZone, kTiltSigmas, tx,
-                         ty);
+      tiltVector(angle, ax, ay, sa, mx, my);
+      tiltBeyondDeadZone(mx, my, ex, ey, kappa * C[7][7], -kappa * C[6][7], kappa * C[6][6], m_outlineTiltDeadZone,
+                         kTiltSigmas, tx, ty);
       // As one number along the estimate (the convergence test and the calibration's compare the tilt left to it).
       const double c = std::hypot(tx, ty);
       m_tiltDeadZoneUsed = c > 0.0 ? std::max(0.0, angle - c) : std::max(angle, m_tiltDeadZoneUsed);
@@ -1149,7 +1155,9 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
     // row, latches the correction off (measured: a thin pliers whose tilt about its long axis the outlines barely
     // show, the estimate 0.7-1.5 deg while the camera, turned by it, went from 0.1 to 0.54 deg off).
     if (sa > 1e-12 && final) {
-      const double ex = angle * ax / sa, ey = angle * ay / sa, done = std::hypot(m_tiltSumX, m_tiltSumY);
+      double ex, ey;
+      tiltVector(angle, ax, ay, sa, ex, ey);
+      const double done = std::hypot(m_tiltSumX, m_tiltSumY);
       if (done == 0.0) {
         m_tiltRefX = ex;
         m_tiltRefY = ey;
