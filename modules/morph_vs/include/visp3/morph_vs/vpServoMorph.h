@@ -166,7 +166,9 @@
     occluded view of the target is the target), or when the database's best template is another one, accepted,
     that costs at least mismatchRatio() (1.2) times less work: the thresholds alone do not separate near
     neighbours (calibrated on 20 % occlusions, they can exceed the distance between two objects: 1.73 for a tee
-    against 1.44 between the tee and the bracket of the tests). Then the status is TARGET_MISMATCH (a stop: the
+    against 1.44 between the tee and the bracket of the tests), unless the view shows more of the target's outline
+    than of that template's (vpMorphDatabase::support(): a bent view may be nearer another template by the
+    distance). Then the status is TARGET_MISMATCH (a stop: the
     servo would otherwise align the best-fitting similarity of two different shapes and report CONVERGED); the
     caller recognises anew or gives up.
   LOST_TOO_LONG, TOO_MANY_REPLANS and TARGET_MISMATCH are stops: every later call returns zero velocity with the
