@@ -18,8 +18,10 @@ void vpMorphHandEyeEstimator::reset(const vpHomogeneousMatrix &eMc0)
   m_M *= m_prior;
   m_r.resize(4, true);
   m_r[2] = m_prior;
+  m_u = m_r / m_prior;
   m_k = 1.0;
   m_moves = 0;
+  m_rejected = 0;
   m_eRef = 0.0;
 }
 
@@ -65,6 +67,15 @@ void vpMorphHandEyeEstimator::addMove(const vpHomogeneousMatrix &eMe, const vpHo
   vpColVector b(2);
   b[0] = -tax;
   b[1] = -tay;
+  // One wrong view (a contour re-digitised across an occluder for a period: measured, an image motion 30 times the
+  // commanded one, twice in a row) would otherwise pull the scale to 0.01 and stall the servo for good. What the
+  // current estimate fails to explain is at most the move's own size (twice: any error about the axis, a projection
+  // off by up to 3x) plus what the rotation does to an offset error of up to kOutlierOffset.
+  const double slack = kOutlierMoves * b.frobeniusNorm() + std::fabs(phi) * kOutlierOffset;
+  if ((J * m_u - b).frobeniusNorm() > slack) {
+    ++m_rejected;
+    return;
+  }
   // Information-weighted forgetting: a move forgets the past in proportion to its information (squared norm of
   // its equations) relative to a tenth of the largest so far, so that the tiny moves of the final convergence do
   // not wash out the large moves that determined the estimate.
@@ -84,6 +95,7 @@ void vpMorphHandEyeEstimator::solve()
   if (!std::isfinite(k) || k < 1e-3 || !std::isfinite(u[0]) || !std::isfinite(u[1]))
     return;
   const double psi = std::atan2(u[3], u[2]);
+  m_u = u;
   m_k = k;
   m_eMc = m_eMc0 * vpHomogeneousMatrix(u[0], u[1], 0, 0, 0, psi);
 }

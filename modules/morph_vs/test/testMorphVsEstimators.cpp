@@ -117,3 +117,49 @@ TEST_CASE("vpMorphHandEyeEstimator recovers the planar hand-eye error and the pr
   CHECK_THROWS_AS(none.setForgetting(1.5), vpMorphException);
   CHECK_THROWS_AS(none.setPriorWeight(-1), vpMorphException);
 }
+
+TEST_CASE("vpMorphHandEyeEstimator rejects a move whose observed image motion no calibration error explains",
+          "[calibration]")
+{
+  const vpHomogeneousMatrix eMcTrue(0.01, 0.05, 0.12, vpMath::rad(5), vpMath::rad(-3), vpMath::rad(90));
+  const double k = 1.2;
+  // Planar moves (the observed translation k times too short, plus a measurement error along x).
+  auto observe = [&](vpMorphHandEyeEstimator &est, double tx, double ty, double rz, double wrongBy) {
+    const vpHomogeneousMatrix cMc(tx, ty, 0, 0, 0, rz);
+    vpHomogeneousMatrix cMcObs = cMc;
+    cMcObs[0][3] = cMcObs[0][3] / k + wrongBy;
+    cMcObs[1][3] /= k;
+    est.addMove(eMcTrue * cMc * eMcTrue.inverse(), cMcObs);
+  };
+  SECTION("a view measured wrong for a period (the occluded pliers of the held-out occlusion set, seed 2 start 0)")
+  {
+    const vpHomogeneousMatrix Y(0.015, -0.01, 0, 0, 0, vpMath::rad(8));
+    vpMorphHandEyeEstimator est(eMcTrue * Y.inverse());
+    observe(est, 0.0005, -0.0004, 0.06, 0.0);
+    observe(est, 0.0004, 0.0005, -0.05, 0.0);
+    // The image jumped by 8 mm of camera motion against a 0.3 mm command, then back.
+    observe(est, 0.0003, -0.0002, 0.04, -0.008);
+    observe(est, 0.0003, -0.0002, 0.035, 0.010);
+    CHECK(est.rejectedMoveCount() == 2);
+    CHECK(est.moveCount() == 2);
+    for (int i = 0; i < 6; ++i)
+      observe(est, 0.02 * std::cos(i), 0.02 * std::sin(i), 0.3 * (i % 2 ? 1 : -1), 0.0);
+    CHECK(est.rejectedMoveCount() == 2);
+    CHECK(est.translationScale() == Approx(k).epsilon(1e-3));
+    const vpHomogeneousMatrix d = eMcTrue.inverse() * est.get_eMc();
+    CHECK(d.getTranslationVector().frobeniusNorm() < 1e-4);
+  }
+  SECTION("large calibration errors are still learned, not taken for outliers")
+  {
+    // The guess 90 deg off about the optical axis and 40 mm off in the plane.
+    const vpHomogeneousMatrix Y(0.03, -0.025, 0, 0, 0, vpMath::rad(90));
+    vpMorphHandEyeEstimator est(eMcTrue * Y.inverse());
+    for (int i = 0; i < 8; ++i)
+      observe(est, 0.02 * std::cos(i), 0.02 * std::sin(i), 0.3 * (i % 2 ? 1 : -1), 0.0);
+    CHECK(est.rejectedMoveCount() == 0);
+    CHECK(est.translationScale() == Approx(k).epsilon(1e-3));
+    const vpHomogeneousMatrix d = eMcTrue.inverse() * est.get_eMc();
+    CHECK(d.getTranslationVector().frobeniusNorm() < 1e-4);
+    CHECK(vpThetaUVector(d.getRotationMatrix()).getTheta() < vpMath::rad(0.05));
+  }
+}

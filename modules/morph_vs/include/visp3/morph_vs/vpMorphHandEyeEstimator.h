@@ -37,6 +37,11 @@
   what the moves leave unobserved. Then \f$\psi = \mathrm{atan2}(u_4, u_3)\f$, \f$k = |(u_3, u_4)|\f$ and eMc = eMc0 *
   Y(psi, t1, t2). Rotations give t, translations give psi and k: a morph sequence (rigid frames then deformation) has
   both.
+
+  <b>Outliers.</b> A move whose observation the current estimate explains worse than the error it could have (the
+  residual of its equations beyond twice |ta| plus |phi| x 0.1 m) is not added (rejectedMoveCount()): one view
+  measured wrong (a silhouette re-digitised across an occluder for one period) moved the camera in the image 30 times
+  more than commanded and would pull k to 0.01, after which the servo barely moves and never corrects it.
 */
 class vpMorphHandEyeEstimator
 {
@@ -57,6 +62,9 @@ public:
   //! Estimated scale k: true camera translation in the image plane = k * observed one (1 if intrinsics are right).
   double translationScale() const { return m_k; }
   unsigned int moveCount() const { return m_moves; }
+  //! Moves rejected as outliers: the current estimate left more of the observed camera translation unexplained than
+  //! twice the commanded one plus what the move's rotation does to a 0.1 m offset (see addMove()).
+  unsigned int rejectedMoveCount() const { return m_rejected; }
 
   double forgetting() const { return m_forget; }
   //! Forgetting factor in (0, 1] applied to the past moves at each new one (default 0.95).
@@ -69,11 +77,15 @@ public:
 private:
   void solve();
 
+  static constexpr double kOutlierMoves = 2.0;  // residual allowed per unit of commanded translation
+  static constexpr double kOutlierOffset = 0.1; // m: offset error the residual allows per radian of rotation
+
   vpHomogeneousMatrix m_eMc0, m_eMc;
   vpMatrix m_M;    // 4x4 data normal matrix
   vpColVector m_r; // data right-hand side
+  vpColVector m_u; // current solution (t1, t2, k cos psi, k sin psi)
   double m_forget = 0.95, m_prior = 1e-6, m_k = 1.0, m_eRef = 0.0;
-  unsigned int m_moves = 0;
+  unsigned int m_moves = 0, m_rejected = 0;
 };
 
 #endif
