@@ -513,7 +513,7 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
     // Contours come from images: their vertices are on the pixel grid, so the robust scale is floored at half a
     // pixel (in normalised units); otherwise, near a goal, the exactly coinciding vertices win and the fit is the
     // identity a pixel or two away from the goal (CONVERGED reported 0.6 deg / 7 mm off on rendered images).
-    const double halfPixel = 0.5 / std::max(m_cam.get_px(), m_cam.get_py());
+    const double halfPixel = normalisedPixels(0.5);
     const vpMorphRigidTransform Tfit = vpMorphRigidTransform::fitLeastSquares(
         currentN, goalN, corr, true, vpMorphRigidTransform::TUKEY, 30, halfPixel);
     // The rotation comes from the correspondence (nothing else can tell it beyond 90 deg), but the translation and
@@ -573,7 +573,7 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
             m_edgePartCount++ % kRigidPartPeriod == 0 || (!m_edgePartKnown && m_edgePartMisses < kEdgePartRetries);
         if (search || m_edgePartKnown) {
           const vpMorphContour dense = o.resampled(2 * kOverlapPoints);
-          const double tolerance = kRigidPartTolerancePx / std::max(m_cam.get_px(), m_cam.get_py());
+          const double tolerance = normalisedPixels(kRigidPartTolerancePx);
           double share = 0.0;
           const vpMorphRigidTransform R =
               rigidPart(dense, targetOutline, Te, search, m_edgePartOffset, tolerance, share);
@@ -667,7 +667,7 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
     // not bent: from then on its regions are not alike (measured: a wrench whose jaw a card bit, taken for a bent one
     // and scaled by its outline's length, which the cut had changed, ending 14.6 mm deep).
     if (m_deformed == DEFORMED && m_regionsAlike == ALIKE && dense) {
-      const double halfPixel = 0.5 / std::max(m_cam.get_px(), m_cam.get_py());
+      const double halfPixel = normalisedPixels(0.5);
       const vpMorphRigidTransform To =
           vpMorphRigidTransform::refineOnOutline(currentN.outline(), goalN.outline(), T, true, 0.2 * halfPixel);
       if (outside(To) <= kDeformedOutside) {
@@ -712,7 +712,7 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
     const bool search = m_rigidPartCount++ % kRigidPartPeriod == 0;
     if (search || m_partKnown) {
       const vpMorphContour curDense = currentN.outline().resampled(2 * kOverlapPoints);
-      const double tolerance = kRigidPartTolerancePx / std::max(m_cam.get_px(), m_cam.get_py());
+      const double tolerance = normalisedPixels(kRigidPartTolerancePx);
       double share = 0.0;
       const vpMorphRigidTransform R =
           rigidPart(curDense, goalN.outline(), Tovl, search, m_partOffset, tolerance, share);
@@ -1043,7 +1043,7 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
     return false;
   try {
     const vpMorphContour targetN = m_target.toNormalized(m_cam);
-    const double pixel = 1.0 / std::max(m_cam.get_px(), m_cam.get_py());
+    const double pixel = normalisedPixels(1.0);
     const bool dense = currentN.hasOutline() && targetN.hasOutline();
     // Regions not alike (see start()): a tilted view, or a part hidden or bent. Only a homography that explains the
     // whole outline tells the first: an occluder's edge or a bent limb fitted away by the robust weights still

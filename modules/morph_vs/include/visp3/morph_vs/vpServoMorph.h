@@ -5,6 +5,7 @@
 #ifndef VP_SERVO_MORPH_H
 #define VP_SERVO_MORPH_H
 
+#include <algorithm>
 #include <cstddef>
 #include <limits>
 #include <string>
@@ -406,6 +407,8 @@ private:
   vpMorphRigidTransform fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx, double Z);
   vpHomogeneousMatrix cameraDisplacement(const vpMorphRigidTransform &T, double Z, double k) const;
   void residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx);
+  // n pixels in normalised image units (along the finer axis).
+  double normalisedPixels(double n) const { return n / std::max(m_cam.get_px(), m_cam.get_py()); }
   vpMorphRigidTransform overlapFit(const vpMorphContour &currentN, const vpMorphContour &goalN,
                                    const vpMorphRigidTransform &T);
   // A new sequence: the tilt's correspondence, warm start, latch and guard start again.
