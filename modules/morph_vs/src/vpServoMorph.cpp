@@ -197,6 +197,13 @@ double refinedRotation(const vpMorphContour &goal, const vpMorphContour &current
   return std::fabs(d - thetaFit) <= 0.1 ? d : thetaFit;
 }
 
+// Share of the view's area that lies outside the goal's region once F lays it on the goal.
+double outsideShare(const vpMorphRigidTransform &F, const vpMorphContour &view, const vpMorphContour &goal)
+{
+  const vpMorphContour laid = F.apply(view);
+  return 1.0 - laid.overlapArea(goal) / laid.area();
+}
+
 double rmsRadius(const vpMorphContour &c)
 {
   double cx, cy, s = 0;
@@ -549,6 +556,21 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
       // (not vertices on the pixel grid), and a cut at 5 x half a pixel kept the occluder's edge where it meets
       // the outline (the fit's scale 0.1 % off at the goal, half a millimetre of depth).
       T = vpMorphRigidTransform::refineOnOutline(currentN, goalN, Tfit, true, 0.2 * halfPixel);
+      // The fit over a tracked correspondence can start it in another basin when the joined outline changes its
+      // vertices (a wrench cut in two by a card: 21 % off in scale and 20 px away for one period, taken for a jump,
+      // re-planned, three times over). Then it is refined from the last fit to the same sub-goal too, and that one
+      // is kept if it is no jump and leaves less of the view outside the goal.
+      if (m_haveWork && (!rotationConsistent(T) || translationJumped(T))) {
+        try {
+          const vpMorphRigidTransform Tw =
+              vpMorphRigidTransform::refineOnOutline(currentN, goalN, m_prevT, true, 0.2 * halfPixel);
+          if (rotationConsistent(Tw) && !translationJumped(Tw) &&
+              outsideShare(Tw, currentN, goalN) < outsideShare(T, currentN, goalN))
+            T = Tw;
+        } catch (const vpException &) {
+          // no second opinion (a view the overlap cannot lay): the jump stands
+        }
+      }
       // On the target, with the edges measured on both images: the scale (the depth at the goal) from the same fit
       // on them, which does not depend on where the two polygonisations put their vertices (tenths of a pixel on a
       // 100 px object: a millimetre at 0.5 m; measured: an occluded wrench ending 1.19 mm deep, 0.11 mm with it).
@@ -618,6 +640,21 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
   return T;
 }
 
+bool vpServoMorph::rotationConsistent(const vpMorphRigidTransform &T) const
+{
+  const double dth = std::fabs(std::remainder(T.theta() - m_prevT.theta(), 2 * M_PI));
+  return dth <= m_gain * std::fabs(m_prevT.theta()) + m_jumpRotation;
+}
+
+bool vpServoMorph::translationJumped(const vpMorphRigidTransform &T) const
+{
+  // The fit's translation moves by about gain x its previous value per period (twice that for calibration errors);
+  // beyond, plus jumpPixels(), the view jumped.
+  const double px = m_cam.get_px(), py = m_cam.get_py();
+  const double dt = std::hypot((T.tx() - m_prevT.tx()) * px, (T.ty() - m_prevT.ty()) * py);
+  return dt > 2.0 * m_gain * std::hypot(m_prevT.tx() * px, m_prevT.ty() * py) + m_jumpPx;
+}
+
 void vpServoMorph::forgetTilt()
 {
   m_tiltTracker.reset();
@@ -656,10 +693,7 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   // Decided once, at the first fit to the target: a bend belongs to the scene, not to one frame, and an outline
   // fit that is off for one period (a region 3 % out on an occluded key) must not switch the pose estimate.
   if (m_deformed == SHAPE_UNDECIDED) {
-    auto outside = [&](const vpMorphRigidTransform &F) {
-      const vpMorphContour laid = F.apply(cur);
-      return 1.0 - laid.overlapArea(goal) / laid.area();
-    };
+    auto outside = [&](const vpMorphRigidTransform &F) { return outsideShare(F, cur, goal); };
     m_deformed = outside(T) > kDeformedOutside ? DEFORMED : UNDEFORMED;
     // Regions found alike lay the view by their areas and centroids, which carry a part that a small occluder hides
     // (its moments barely change) into the pose: laid off by that much, an occluded view sticks out of its target.
@@ -806,16 +840,8 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     // from one image to the next, which changes the work and the margin while the fit does not. Unreliable is
     // either of them together with a jump of the fitted rotation beyond what one step (gain x previous residual)
     // and noise explain; with no previous fit to the same sub-goal, a low margin alone.
-    bool consistent = false, translationJump = false;
-    if (m_haveWork) {
-      const double dth = std::fabs(std::remainder(T.theta() - m_prevT.theta(), 2 * M_PI));
-      consistent = dth <= m_gain * std::fabs(m_prevT.theta()) + m_jumpRotation;
-      // The fit's translation moves by about gain x its previous value per period (twice that for calibration
-      // errors); beyond, plus jumpPixels(), the view jumped.
-      const double px = m_cam.get_px(), py = m_cam.get_py();
-      const double dt = std::hypot((T.tx() - m_prevT.tx()) * px, (T.ty() - m_prevT.ty()) * py);
-      translationJump = dt > 2.0 * m_gain * std::hypot(m_prevT.tx() * px, m_prevT.ty() * py) + m_jumpPx;
-    }
+    const bool consistent = m_haveWork && rotationConsistent(T);
+    const bool translationJump = m_haveWork && translationJumped(T);
     if (m_fullMatch && m_margin < m_minMargin && !consistent) {
       return stop(UNRELIABLE_CORRESPONDENCE);
     }

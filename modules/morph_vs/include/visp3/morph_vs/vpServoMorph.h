@@ -158,7 +158,10 @@
     between the last contour and this one tells them apart (the same shape: at most a quarter of the target's
     acceptance threshold; re-plan), otherwise, and without a target check, the status is
     UNRELIABLE_CORRESPONDENCE (zero velocity; a re-plan from an occluded view turned the wedge the wrong way
-    at 0.26 m/s in the bench, twelve times the clean run's speed).
+    at 0.26 m/s in the bench, twelve times the clean run's speed). A view whose regions are not alike (occluded,
+    cut) is fitted on its outline from the correspondence's fit; when that jumps, the outline fit is also run from
+    the last fit, and kept if it does not jump and lays less of the view outside the goal: on a wrench cut in two
+    by a card, the correspondence's fit fell into another basin at each arrival at the target (three re-plans).
   - <em>Wrong target</em> (recognition chose another object's template): with setTargetCheck() (the template
     database and the target's name), the current contour is recognised again at each new sequence and when the
     final goal would be reached. It is not the target when its distance to the target exceeds the target's
@@ -407,6 +410,10 @@ private:
   vpMorphRigidTransform fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx, double Z);
   vpHomogeneousMatrix cameraDisplacement(const vpMorphRigidTransform &T, double Z, double k) const;
   void residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx);
+  // Against the last fit to the same sub-goal (m_prevT): the rotation moved by no more than one step and noise; the
+  // translation jumped beyond what one step explains plus jumpPixels().
+  bool rotationConsistent(const vpMorphRigidTransform &T) const;
+  bool translationJumped(const vpMorphRigidTransform &T) const;
   // n pixels in normalised image units (along the finer axis).
   double normalisedPixels(double n) const { return n / std::max(m_cam.get_px(), m_cam.get_py()); }
   vpMorphRigidTransform overlapFit(const vpMorphContour &currentN, const vpMorphContour &goalN,
