@@ -231,6 +231,37 @@ TEST_CASE("A tool cut in two by an occluder is not taken for a jump at its targe
   CHECK(r.success);
 }
 
+TEST_CASE("The noise set's failures: a background lifted past 255 on sharp edges biases the measured area",
+          "[bench][outline]")
+{
+  // Held-out noise set, seed 3: starts 0 and 18 (pliers) and 3 (hammer) end 1.5-1.9 mm off, the pliers' error all
+  // along the optical axis. Their illumination gain lifts the background to 254-279 grey levels, clipped at 255, on
+  // edges blurred by 0.12-0.33 px only. At the goal, the silhouette's measured area is exact under the same noise and
+  // blur without the illumination change, and off by about half a percent with it (the depth by a quarter: 1.5 mm):
+  // the clipped-edge model (vpMorphContourExtractor) needs a blurred edge to find where the unclipped step's middle
+  // is. Printed, not fixed (see the README's held-out results).
+  const std::string data = VISPMORPH_DATA_DIR;
+  const std::vector<vpMorphBenchScenario> scs = vpMorphBenchScenario::generate("noise", 20, 3, data);
+  for (std::size_t k : {std::size_t(0), std::size_t(18), std::size_t(3)}) {
+    vpMorphPlanarScene scene = scs[k].scene();
+    const vpMorphPlanarScene::Faults faults = scene.faults();
+    scene.setFaults(vpMorphPlanarScene::Faults());
+    const double clean = silhouette(scene, scs[k].cdMo).regionArea();
+    vpMorphPlanarScene::Faults unlit = faults;
+    unlit.gain = 1.0;
+    unlit.offset = 0.0;
+    scene.setFaults(unlit);
+    const double noisy = silhouette(scene, scs[k].cdMo).regionArea();
+    scene.setFaults(faults);
+    const double lit = silhouette(scene, scs[k].cdMo).regionArea();
+    std::printf("[outline] noise seed 3 start %zu (%s, gain %.3f, offset %.1f): area %+.3f %% under noise and blur, "
+                "%+.3f %% with the illumination change\n",
+                k, scs[k].object.c_str(), faults.gain, faults.offset, 100.0 * (noisy / clean - 1.0),
+                100.0 * (lit / clean - 1.0));
+    CHECK(std::fabs(noisy / clean - 1.0) < 1e-3);
+  }
+}
+
 TEST_CASE("A bent view nearer another template by the distance keeps the template that explains more of it",
           "[bench][deformed]")
 {
