@@ -22,21 +22,33 @@ namespace
 {
 const double Zd = 0.5;
 
-// Start \e index of \e set (seed 1, 10 starts) servoed by `morph` on \e robot, its object checked, its result
-// printed.
-vpMorphBenchResult benchRun(const std::string &set, std::size_t index, const std::string &object,
-                            vpMorphSimRobot::Kind robot)
+// Start \e index of \e set (\e count starts of \e seed) servoed by `morph` on \e robot, its object checked, its
+// result printed.
+vpMorphBenchResult benchRun(const std::string &set, std::size_t count, unsigned int seed, std::size_t index,
+                            const std::string &object, vpMorphSimRobot::Kind robot)
 {
   const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate(set, 10, 1, data)[index];
+  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate(set, count, seed, data)[index];
   REQUIRE(sc.object == object);
   vpMorphBench::Settings st;
   st.robot = robot;
   const vpMorphBenchResult r = vpMorphBench(data, st).run(sc, "morph");
-  std::printf("[%s] %s, start %zu on the %s: %s, final error %.3f mm %.3f deg\n", set.c_str(), object.c_str(), index,
-              vpMorphSimRobot::kindName(robot).c_str(), r.success ? "success" : r.failure.c_str(),
-              1000 * r.finalTranslation, r.finalRotation * 180 / M_PI);
+  std::printf("[%s] %s, seed %u start %zu on the %s: %s, final error %.3f mm %.3f deg, %u re-plans\n", set.c_str(),
+              object.c_str(), seed, index, vpMorphSimRobot::kindName(robot).c_str(),
+              r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation, r.finalRotation * 180 / M_PI,
+              r.replans);
   return r;
+}
+// The development starts: seed 1, 10 per set.
+vpMorphBenchResult benchRun(const std::string &set, std::size_t index, const std::string &object,
+                            vpMorphSimRobot::Kind robot)
+{
+  return benchRun(set, 10, 1, index, object, robot);
+}
+// The held-out starts: 20 per set, on the free camera.
+vpMorphBenchResult heldOutRun(const std::string &set, unsigned int seed, std::size_t index, const std::string &object)
+{
+  return benchRun(set, 20, seed, index, object, vpMorphSimRobot::FREE_CAMERA);
 }
 vpMorphBenchResult viperRun(const std::string &set, std::size_t index, const std::string &object)
 {
@@ -205,13 +217,7 @@ TEST_CASE("One occluded view measured wrong does not corrupt the online calibrat
   // 11 % smaller and 12 px off; the image motions to and from that view (8 and 10 mm of camera motion against
   // 0.3 mm commanded) pulled the hand-eye estimator's translation scale from 0.96 to 0.009, after which the servo
   // barely translated and stopped 103 deg and 40 mm off the goal with a residual of 6 px it could no longer command.
-  const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("occlusion", 20, 2, data)[0];
-  REQUIRE(sc.object == "pliers");
-  const vpMorphBenchResult r = vpMorphBench(data, vpMorphBench::Settings()).run(sc, "morph");
-  std::printf("[outline] occluded pliers, seed 2 start 0: %s, final error %.3f mm %.3f deg\n",
-              r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation, r.finalRotation * 180 / M_PI);
-  CHECK(r.success);
+  CHECK(heldOutRun("occlusion", 2, 0, "pliers").success);
 }
 
 TEST_CASE("A tool cut in two by an occluder is not taken for a jump at its target", "[bench][outline]")
@@ -220,13 +226,7 @@ TEST_CASE("A tool cut in two by an occluder is not taken for a jump at its targe
   // outline fit started from the tracked correspondence fell into another basin (21 % off in scale, 20 px away),
   // which the servo took for a jump of the view: re-planned from sub-goal 0, the same again, three times, then
   // TOO_MANY_REPLANS. Refined from the last fit as well, it keeps the right basin.
-  const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("occlusion", 20, 2, data)[17];
-  REQUIRE(sc.object == "wrench");
-  const vpMorphBenchResult r = vpMorphBench(data, vpMorphBench::Settings()).run(sc, "morph");
-  std::printf("[outline] wrench cut in two, seed 2 start 17: %s, %u re-plans, final error %.3f mm %.3f deg\n",
-              r.success ? "success" : r.failure.c_str(), r.replans, 1000 * r.finalTranslation,
-              r.finalRotation * 180 / M_PI);
+  const vpMorphBenchResult r = heldOutRun("occlusion", 2, 17, "wrench");
   CHECK(r.replans == 0);
   CHECK(r.success);
 }
