@@ -568,7 +568,7 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
               outsideShare(Tw, currentN, goalN) < outsideShare(T, currentN, goalN))
             T = Tw;
         } catch (const vpException &) {
-          // no second opinion (a view the overlap cannot lay): the jump stands
+          // no second opinion (a view the outline fit or the overlap cannot take): the jump stands
         }
       }
       // On the target, with the edges measured on both images: the scale (the depth at the goal) from the same fit
