@@ -560,12 +560,11 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
       // vertices (a wrench cut in two by a card: 21 % off in scale and 20 px away for one period, taken for a jump,
       // re-planned, three times over). Then it is refined from the last fit to the same sub-goal too, and that one
       // is kept if it is no jump and leaves less of the view outside the goal.
-      if (m_haveWork && (!rotationConsistent(T) || translationJumped(T))) {
+      if (m_haveWork && viewJumped(T)) {
         try {
           const vpMorphRigidTransform Tw =
               vpMorphRigidTransform::refineOnOutline(currentN, goalN, m_prevT, true, 0.2 * halfPixel);
-          if (rotationConsistent(Tw) && !translationJumped(Tw) &&
-              outsideShare(Tw, currentN, goalN) < outsideShare(T, currentN, goalN))
+          if (!viewJumped(Tw) && outsideShare(Tw, currentN, goalN) < outsideShare(T, currentN, goalN))
             T = Tw;
         } catch (const vpException &) {
           // no second opinion (a view the outline fit or the overlap cannot take): the jump stands
@@ -646,8 +645,10 @@ bool vpServoMorph::rotationConsistent(const vpMorphRigidTransform &T) const
   return dth <= m_gain * std::fabs(m_prevT.theta()) + m_jumpRotation;
 }
 
-bool vpServoMorph::translationJumped(const vpMorphRigidTransform &T) const
+bool vpServoMorph::viewJumped(const vpMorphRigidTransform &T) const
 {
+  if (!rotationConsistent(T))
+    return true;
   // The fit's translation moves by about gain x its previous value per period (twice that for calibration errors);
   // beyond, plus jumpPixels(), the view jumped.
   const double px = m_cam.get_px(), py = m_cam.get_py();
@@ -841,7 +842,6 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     // either of them together with a jump of the fitted rotation beyond what one step (gain x previous residual)
     // and noise explain; with no previous fit to the same sub-goal, a low margin alone.
     const bool consistent = m_haveWork && rotationConsistent(T);
-    const bool translationJump = m_haveWork && translationJumped(T);
     if (m_fullMatch && m_margin < m_minMargin && !consistent) {
       return stop(UNRELIABLE_CORRESPONDENCE);
     }
@@ -856,7 +856,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       if (!sameShape)
         return stop(UNRELIABLE_CORRESPONDENCE);
     }
-    if (m_haveWork && (!consistent || translationJump)) {
+    if (m_haveWork && viewJumped(T)) {
       // The view jumped (the robot or the object was displaced, with the target check: whatever the work did).
       // Re-plan from this view (the sub-goals of the old plan lead from where the camera no longer is), bounded;
       // the target check at the new start stops on another shape; no calibration observation across the jump.

@@ -410,10 +410,10 @@ private:
   vpMorphRigidTransform fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx, double Z);
   vpHomogeneousMatrix cameraDisplacement(const vpMorphRigidTransform &T, double Z, double k) const;
   void residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx);
-  // Against the last fit to the same sub-goal (m_prevT): the rotation moved by no more than one step and noise; the
-  // translation jumped beyond what one step explains plus jumpPixels().
+  // Against the last fit to the same sub-goal (m_prevT): the rotation moved by no more than one step and noise;
+  // the view jumped when it did not, or when the translation moved beyond what one step explains plus jumpPixels().
   bool rotationConsistent(const vpMorphRigidTransform &T) const;
-  bool translationJumped(const vpMorphRigidTransform &T) const;
+  bool viewJumped(const vpMorphRigidTransform &T) const;
   // n pixels in normalised image units (along the finer axis).
   double normalisedPixels(double n) const { return n / std::max(m_cam.get_px(), m_cam.get_py()); }
   vpMorphRigidTransform overlapFit(const vpMorphContour &currentN, const vpMorphContour &goalN,
