@@ -18,8 +18,7 @@ void vpMorphHandEyeEstimator::reset(const vpHomogeneousMatrix &eMc0)
   m_M *= m_prior;
   m_r.resize(4, true);
   m_r[2] = m_prior;
-  m_u = m_r / m_prior;
-  m_k = 1.0;
+  m_u = m_r / m_prior; // (0, 0, 1, 0): Y = I, k = 1
   m_moves = 0;
   m_rejected = 0;
   m_eRef = 0.0;
@@ -96,6 +95,5 @@ void vpMorphHandEyeEstimator::solve()
     return;
   const double psi = std::atan2(u[3], u[2]);
   m_u = u;
-  m_k = k;
   m_eMc = m_eMc0 * vpHomogeneousMatrix(u[0], u[1], 0, 0, 0, psi);
 }

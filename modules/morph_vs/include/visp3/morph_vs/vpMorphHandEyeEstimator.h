@@ -5,6 +5,8 @@
 #ifndef VP_MORPH_HAND_EYE_ESTIMATOR_H
 #define VP_MORPH_HAND_EYE_ESTIMATOR_H
 
+#include <cmath>
+
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpMatrix.h>
@@ -60,7 +62,7 @@ public:
   vpHomogeneousMatrix get_eMc() const { return m_eMc; }
   vpHomogeneousMatrix get_eMc0() const { return m_eMc0; }
   //! Estimated scale k: true camera translation in the image plane = k * observed one (1 if intrinsics are right).
-  double translationScale() const { return m_k; }
+  double translationScale() const { return std::hypot(m_u[2], m_u[3]); }
   unsigned int moveCount() const { return m_moves; }
   //! Moves rejected as outliers: the current estimate left more of the observed camera translation unexplained than
   //! twice the commanded one plus what the move's rotation does to a 0.1 m offset (see addMove()).
@@ -80,11 +82,11 @@ private:
   static constexpr double kOutlierMoves = 2.0;  // residual allowed per unit of commanded translation
   static constexpr double kOutlierOffset = 0.1; // m: offset error the residual allows per radian of rotation
 
-  vpHomogeneousMatrix m_eMc0, m_eMc;
+  vpHomogeneousMatrix m_eMc0, m_eMc; // m_eMc: eMc0 * Y(m_u), kept from solve()
   vpMatrix m_M;    // 4x4 data normal matrix
   vpColVector m_r; // data right-hand side
   vpColVector m_u; // current solution (t1, t2, k cos psi, k sin psi)
-  double m_forget = 0.95, m_prior = 1e-6, m_k = 1.0, m_eRef = 0.0;
+  double m_forget = 0.95, m_prior = 1e-6, m_eRef = 0.0;
   unsigned int m_moves = 0, m_rejected = 0;
 };
 
