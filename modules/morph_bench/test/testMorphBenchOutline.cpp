@@ -195,17 +195,14 @@ TEST_CASE("A small occluder that leaves the regions alike is found by the outlin
   // by its outline's length, which the cut changed: 14.6 and 17.2 mm deep. Laid by its outline, it lies inside its
   // target: occluded. Seed 2 start 10, a screwdriver's tip: converged by the pixel thresholds with its scale 0.22 %
   // off (1.18 mm), now held to 0.05 % by the bench's final scale threshold.
-  const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBench bench(data, vpMorphBench::Settings());
-  const std::vector<vpMorphBenchScenario> seed2 = vpMorphBenchScenario::generate("occlusion", 20, 2, data);
-  const std::vector<vpMorphBenchScenario> seed3 = vpMorphBenchScenario::generate("occlusion", 20, 3, data);
-  const std::vector<std::pair<const vpMorphBenchScenario *, std::string>> runs = {
-      {&seed2[5], "wrench"}, {&seed3[8], "key"}, {&seed2[10], "screwdriver"}};
-  for (const auto &run : runs) {
-    REQUIRE(run.first->object == run.second);
-    const vpMorphBenchResult r = bench.run(*run.first, "morph");
-    std::printf("[outline] occluded %s: %s, final error %.3f mm %.3f deg\n", run.second.c_str(),
-                r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation, r.finalRotation * 180 / M_PI);
+  struct Start
+  {
+    unsigned int seed;
+    std::size_t index;
+    const char *object;
+  };
+  for (const Start &st : {Start{2, 5, "wrench"}, Start{3, 8, "key"}, Start{2, 10, "screwdriver"}}) {
+    const vpMorphBenchResult r = heldOutRun("occlusion", st.seed, st.index, st.object);
     CHECK(r.success);
     CHECK(r.finalTranslation < 0.5e-3);
   }
@@ -268,13 +265,7 @@ TEST_CASE("A bent view nearer another template by the distance keeps the templat
   // Deformable set, seed 2 (held out), start 10: a bent screwdriver at its goal is 0.89 from its template and 0.70
   // from the pliers by D_morph, but shows 0.65 of its own outline and 0.40 of theirs. The target check took it for a
   // mismatch, the adapter re-recognised it as the pliers and servoed 17 cm away.
-  const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("deformable", 20, 2, data)[10];
-  REQUIRE(sc.object == "screwdriver");
-  const vpMorphBenchResult r = vpMorphBench(data, vpMorphBench::Settings()).run(sc, "morph");
-  std::printf("[deformed] bent screwdriver, seed 2 start 10: %s as %s, %u re-recognitions, final error %.3f mm\n",
-              r.success ? "success" : r.failure.c_str(), r.recognized.c_str(), r.rerecognitions,
-              1000 * r.finalTranslation);
+  const vpMorphBenchResult r = heldOutRun("deformable", 2, 10, "screwdriver");
   CHECK(r.recognized == "screwdriver");
   CHECK(r.rerecognitions == 0);
   CHECK(r.success);
