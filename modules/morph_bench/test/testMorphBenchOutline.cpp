@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,17 +24,28 @@ namespace
 {
 const double Zd = 0.5;
 
+// The bench with the default settings on \e robot, built once per test process: its database calibration takes a
+// second, and a test case may run several starts (runs do not depend on one another).
+const vpMorphBench &sharedBench(vpMorphSimRobot::Kind robot)
+{
+  static std::map<vpMorphSimRobot::Kind, std::unique_ptr<vpMorphBench>> benches;
+  std::unique_ptr<vpMorphBench> &b = benches[robot];
+  if (!b) {
+    vpMorphBench::Settings st;
+    st.robot = robot;
+    b.reset(new vpMorphBench(VISPMORPH_DATA_DIR, st));
+  }
+  return *b;
+}
+
 // Start \e index of \e set (\e count starts of \e seed) servoed by `morph` on \e robot, its object checked, its
 // result printed.
 vpMorphBenchResult benchRun(const std::string &set, std::size_t count, unsigned int seed, std::size_t index,
                             const std::string &object, vpMorphSimRobot::Kind robot)
 {
-  const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate(set, count, seed, data)[index];
+  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate(set, count, seed, VISPMORPH_DATA_DIR)[index];
   REQUIRE(sc.object == object);
-  vpMorphBench::Settings st;
-  st.robot = robot;
-  const vpMorphBenchResult r = vpMorphBench(data, st).run(sc, "morph");
+  const vpMorphBenchResult r = sharedBench(robot).run(sc, "morph");
   std::printf("[%s] %s, seed %u start %zu on the %s: %s, final error %.3f mm %.3f deg, %u re-plans\n", set.c_str(),
               object.c_str(), seed, index, vpMorphSimRobot::kindName(robot).c_str(),
               r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation, r.finalRotation * 180 / M_PI,
@@ -159,7 +172,7 @@ TEST_CASE("A thin object's tilt is commanded only about the axes its outline sho
   // zone per axis from one period's deviation, 0.13 and 0.19 deg.
   const std::string data = VISPMORPH_DATA_DIR;
   const std::vector<vpMorphBenchScenario> scs = vpMorphBenchScenario::generate("planar", 20, 2, data);
-  const vpMorphBench bench(data, vpMorphBench::Settings());
+  const vpMorphBench &bench = sharedBench(vpMorphSimRobot::FREE_CAMERA);
   for (std::size_t k : {6, 18}) {
     REQUIRE(scs[k].object == "pliers");
     const vpMorphBenchResult r = bench.run(scs[k], "morph");
@@ -290,7 +303,7 @@ TEST_CASE("An occluded wedge that its distance rejects is recognised by the shar
   const vpHomogeneousMatrix cMo = sc.cdMc.inverse() * sc.cdMo;
   vpImage<unsigned char> I;
   scene.render(cMo, I);
-  const vpMorphBench bench(data, vpMorphBench::Settings());
+  const vpMorphBench &bench = sharedBench(vpMorphSimRobot::FREE_CAMERA);
   const vpMorphDatabase &db = bench.database();
   const vpMorphRecognition rec = db.recognize(vpMorphTagPoseEstimator::silhouette(I, scene.projectedTagCorners(cMo)));
   std::printf("[outline] occluded wedge: distance %.2f (threshold %.2f), support %.2f\n", rec.distance, rec.threshold,
@@ -313,7 +326,7 @@ TEST_CASE("An occluded wedge nearer another tool by the distance, both rejected,
   const std::string data = VISPMORPH_DATA_DIR;
   const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("occlusion", 20, 2, data)[1];
   REQUIRE(sc.object == "wedge");
-  const vpMorphBench bench(data, vpMorphBench::Settings());
+  const vpMorphBench &bench = sharedBench(vpMorphSimRobot::FREE_CAMERA);
   const vpMorphDatabase &db = bench.database();
   const vpMorphRecognition rec = bench.recognizeStart(sc);
   std::printf("[outline] occluded wedge, seed 2 start 1: %s %s, support %.2f, distance's choice %s\n",
@@ -473,7 +486,7 @@ TEST_CASE("A wedge whose top sags is laid on its template by the part of its out
   // outline that lies on the template's (its base and ends), they converge.
   const std::string data = VISPMORPH_DATA_DIR;
   const std::vector<vpMorphBenchScenario> scs = vpMorphBenchScenario::generate("deformable", 20, 2, data);
-  const vpMorphBench bench(data, vpMorphBench::Settings());
+  const vpMorphBench &bench = sharedBench(vpMorphSimRobot::FREE_CAMERA);
   for (std::size_t k : {1, 7, 13, 19}) {
     REQUIRE(scs[k].object == "wedge");
     const vpMorphBenchResult r = bench.run(scs[k], "morph");
