@@ -617,6 +617,8 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
   for (std::size_t k = 1; k < regs.size(); ++k)
     if (regs[k].area >= joinedMinShare() * largest.area)
       pieces.push_back(&regs[k]);
+  if (pieces.empty())
+    return polygon(largest); // the common case: one piece, no mask to draw
   cv::Mat joined = cv::Mat::zeros(static_cast<int>(I.getHeight()) + 2, static_cast<int>(I.getWidth()) + 2, CV_8UC1);
   auto fill = [&joined](const std::vector<cv::Point> &poly, bool convex) {
     std::vector<cv::Point> shifted(poly);
