@@ -125,7 +125,7 @@ std::size_t vpMorph::rigidFrameCount(std::size_t n) const
   return n - std::max<std::size_t>(1, n / 2);
 }
 
-std::vector<vpMorphContour> vpMorph::sequence(std::size_t n) const
+std::vector<vpMorphContour> vpMorph::sequence(std::size_t n, bool longWay) const
 {
   std::vector<vpMorphContour> frames;
   if (n == 0)
@@ -138,7 +138,7 @@ std::vector<vpMorphContour> vpMorph::sequence(std::size_t n) const
       continue;
     }
     try {
-      frames.push_back(m_rigid.interpolated(double(k) / double(nr)).apply(m_input));
+      frames.push_back(m_rigid.interpolated(double(k) / double(nr), longWay).apply(m_input));
     } catch (const vpException &e) {
       std::ostringstream os;
       os << "vpMorph::sequence: rigid frame " << k << " of " << nr << " is degenerate (" << e.getStringMessage()

@@ -341,14 +341,15 @@ vpMorphContour vpMorphRigidTransform::apply(const vpMorphContour &contour) const
   return out;
 }
 
-vpMorphRigidTransform vpMorphRigidTransform::interpolated(double alpha) const
+vpMorphRigidTransform vpMorphRigidTransform::interpolated(double alpha, bool longWay) const
 {
   if (!std::isfinite(alpha) || alpha < 0.0 || alpha > 1.0) {
     std::ostringstream os;
     os << "vpMorphRigidTransform::interpolated: alpha must be in [0, 1] (got " << alpha << ")";
     badParameter(os.str());
   }
-  return vpMorphRigidTransform(alpha * m_theta, alpha * m_tx, alpha * m_ty, std::pow(m_scale, alpha), m_cx, m_cy);
+  const double theta = longWay ? m_theta - std::copysign(2.0 * M_PI, m_theta) : m_theta;
+  return vpMorphRigidTransform(alpha * theta, alpha * m_tx, alpha * m_ty, std::pow(m_scale, alpha), m_cx, m_cy);
 }
 
 vpMorphRigidTransform vpMorphRigidTransform::inverse() const

@@ -121,6 +121,14 @@ TEST_CASE("vpMorphRigidTransform: apply, inverse, composition, interpolation", "
   CHECK(I0.scale() == 1.0);
   // Angles are wrapped so that interpolation takes the short way round.
   CHECK(vpMorphRigidTransform(1.5 * M_PI, 0, 0).theta() == Approx(-0.5 * M_PI));
+  // The long way round: the other sense (0.7 rad becomes 0.7 - 2 pi), the same end.
+  const vpMorphRigidTransform L = T.interpolated(0.5, true);
+  CHECK(L.theta() == Approx(0.35 - M_PI));
+  CHECK(L.scale() == Approx(H.scale()));
+  CHECK(L.tx() == Approx(H.tx()));
+  CHECK(T.interpolated(0.25, true).theta() == Approx(0.25 * (0.7 - 2 * M_PI)));
+  CHECK(T.interpolated(1.0, true).theta() == Approx(T.theta()));
+  CHECK(vpMorphRigidTransform(-0.4, 0, 0).interpolated(0.5, true).theta() == Approx(0.5 * (2 * M_PI - 0.4)));
 
   CHECK_THROWS_AS(T.interpolated(1.5), vpMorphException);
   CHECK_THROWS_AS(T.interpolated(-0.1), vpMorphException);

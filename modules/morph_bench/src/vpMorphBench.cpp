@@ -130,6 +130,8 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   ctx.expectedObject = sc.object;
   ctx.lambda = m_settings.lambda;
   ctx.samplingTime = m_settings.samplingTime;
+  ctx.jointMin = robot.getJointMin();
+  ctx.jointMax = robot.getJointMax();
   for (const vpMorphBenchEvent &e : sc.events)
     if (e.kind == vpMorphBenchEvent::WRONG_TEMPLATE)
       ctx.forcedTemplate = e.wrongTemplate;
@@ -196,7 +198,7 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
         cmd = controller->missingFrame();
       } else {
         scene.render(cMo, I, it);
-        cmd = controller->step(I, eJe);
+        cmd = controller->step(I, eJe, robot.getJointPositions());
       }
       res.replans += cmd.replanned ? 1 : 0;
       res.rerecognitions += cmd.rerecognized ? 1 : 0;

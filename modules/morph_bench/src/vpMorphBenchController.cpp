@@ -233,14 +233,15 @@ protected:
   VISPMorph's controller: vpServoMorph through 10 sub-goals, Eq. 5-11, online hand-eye estimation, and the
   out-of-plane (tilt) correction on the final approach (vpServoMorph::TILT_FINAL_APPROACH: the contour's homography
   refined on the measured edge outlines, default dead zones) ("morph"); or the paper's planar law alone, no tilt
-  command ("morph-planar").
+  command ("morph-planar"). Both give the servo the robot's joints (vpServoMorph::setJointState()), so that a half
+  turn is planned the way that keeps them clear of their limits.
 */
 class MorphController : public MorphBase
 {
 public:
   explicit MorphController(bool tilt = true) : m_tilt(tilt), m_name(tilt ? "morph" : "morph-planar") {}
   std::string name() const override { return m_name; }
-  Command step(const vpImage<unsigned char> &I, const vpMatrix &) override
+  Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe, const vpColVector &q) override
   {
     vpMorphContour c;
     Command cmd;
@@ -254,6 +255,7 @@ public:
     if (!m_targetSet)
       setTarget();
     const Clock::time_point t0 = Clock::now();
+    m_servo->setJointState(eJe, q, m_ctx.jointMin, m_ctx.jointMax); // read when a sequence is planned
     cmd.v = m_servo->computeControlLaw(c);
     cmd.controlMs = msSince(t0);
     if (m_servo->status() == vpServoMorph::TARGET_MISMATCH) {
@@ -345,7 +347,7 @@ class MorphVpServoController : public MorphBase
 {
 public:
   std::string name() const override { return "morph-vpservo"; }
-  Command step(const vpImage<unsigned char> &I, const vpMatrix &) override
+  Command step(const vpImage<unsigned char> &I, const vpMatrix &, const vpColVector &) override
   {
     vpMorphContour c;
     Command cmd;
@@ -446,7 +448,7 @@ class IbvsController : public Base
 public:
   IbvsController(vpServo::vpServoIteractionMatrixType L, const char *name) : m_L(L), m_name(name) {}
   std::string name() const override { return m_name; }
-  Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe) override
+  Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe, const vpColVector &) override
   {
     const Clock::time_point t0 = Clock::now();
     const TagView tag = detectTag(*m_tag, I);
@@ -489,7 +491,7 @@ class PbvsController : public Base
 {
 public:
   std::string name() const override { return "pbvs"; }
-  Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe) override
+  Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe, const vpColVector &) override
   {
     const Clock::time_point t0 = Clock::now();
     const TagView tag = detectTag(*m_tag, I);
@@ -529,7 +531,7 @@ class MomentsController : public Base
 {
 public:
   std::string name() const override { return "moments"; }
-  Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe) override
+  Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe, const vpColVector &) override
   {
     const TagView tag = detectTag(*m_tag, I);
     double ms = 0;

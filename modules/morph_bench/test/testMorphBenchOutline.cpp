@@ -139,6 +139,16 @@ TEST_CASE("vpServoMorph stops following a tilt estimate that its own commands do
   CHECK(viperRun("planar-hard", 0, "pliers").success);
 }
 
+TEST_CASE("A half turn on the Viper850 is planned the way its wrist can turn", "[bench][roll]")
+{
+  // Planar-hard set, seed 3, start 12 (held out): the pliers turned -179.1 deg, joint 6 at 179.1 deg. Its rotation
+  // was measured as a little over half a turn and planned +180.9 deg, which ends on the wrist's 360 deg limit
+  // (joint-limit, 0.54 deg short). Told the wrist's room (vpServoMorph::setRollRange()), the servo turns -179.1 deg.
+  const vpMorphBenchResult r = benchRun("planar-hard", 20, 3, 12, "pliers", vpMorphSimRobot::VIPER850);
+  CHECK(r.success);
+  CHECK(r.jointLimitHits == 0);
+}
+
 TEST_CASE("A view judged unlike its target only because it was tilted is judged again once the tilt is corrected",
           "[bench][tilt]")
 {

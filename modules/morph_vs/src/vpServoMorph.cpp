@@ -383,6 +383,23 @@ void vpServoMorph::setJumpPixels(double px)
   m_jumpPx = px;
 }
 
+void vpServoMorph::setJointState(const vpMatrix &eJe, const vpColVector &q, const vpColVector &qMin,
+                                 const vpColVector &qMax)
+{
+  const unsigned int n = q.size();
+  if (n == 0 || eJe.getRows() != 6 || eJe.getCols() != n || qMin.size() != n || qMax.size() != n)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpServoMorph::setJointState: eJe must be 6 x n for n joint positions and limits");
+  for (unsigned int i = 0; i < n; ++i)
+    if (!(q[i] >= qMin[i] && q[i] <= qMax[i]))
+      throw vpMorphException(vpMorphException::badParameterError,
+                             "vpServoMorph::setJointState: a joint position is NaN or outside its limits");
+  m_eJe = eJe;
+  m_q = q;
+  m_qMin = qMin;
+  m_qMax = qMax;
+}
+
 void vpServoMorph::setTargetCheck(const vpMorphDatabase &db, const std::string &name, double slack)
 {
   if (!std::isfinite(slack) || slack < 1.0)
@@ -452,6 +469,8 @@ void vpServoMorph::start(const vpMorphContour &current)
 {
   m_regionsAlike = UNDECIDED;
   m_regionsRejudged = false;
+  m_longWay = false;
+  m_qEnd = vpColVector();
   if (m_nSub == 0) {
     m_subGoals = {m_target};
   } else {
@@ -462,26 +481,34 @@ void vpServoMorph::start(const vpMorphContour &current)
     const vpMorph morph(current, m_target,
                         m_tracker.regionCheck() ? matcher.matchOnRegions(current, m_target)
                                                 : matcher.match(current, m_target));
-    m_subGoals = morph.sequence(m_nSub);
+    // The rigid transform (pixels) as a camera displacement cMc' = [Rz(-theta), d] at the current depth.
+    const vpMorphRigidTransform &Tp = morph.rigidTransform();
+    const double px = m_cam.get_px(), py = m_cam.get_py();
+    const vpMorphRigidTransform Tn(Tp.theta(), Tp.tx() / px, Tp.ty() / py, Tp.scale(), (Tp.cx() - m_cam.get_u0()) / px,
+                                   (Tp.cy() - m_cam.get_v0()) / py);
+    const double Z = m_Zd * std::sqrt(areaRatio(m_target, current));
+    const vpHomogeneousMatrix cMcp = cameraDisplacement(Tn, Z, 1.0);
+    // The short way round unless the joints would end near a limit and the long way keeps them clear.
+    const double theta = Tp.theta(), longTurn = theta - std::copysign(2.0 * M_PI, theta);
+    const bool shortBlocked = jointsBlocked(cMcp, theta, m_qEnd);
+    vpColVector qLong;
+    m_longWay = shortBlocked && !jointsBlocked(cMcp, longTurn, qLong);
+    if (m_longWay)
+      m_qEnd = qLong;
+    const double turn = m_longWay ? longTurn : theta; // the image's rotation along the rigid frames
+    m_subGoals = morph.sequence(m_nSub, m_longWay);
     // Whether the two regions are one shape seen twice is a property of the current object against the target
     // (the sub-goals before the deformation frames are views of the current contour itself): see fitToSubGoal().
     m_regionsAlike =
         regionsAlike(m_target, current, morph.rigidTransform().scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
     const std::size_t nr = morph.rigidFrameCount(m_nSub);
     if (m_rigidPath == CAMERA_STRAIGHT_LINE && nr > 1) {
-      // The rigid transform (pixels) as a camera displacement cMc' = [Rz(-theta), d] at the current depth; the
-      // pose alpha of the way along the straight line is [Rz(-alpha theta), alpha d], and a plane parallel to the
-      // image at depth Z is seen from it through x' = s R(alpha theta) x - s R(alpha theta) alpha d_xy / Z,
-      // s = Z / (Z - alpha d_z) (normalised coordinates, about the principal point).
-      const vpMorphRigidTransform &Tp = morph.rigidTransform();
-      const double px = m_cam.get_px(), py = m_cam.get_py();
-      const vpMorphRigidTransform Tn(Tp.theta(), Tp.tx() / px, Tp.ty() / py, Tp.scale(),
-                                     (Tp.cx() - m_cam.get_u0()) / px, (Tp.cy() - m_cam.get_v0()) / py);
-      const double Z = m_Zd * std::sqrt(areaRatio(m_target, current));
-      const vpHomogeneousMatrix cMcp = cameraDisplacement(Tn, Z, 1.0);
+      // The pose alpha of the way along the straight line is [Rz(-alpha theta), alpha d] (theta: the turn chosen
+      // above), and a plane parallel to the image at depth Z is seen from it through x' = s R(alpha theta) x -
+      // s R(alpha theta) alpha d_xy / Z, s = Z / (Z - alpha d_z) (normalised coordinates, about the principal point).
       const vpMorphContour currentN = current.toNormalized(m_cam);
       for (std::size_t k = 1; k < nr; ++k) { // the last rigid frame stays the rectified contour itself
-        const double a = double(k) / double(nr), th = a * Tp.theta();
+        const double a = double(k) / double(nr), th = a * turn;
         const double dx = a * cMcp[0][3], dy = a * cMcp[1][3], dz = a * cMcp[2][3];
         if (!(Z - dz > 0.0) || !std::isfinite(Z))
           break; // not a camera pose in front of the plane: keep the image-space frames
@@ -779,6 +806,25 @@ vpHomogeneousMatrix vpServoMorph::cameraDisplacement(const vpMorphRigidTransform
   const double rx = ct * qx + st * qy, ry = -st * qx + ct * qy;
   const double tx = k * Z * (T.cx() - rx / s), ty = k * Z * (T.cy() - ry / s), tz = Z * (1.0 - 1.0 / s);
   return vpHomogeneousMatrix(tx, ty, tz, 0, 0, -th);
+}
+
+bool vpServoMorph::jointsBlocked(const vpHomogeneousMatrix &cMcp, double turn, vpColVector &qEnd) const
+{
+  qEnd = vpColVector();
+  if (m_q.size() == 0)
+    return false;
+  vpColVector xi(6, 0.0); // the plan's camera displacement as a twist: translation d, turn -turn about z
+  for (unsigned int i = 0; i < 3; ++i)
+    xi[i] = cMcp[i][3];
+  xi[5] = -turn;
+  qEnd = m_q + m_eJe.pseudoInverse() * (vpVelocityTwistMatrix(m_estimator.get_eMc()) * xi);
+  bool blocked = false;
+  for (unsigned int i = 0; i < m_q.size(); ++i) {
+    const double margin = jointMargin() * (m_qMax[i] - m_qMin[i]);
+    if (std::isfinite(margin) && (qEnd[i] < m_qMin[i] + margin || qEnd[i] > m_qMax[i] - margin))
+      blocked = true;
+  }
+  return blocked;
 }
 
 void vpServoMorph::record()

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -35,6 +36,10 @@ struct Setup
   double noisePx = 0; // Gaussian noise on the vertices (seeded)
   double finalRotation = 0, finalPx = 0; // setFinalThresholds() when finalPx > 0
   double finalScale = 0;                 // setFinalScaleThreshold()
+  // Limits of a roll joint about the optical axis (rad, from the start), given to setJointState() each period with
+  // the end effector's twist as the other "joints" (no limits); none by default.
+  bool joints = false;
+  double rollMin = 0, rollMax = 0;
 };
 
 struct Result
@@ -50,6 +55,9 @@ struct Result
   std::size_t lastSubGoal = 0;
   unsigned int searches = 0; // correspondence searches (full + tracked) of the law in use
   vpServoMorph::Status status = vpServoMorph::NOT_STARTED;
+  double rollDeg = 0, rollMinDeg = 0, rollMaxDeg = 0; // camera turn about its optical axis: final, least, most
+  bool longWay = false;                               // the first sequence turned the long way round
+  double plannedRollDeg = 0;                          // the roll joint's end predicted by the first plan
 };
 
 // Error of a hand-eye estimate: the transform truth^-1 * estimate (translation norm, rotation angle).
@@ -93,7 +101,19 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
   const vpHomogeneousMatrix wMc0 = robot.getPosition(), wMcd = wMo * cdMo.inverse();
   r.straight = (wMcd.getTranslationVector() - wMc0.getTranslationVector()).frobeniusNorm();
   vpTranslationVector prev = wMc0.getTranslationVector();
+  double roll = 0.0; // rad, summed over the periods' turns about the optical axis
   for (r.iterations = 0; r.iterations < st.maxIterations; ++r.iterations) {
+    if (st.joints) {
+      // Joints: the end effector's twist (eJe = I); the sixth turns about z_e, the optical axis here.
+      vpMatrix eJe;
+      eJe.eye(6);
+      vpColVector q(6, 0.0), qMin(6, -std::numeric_limits<double>::infinity()),
+          qMax(6, std::numeric_limits<double>::infinity());
+      q[5] = roll;
+      qMin[5] = std::min(roll, st.rollMin);
+      qMax[5] = std::max(roll, st.rollMax);
+      servo.setJointState(eJe, q, qMin, qMax);
+    }
     const vpHomogeneousMatrix cMo = robot.getPosition().inverse() * wMo;
     r.maxDepth = std::max(r.maxDepth, depth(cMo));
     vpMorphContour c = projectPixels(cMo);
@@ -106,18 +126,27 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
       c = vpMorphContour(x, y);
     }
     const vpColVector ve = servo.computeControlLaw(c);
+    if (r.iterations == 0) {
+      r.longWay = servo.turnsLongWay();
+      r.plannedRollDeg = servo.plannedJointEnd().size() == 6 ? vpMath::deg(servo.plannedJointEnd()[5]) : 0.0;
+    }
     if (servo.converged()) {
       r.converged = true;
       break;
     }
     if (servo.status() != vpServoMorph::MOVING && servo.status() != vpServoMorph::SUBGOAL_REACHED)
       break;
+    const vpHomogeneousMatrix wMcBefore = robot.getPosition();
     robot.setVelocity(vpRobot::CAMERA_FRAME, cVe * ve);
+    roll += vpThetaUVector((wMcBefore.inverse() * robot.getPosition()).getRotationMatrix())[2];
+    r.rollMinDeg = std::min(r.rollMinDeg, vpMath::deg(roll));
+    r.rollMaxDeg = std::max(r.rollMaxDeg, vpMath::deg(roll));
     const vpTranslationVector t = robot.getPosition().getTranslationVector();
     r.path += (t - prev).frobeniusNorm();
     prev = t;
   }
   r.status = servo.status();
+  r.rollDeg = vpMath::deg(roll);
   r.lastSubGoal = servo.subGoalIndex();
   r.searches = servo.tracker().fullMatchCount() + servo.tracker().trackedMatchCount();
   poseError(robot.getPosition().inverse() * wMo, cdMo, r.tErr, r.rDeg);
@@ -185,6 +214,65 @@ TEST_CASE("vpServoMorph rigid sub-goals on the straight camera path: short paths
     CHECK(straight.path / straight.straight <= 1.1);
     CHECK(arc.path / arc.straight > 1.2); // the rotation about the object's centroid bends the path
   }
+}
+
+TEST_CASE("vpServoMorph plans a half turn the way its joints allow", "[servo][joints]")
+{
+  Setup st;
+  st.eMcTrue = st.eMcEstimate = eMcTrue;
+  for (const vpServoMorph::RigidPath path : {vpServoMorph::CAMERA_STRAIGHT_LINE, vpServoMorph::ABOUT_OBJECT_CENTROID})
+    for (const double startDeg : {150.0, 179.0, -179.0}) {
+      st.rigidPath = path;
+      st.joints = false;
+      const vpHomogeneousMatrix cMo0 = planarPose(20 + startDeg, 0.03, -0.02);
+      const Result free = run(cMo0, cdMo, st);
+      // A roll joint whose limit lies 5 deg beyond where the short way ends, on its side (range 585 deg: the margin
+      // is 17.6 deg), and far on the other.
+      const double shortDeg = free.rollDeg, side = shortDeg > 0 ? 1.0 : -1.0;
+      st.joints = true;
+      st.rollMin = vpMath::rad(side > 0 ? -400.0 : shortDeg - 5.0);
+      st.rollMax = vpMath::rad(side > 0 ? shortDeg + 5.0 : 400.0);
+      const Result bounded = run(cMo0, cdMo, st);
+      std::printf("[servo] start %6.1f deg (%s): the short way turns %.1f deg; with a limit 5 deg beyond, %s %.1f deg "
+                  "(planned %.1f, from %.1f to %.1f), %s after %d iterations, %.3f mm %.3f deg\n",
+                  startDeg, path == vpServoMorph::CAMERA_STRAIGHT_LINE ? "straight line" : "about the object", shortDeg,
+                  bounded.longWay ? "the long way" : "the short way", bounded.rollDeg, bounded.plannedRollDeg,
+                  bounded.rollMinDeg, bounded.rollMaxDeg, vpServoMorph::statusName(bounded.status), bounded.iterations,
+                  bounded.tErr * 1000, bounded.rDeg);
+      INFO("start " << startDeg << " deg");
+      CHECK(!free.longWay);
+      CHECK(std::fabs(shortDeg) < 181.0);
+      CHECK(bounded.longWay);
+      CHECK(bounded.converged);
+      CHECK(bounded.tErr < 1e-3);
+      CHECK(bounded.rDeg < 0.5);
+      // The other way round, by the rest of the turn, as planned, never towards the limit.
+      const double longDeg = shortDeg - side * 360.0;
+      CHECK(std::fabs(bounded.rollDeg - longDeg) < 1.0);
+      CHECK(std::fabs(bounded.plannedRollDeg - longDeg) < 2.0);
+      CHECK(side * (side > 0 ? bounded.rollMaxDeg : bounded.rollMinDeg) < 1.0);
+    }
+  // Limits that the short way stays clear of change nothing (+-200 deg: margin 12 deg, the turn ends 50 deg short).
+  st.rigidPath = vpServoMorph::CAMERA_STRAIGHT_LINE;
+  st.rollMin = vpMath::rad(-200.0);
+  st.rollMax = vpMath::rad(200.0);
+  const Result clear = run(planarPose(20 + 150.0, 0.03, -0.02), cdMo, st);
+  CHECK(!clear.longWay);
+  CHECK(std::fabs(clear.plannedRollDeg - clear.rollDeg) < 2.0);
+
+  vpServoMorph servo;
+  vpMatrix eJe;
+  eJe.eye(6);
+  const vpColVector q(6, 0.0), lo(6, -1.0), hi(6, 1.0);
+  vpColVector bad = q;
+  bad[5] = 1.5;
+  CHECK_THROWS_AS(servo.setJointState(eJe, bad, lo, hi), vpMorphException);
+  bad[5] = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS(servo.setJointState(eJe, bad, lo, hi), vpMorphException);
+  CHECK_THROWS_AS(servo.setJointState(eJe, vpColVector(5, 0.0), lo, hi), vpMorphException);
+  CHECK_THROWS_AS(servo.setJointState(vpMatrix(5, 6), q, lo, hi), vpMorphException);
+  servo.setJointState(eJe, q, lo, hi);
+  CHECK(servo.plannedJointEnd().size() == 0); // nothing planned yet
 }
 
 TEST_CASE("vpServoMorph online calibration: wrong eMc (15 deg, 30 mm) and intrinsics (20 %) still converge",

@@ -85,11 +85,12 @@ public:
     (the input moved by rigidTransform().interpolated(k / nr), k = 1..nr, the last one being rectified()),
     then nd deformation frames at(k / nd), k = 1..nd. nd = max(1, n / 2) and nr = n - nd: half of the frames
     for each stage, with at least the final one, so that n = 1 gives just the target. For NONE, nr = 0.
-    The last contour is exactly the target. n = 0 gives an empty vector.
+    The last contour is exactly the target. n = 0 gives an empty vector. With \e longWay the rigid frames turn the
+    other way round (vpMorphRigidTransform::interpolated()) to the same rectified contour.
     \throw vpMorphException::badContourError when a frame degenerates (see at(); a rigid frame can too, when the
     input is scaled by orders of magnitude and rounding makes two of its vertices coincide).
   */
-  std::vector<vpMorphContour> sequence(std::size_t n) const;
+  std::vector<vpMorphContour> sequence(std::size_t n, bool longWay = false) const;
   //! input() followed by sequence(n): n + 1 contours, as drawn in the paper's figures.
   std::vector<vpMorphContour> sequenceWithInput(std::size_t n) const;
   //! nr, the number of rigid frames at the start of sequence(n).

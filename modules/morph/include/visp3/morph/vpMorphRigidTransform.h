@@ -83,9 +83,11 @@ public:
     The fraction \e alpha in [0, 1] of this transform, about the same centre: angle alpha*theta, translation
     alpha*t, scale s^alpha (geometric, so that halving twice equals quartering). alpha = 0 is the identity,
     alpha = 1 this transform.
+    With \e longWay, the angle turns the other way round, alpha*(theta - 2 pi sign(theta)) (theta = 0: a whole turn):
+    the same end, for a robot whose joints cannot go the short way (see vpServoMorph::setJointState()).
     \throw vpMorphException::badParameterError if alpha is not finite or outside [0, 1].
   */
-  vpMorphRigidTransform interpolated(double alpha) const;
+  vpMorphRigidTransform interpolated(double alpha, bool longWay = false) const;
   //! Inverse map, written about the image c + t of this centre (so its translation is -t).
   vpMorphRigidTransform inverse() const;
   //! Composition: (a * b).apply(x) == a.apply(b.apply(x)); written about b's centre.

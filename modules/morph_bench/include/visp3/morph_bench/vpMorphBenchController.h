@@ -79,6 +79,8 @@ public:
     double samplingTime = 0.04;                //!< s
     //! Fault injection (WRONG_TEMPLATE): the first recognition returns this template, whatever it sees.
     std::string forcedTemplate;
+    //! The robot's joint limits (infinite for the free camera, whose "joints" are its pose).
+    vpColVector jointMin, jointMax;
   };
   //! One command.
   struct Command
@@ -99,8 +101,8 @@ public:
   virtual std::string name() const = 0;
   //! Starts a run (resets every state).
   virtual void start(const Context &ctx) = 0;
-  //! One iteration on the image \e I with the robot Jacobian \e eJe.
-  virtual Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe) = 0;
+  //! One iteration on the image \e I with the robot Jacobian \e eJe at the joint positions \e q.
+  virtual Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe, const vpColVector &q) = 0;
   /*!
     One iteration without an image (a dropped frame): the controller is told, rather than given the previous
     image again, which it would integrate twice. Default: hold (not measured, zero velocity).

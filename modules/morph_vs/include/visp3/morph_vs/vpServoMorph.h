@@ -16,11 +16,12 @@
 #include <visp3/core/vpColor.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
+#include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpRGBa.h>
 #include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph/vpMorphHomography.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
-#include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph/vpMorphTemplate.h>
 #include <visp3/morph_vs/vpFeatureMorph.h>
 #include <visp3/morph_vs/vpMorphCorrespondenceTracker.h>
@@ -343,6 +344,24 @@ public:
   void setJumpPixels(double px);
   double jumpPixels() const { return m_jumpPx; }
   /*!
+    The robot's joints: \e eJe at the joint positions \e q, and their limits (infinite: none). Read when a sequence
+    is planned (the first call, a re-plan): the turn about the optical axis can be planned either way round, and
+    the short way is taken unless the joints' end, predicted to first order (q + eJe^+ eVc times the planned camera
+    displacement), comes within jointMargin() of a limit where the long way's does not. Why: near half a turn the two
+    ways differ by less than the rotation's estimate, and an arm's wrist may allow only one of them (a Viper850
+    started at -179.1 deg was turned +180.9 deg, its wrist ending on its limit). Call it each period before
+    computeControlLaw() (it does not restart the sequence); never called, the short way is taken.
+    \throw vpMorphException::badParameterError if eJe is not 6 x n for n positions and limits, or a position is
+    NaN or outside its limits.
+  */
+  void setJointState(const vpMatrix &eJe, const vpColVector &q, const vpColVector &qMin, const vpColVector &qMax);
+  //! Share of a joint's range kept clear of its limits at a plan's predicted end (3 %: 21.6 deg of a +-360 deg wrist).
+  static double jointMargin() { return 0.03; }
+  //! True when the current sequence turns the long way round (see setJointState()).
+  bool turnsLongWay() const { return m_longWay; }
+  //! The joints' end predicted for the current sequence (empty without setJointState()).
+  const vpColVector &plannedJointEnd() const { return m_qEnd; }
+  /*!
     Checks that the current contour is the target's shape (see the class description) against the template
     database \e db (copied) in which the target is template \e name; \e slack multiplies its acceptance
     threshold (a view met during the servo is not the view recognised). Call after setTarget().
@@ -409,6 +428,9 @@ private:
   vpColVector stop(Status s);
   vpMorphRigidTransform fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx, double Z);
   vpHomogeneousMatrix cameraDisplacement(const vpMorphRigidTransform &T, double Z, double k) const;
+  // Whether the joints' end predicted for the plan cMcp turned by \e turn (image, rad) comes within jointMargin() of
+  // a limit; \e qEnd the prediction (empty without setJointState()).
+  bool jointsBlocked(const vpHomogeneousMatrix &cMcp, double turn, vpColVector &qEnd) const;
   void residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx);
   // Against the last fit to the same sub-goal (m_prevT): the rotation moved by no more than one step and noise;
   // the view jumped when it did not, or when the translation moved beyond what one step explains plus jumpPixels().
@@ -452,6 +474,9 @@ private:
   double m_tiltMinInliers = 0.6, m_tiltMaxResidualPx = 2.0; // a homography fit worse than this is not used
   unsigned int m_maxLost = 25, m_maxReplans = 3;
   double m_jumpPx = 20.0;
+  vpMatrix m_eJe; // setJointState(): empty until given
+  vpColVector m_q, m_qMin, m_qMax, m_qEnd;
+  bool m_longWay = false; // the current sequence turns the long way round
   vpMorphDatabase m_checkDb;
   std::size_t m_checkIndex = 0;
   double m_checkSlack = 1.25;
