@@ -9,6 +9,8 @@
   - BM_extract: the silhouette extraction of one 640x480 image (vpMorphContourExtractor, tag masking excluded);
   - BM_extractNoisy: the same view with the benchmark's noise set at its worst (grey-level noise of std 6, blur of
     std 1.5 px, gain 0.7, offset -25), where the mask is ragged and the edge is found under noise;
+  - BM_extractCut: the same view with a card hiding 15 % of the pliers across their middle, cut in two and joined
+    again (vpMorphContourExtractor::extractJoined(), as the benchmark's controllers extract every view);
   - BM_approximate: its polygonal approximation alone (vpMorphPolygonApproximation on that image's boundary chain),
     the part of the extraction that grows with the boundary's length;
   - BM_morphIteration: vpServoMorph::computeControlLaw() over the recorded run (tracked correspondence, fit,
@@ -174,6 +176,24 @@ void BM_extractNoisy(benchmark::State &state)
     benchmark::DoNotOptimize(extractor.extract(I).size());
 }
 
+void BM_extractCut(benchmark::State &state)
+{
+  const Recording &r = recording();
+  vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
+  vpMorphPlanarScene::Faults f;
+  f.occludedShare = 0.15;
+  f.occluderPosition = 0.5;
+  scene.setFaults(f);
+  vpImage<unsigned char> I;
+  scene.render(r.firstcMo, I);
+  vpMorphTagPoseEstimator::maskTag(I, scene.projectedTagCorners(r.firstcMo));
+  vpMorphContourExtractor extractor;
+  if (extractor.extractJoined(I).hasRegion())
+    state.SkipWithError("the card does not cut the pliers in two in this view");
+  for (auto _ : state)
+    benchmark::DoNotOptimize(extractor.extractJoined(I).size());
+}
+
 void BM_approximate(benchmark::State &state)
 {
   const std::vector<vpImagePoint> chain = vpMorphContourExtractor().boundary(maskedFirstImage(recording()));
@@ -305,6 +325,7 @@ public:
 
 BENCHMARK(BM_extract)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_extractNoisy)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_extractCut)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_approximate)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIteration)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIterationTilt)->Unit(benchmark::kMicrosecond);

@@ -390,9 +390,11 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
   3 px wide on each side, enough for the edge blur of a camera; other regions' pixels are left out of it. The
   second-order moments come with it (the region's orientation, steadier than a fit over polygon vertices).
   Falls back to the binary region when the object and background levels cannot be told apart. \e levelsFrom, when
-  given and measured, supplies both levels instead (a region that is not all object: see extractJoined()).
+  given and measured, supplies both levels instead (a region that is not all object: see extractJoined()). With
+  \e levelsOnly, only the levels are read (reg.fg, reg.bg): the pieces of a joined silhouette lend theirs to it.
 */
-void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg, const Region *levelsFrom = nullptr)
+void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg, const Region *levelsFrom = nullptr,
+             bool levelsOnly = false)
 {
   const int B = 3;
   cv::Rect box = cv::boundingRect(reg.chain);
@@ -421,6 +423,8 @@ void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg, const Region 
   const double bg = given ? levelsFrom->bg : levelUnder(g, ring);
   reg.fg = fg;
   reg.bg = bg;
+  if (levelsOnly)
+    return;
   // Raw moments about the box corner (well conditioned), centred at the end.
   double m00 = 0.0, m10 = 0.0, m01 = 0.0, m20 = 0.0, m11 = 0.0, m02 = 0.0;
   const bool grades = fg >= 0.0 && bg >= 0.0 && std::fabs(fg - bg) >= 8.0;
@@ -584,7 +588,7 @@ double rectGap(const cv::Rect &a, const cv::Rect &b)
 void near(const std::vector<cv::Point> &chain, const cv::Point &c, double r, std::vector<cv::Point> &out)
 {
   for (const cv::Point &p : chain)
-    if (std::hypot(double(p.x - c.x), double(p.y - c.y)) <= r)
+    if (std::abs(p.x - c.x) <= r && std::abs(p.y - c.y) <= r && std::hypot(double(p.x - c.x), double(p.y - c.y)) <= r)
       out.push_back(p);
 }
 
@@ -592,11 +596,16 @@ void near(const std::vector<cv::Point> &chain, const cv::Point &c, double r, std
 void cutEdge(const std::vector<cv::Point> &chain, const cv::Point &c, double r, const std::vector<cv::Point> &other,
              double reach, std::vector<cv::Point> &out)
 {
-  std::vector<cv::Point> candidates;
+  std::vector<cv::Point> candidates, others;
   near(chain, c, r, candidates);
+  if (candidates.empty())
+    return;
+  // Only the other chain's pixels within r + reach of c can be within reach of a candidate: a few dozen instead of
+  // the whole chain for each candidate (the same pixels result).
+  near(other, c, r + reach, others);
   const double reach2 = reach * reach;
   for (const cv::Point &p : candidates)
-    for (const cv::Point &q : other) {
+    for (const cv::Point &q : others) {
       const double dx = p.x - q.x, dy = p.y - q.y;
       if (dx * dx + dy * dy <= reach2) {
         out.push_back(p);
@@ -609,8 +618,14 @@ void cutEdge(const std::vector<cv::Point> &chain, const cv::Point &c, double r, 
 vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned char> &I) const
 {
   cv::Mat bin;
-  std::vector<Region> regs = regions(I, 1, &bin);
-  const Region &largest = regs.front();
+  std::vector<Region> regs = regions(I, 0, &bin); // measured below: whole, or its levels only when joined
+  Region &largest = regs.front();
+  const cv::Mat grey(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
+                     const_cast<unsigned char *>(I.bitmap));
+  auto alone = [&]() {
+    measure(grey, bin, largest);
+    return polygon(largest);
+  };
   const cv::Rect box = cv::boundingRect(largest.chain);
   const double maxGap = joinedMaxGap() * std::hypot(double(box.width), double(box.height));
   std::vector<const Region *> pieces;
@@ -618,12 +633,17 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
     if (regs[k].area >= joinedMinShare() * largest.area)
       pieces.push_back(&regs[k]);
   if (pieces.empty())
-    return polygon(largest); // the common case: one piece, no mask to draw
-  cv::Mat joined = cv::Mat::zeros(static_cast<int>(I.getHeight()) + 2, static_cast<int>(I.getWidth()) + 2, CV_8UC1);
-  auto fill = [&joined](const std::vector<cv::Point> &poly, bool convex) {
+    return alone(); // the common case: one piece, no mask to draw
+  // The join is drawn over the pieces' box only (a pixel of background all round), not the whole image.
+  cv::Rect all = box;
+  for (const Region *p : pieces)
+    all |= cv::boundingRect(p->chain);
+  const cv::Point offset = cv::Point(1, 1) - all.tl();
+  cv::Mat joined = cv::Mat::zeros(all.height + 2, all.width + 2, CV_8UC1);
+  auto fill = [&joined, &offset](const std::vector<cv::Point> &poly, bool convex) {
     std::vector<cv::Point> shifted(poly);
     for (cv::Point &p : shifted)
-      p += cv::Point(1, 1);
+      p += offset;
     if (convex)
       cv::fillConvexPoly(joined, shifted, cv::Scalar(255), cv::LINE_8);
     else
@@ -684,7 +704,7 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
     any = true;
   }
   if (!any)
-    return polygon(largest);
+    return alone();
   std::vector<std::vector<cv::Point> > contours;
   cv::findContours(joined, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
   const auto it = std::max_element(contours.begin(), contours.end(), [](const auto &a, const auto &b) {
@@ -692,14 +712,13 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
   });
   Region r{*it, cv::contourArea(*it), cv::Point()};
   for (cv::Point &p : r.chain)
-    p -= cv::Point(1, 1);
+    p -= offset;
   // The measured edge along the joined boundary: where it runs over the bridge there is no object edge (no
   // gradient, or the occluder's, which an outline fit drops as it drops an occluder's edge on a single piece), the
   // rest is the object's. Its levels are the largest piece's: the bridge's pixels (background, occluder) would
   // move the object's median and every edge with it (measured: 0.6 px outward on a hammer cut from its head, its
   // depth 3.3 mm off). No measured region: part of its area is a bridge, not the object's grey levels.
-  const cv::Mat grey(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
-                     const_cast<unsigned char *>(I.bitmap));
+  measure(grey, bin, largest, nullptr, true);
   measure(grey, bin, r, &largest);
   r.subArea = 0.0;
   return polygon(r);
