@@ -153,9 +153,17 @@ void BM_extract(benchmark::State &state)
     benchmark::DoNotOptimize(extractor.extract(masked).size());
 }
 
+// The recording's first view of the pliers, rendered by \e scene with the faults \e f (the tag not masked).
+vpImage<unsigned char> firstView(vpMorphPlanarScene &scene, const vpMorphPlanarScene::Faults &f)
+{
+  scene.setFaults(f);
+  vpImage<unsigned char> I;
+  scene.render(recording().firstcMo, I);
+  return I;
+}
+
 void BM_extractNoisy(benchmark::State &state)
 {
-  const Recording &r = recording();
   vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
   vpMorphPlanarScene::Faults f;
   f.noiseSigma = 6.0;
@@ -163,9 +171,7 @@ void BM_extractNoisy(benchmark::State &state)
   f.gain = 0.7;
   f.offset = -25.0;
   f.seed = 1;
-  scene.setFaults(f);
-  vpImage<unsigned char> I;
-  scene.render(r.firstcMo, I);
+  vpImage<unsigned char> I = firstView(scene, f);
   std::vector<vpImagePoint> corners;
   vpHomogeneousMatrix cMt;
   if (!scene.tagPoseEstimator().estimate(I, cMt, &corners))
@@ -178,15 +184,12 @@ void BM_extractNoisy(benchmark::State &state)
 
 void BM_extractCut(benchmark::State &state)
 {
-  const Recording &r = recording();
   vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
   vpMorphPlanarScene::Faults f;
   f.occludedShare = 0.15;
   f.occluderPosition = 0.5;
-  scene.setFaults(f);
-  vpImage<unsigned char> I;
-  scene.render(r.firstcMo, I);
-  vpMorphTagPoseEstimator::maskTag(I, scene.projectedTagCorners(r.firstcMo));
+  vpImage<unsigned char> I = firstView(scene, f);
+  vpMorphTagPoseEstimator::maskTag(I, scene.projectedTagCorners(recording().firstcMo));
   vpMorphContourExtractor extractor;
   if (extractor.extractJoined(I).hasRegion())
     state.SkipWithError("the card does not cut the pliers in two in this view");
