@@ -391,7 +391,7 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
   second-order moments come with it (the region's orientation, steadier than a fit over polygon vertices).
   Falls back to the binary region when the object and background levels cannot be told apart. \e levelsFrom, when
   given and measured, supplies both levels instead (a region that is not all object: see extractJoined()). With
-  \e levelsOnly, only the levels are read (reg.fg, reg.bg): the pieces of a joined silhouette lend theirs to it.
+  \e levelsOnly, only the levels are read (reg.fg, reg.bg): the largest piece of a joined silhouette lends its own.
 */
 void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg, const Region *levelsFrom = nullptr,
              bool levelsOnly = false)
