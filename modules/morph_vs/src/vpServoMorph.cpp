@@ -493,17 +493,20 @@ void vpServoMorph::start(const vpMorphContour &current)
     const vpHomogeneousMatrix cMcp = cameraDisplacement(Tn, Z, 1.0);
     // The short way round unless the joints would end near a limit and the long way keeps them clear.
     const double theta = Tp.theta(), longTurn = theta - std::copysign(2.0 * M_PI, theta);
-    const bool shortBlocked = jointsBlocked(cMcp, theta, m_qEnd);
-    vpColVector qLong;
-    m_longWay = shortBlocked && !jointsBlocked(cMcp, longTurn, qLong);
-    if (m_longWay)
-      m_qEnd = qLong;
+    if (m_q.size() > 0) {
+      const vpMatrix eJeInv = m_eJe.pseudoInverse();
+      const vpVelocityTwistMatrix eVc(m_estimator.get_eMc());
+      m_qEnd = jointEnd(eJeInv, eVc, cMcp, theta);
+      const vpColVector qLong = jointEnd(eJeInv, eVc, cMcp, longTurn);
+      m_longWay = nearJointLimit(m_qEnd) && !nearJointLimit(qLong);
+      if (m_longWay)
+        m_qEnd = qLong;
+    }
     const double turn = m_longWay ? longTurn : theta; // the image's rotation along the rigid frames
     m_subGoals = morph.sequence(m_nSub, m_longWay);
     // Whether the two regions are one shape seen twice is a property of the current object against the target
     // (the sub-goals before the deformation frames are views of the current contour itself): see fitToSubGoal().
-    m_regionsAlike =
-        regionsAlike(m_target, current, morph.rigidTransform().scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
+    m_regionsAlike = regionsAlike(m_target, current, Tp.scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
     const std::size_t nr = morph.rigidFrameCount(m_nSub);
     if (m_rigidPath == CAMERA_STRAIGHT_LINE && nr > 1) {
       // The pose alpha of the way along the straight line is [Rz(-alpha theta), alpha d] (theta: the turn chosen
@@ -811,23 +814,24 @@ vpHomogeneousMatrix vpServoMorph::cameraDisplacement(const vpMorphRigidTransform
   return vpHomogeneousMatrix(tx, ty, tz, 0, 0, -th);
 }
 
-bool vpServoMorph::jointsBlocked(const vpHomogeneousMatrix &cMcp, double turn, vpColVector &qEnd) const
+vpColVector vpServoMorph::jointEnd(const vpMatrix &eJeInv, const vpVelocityTwistMatrix &eVc,
+                                   const vpHomogeneousMatrix &cMcp, double turn) const
 {
-  qEnd = vpColVector();
-  if (m_q.size() == 0)
-    return false;
   vpColVector xi(6, 0.0); // the plan's camera displacement as a twist: translation d, turn -turn about z
   for (unsigned int i = 0; i < 3; ++i)
     xi[i] = cMcp[i][3];
   xi[5] = -turn;
-  qEnd = m_q + m_eJe.pseudoInverse() * (vpVelocityTwistMatrix(m_estimator.get_eMc()) * xi);
-  bool blocked = false;
-  for (unsigned int i = 0; i < m_q.size(); ++i) {
+  return m_q + eJeInv * (eVc * xi);
+}
+
+bool vpServoMorph::nearJointLimit(const vpColVector &q) const
+{
+  for (unsigned int i = 0; i < q.size(); ++i) {
     const double margin = jointMargin() * (m_qMax[i] - m_qMin[i]);
-    if (std::isfinite(margin) && (qEnd[i] < m_qMin[i] + margin || qEnd[i] > m_qMax[i] - margin))
-      blocked = true;
+    if (std::isfinite(margin) && (q[i] < m_qMin[i] + margin || q[i] > m_qMax[i] - margin))
+      return true;
   }
-  return blocked;
+  return false;
 }
 
 void vpServoMorph::record()
@@ -1123,13 +1127,14 @@ bool vpServoMorph::estimateTilt(const vpMorphContour &currentN, vpHomogeneousMat
     // Regions not alike (see start()): a tilted view, or a part hidden or bent. Only a homography that explains the
     // whole outline tells the first: an occluder's edge or a bent limb fitted away by the robust weights still
     // pulls the perspective part (measured: an occluded hammer ending 7.9 deg off).
-    const double minInliers = m_regionsAlike == NOT_ALIKE ? kNotAlikeMinInliers : 0.0;
+    const bool notAlike = m_regionsAlike == NOT_ALIKE;
+    const double minInliers = notAlike ? kNotAlikeMinInliers : 0.0;
+    const double maxResidualPx = notAlike ? kNotAlikeMaxResidualPx : kOutlineMaxResidualPx;
     // Measured edges of one plane's outline meet within hundredths of a pixel (tenths under noise): a fit on them
     // that leaves a tenth out, or half a pixel RMS, is of an outline that changed (bent, partly hidden).
     auto denseFit = [&](const vpMorphHomography &start, unsigned int iterations, vpMorphHomography &G) {
       G = vpMorphHomography::refine(currentN.outline(), targetN.outline(), start, 0.1 * pixel, 400, iterations);
-      return G.inlierShare() >= std::max(kOutlineMinInliers, minInliers) &&
-             G.residual() <= (m_regionsAlike == NOT_ALIKE ? kNotAlikeMaxResidualPx : kOutlineMaxResidualPx) * pixel;
+      return G.inlierShare() >= std::max(kOutlineMinInliers, minInliers) && G.residual() <= maxResidualPx * pixel;
     };
     vpMorphHomography G;
     // Outlines: from the previous period's homography (the camera moved by a fraction of its error since), which

@@ -18,6 +18,7 @@
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpRGBa.h>
+#include <visp3/core/vpVelocityTwistMatrix.h>
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph/vpMorphHomography.h>
@@ -428,9 +429,11 @@ private:
   vpColVector stop(Status s);
   vpMorphRigidTransform fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx, double Z);
   vpHomogeneousMatrix cameraDisplacement(const vpMorphRigidTransform &T, double Z, double k) const;
-  // Whether the joints' end predicted for the plan cMcp turned by \e turn (image, rad) comes within jointMargin() of
-  // a limit; \e qEnd the prediction (empty without setJointState()).
-  bool jointsBlocked(const vpHomogeneousMatrix &cMcp, double turn, vpColVector &qEnd) const;
+  // The joints' end predicted (first order) for the plan cMcp turned by \e turn (image, rad), from setJointState()'s.
+  vpColVector jointEnd(const vpMatrix &eJeInv, const vpVelocityTwistMatrix &eVc, const vpHomogeneousMatrix &cMcp,
+                       double turn) const;
+  // Whether the joint positions \e q come within jointMargin() of a limit of setJointState()'s.
+  bool nearJointLimit(const vpColVector &q) const;
   void residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx);
   // Against the last fit to the same sub-goal (m_prevT): the rotation moved by no more than one step and noise;
   // the view jumped when it did not, or when the translation moved beyond what one step explains plus jumpPixels().
