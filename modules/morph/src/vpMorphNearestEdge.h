@@ -54,28 +54,51 @@ public:
     m_nx = std::min(1024, int((x1 - m_x0) / m_h) + 1);
     m_ny = std::min(1024, int((y1 - m_y0) / m_h) + 1);
     m_h = std::max((x1 - m_x0) / m_nx, (y1 - m_y0) / m_ny) * (1.0 + 1e-12) + 1e-300;
-    m_cells.assign(std::size_t(m_nx) * std::size_t(m_ny), {});
-    for (std::size_t k = 0; k < n; ++k) {
+    // The cells' edge lists laid out one after the other (m_first[cell] to m_first[cell + 1] in m_cellEdges), each in
+    // increasing edge order: counted, then filled.
+    m_first.assign(std::size_t(m_nx) * std::size_t(m_ny) + 1, 0);
+    auto forCells = [&](std::size_t k, auto &&f) {
       const std::size_t l = (k + 1) % n;
       const int i0 = cellX(std::min(c.x(k), c.x(l))), i1 = cellX(std::max(c.x(k), c.x(l)));
       const int j0 = cellY(std::min(c.y(k), c.y(l))), j1 = cellY(std::max(c.y(k), c.y(l)));
       for (int j = j0; j <= j1; ++j)
         for (int i = i0; i <= i1; ++i)
-          m_cells[std::size_t(j) * std::size_t(m_nx) + std::size_t(i)].push_back(k);
-    }
+          f(std::size_t(j) * std::size_t(m_nx) + std::size_t(i));
+    };
+    for (std::size_t k = 0; k < n; ++k)
+      forCells(k, [&](std::size_t cell) { ++m_first[cell + 1]; });
+    for (std::size_t cell = 1; cell < m_first.size(); ++cell)
+      m_first[cell] += m_first[cell - 1];
+    m_cellEdges.resize(m_first.back());
+    std::vector<std::size_t> fill(m_first.begin(), m_first.end() - 1);
+    for (std::size_t k = 0; k < n; ++k)
+      forCells(k, [&](std::size_t cell) { m_cellEdges[fill[cell]++] = k; });
   }
 
-  double operator()(double px, double py, double &mx, double &my) const
+  double operator()(double px, double py, double &mx, double &my) const { return query(px, py, mx, my, nullptr); }
+
+  /*
+    As operator(), and \e along = m . n, n the nearest edge's own normal (-dy, dx) / |d|: 1 when the nearest point is
+    inside the edge, under 1 in magnitude at its ends. Moving that edge by e along n moves the distance by -along e:
+    what a fit needs to offset the edges (an outline measured grown or shrunk by a biased edge level).
+  */
+  double operator()(double px, double py, double &mx, double &my, double &along) const
+  {
+    return query(px, py, mx, my, &along);
+  }
+
+private:
+  double query(double px, double py, double &mx, double &my, double *along) const
   {
     Best b;
     const std::size_t n = m_edges.size();
     if (!std::isfinite(px) || !std::isfinite(py))
-      return finish(b, px, py, mx, my); // no edge compared: NaN
+      return finish(b, px, py, mx, my, along); // no edge compared: NaN
     // No grid: the scan.
-    if (m_cells.empty()) {
+    if (m_first.empty()) {
       for (std::size_t k = 0; k < n; ++k)
         visit(k, px, py, b);
-      return finish(b, px, py, mx, my);
+      return finish(b, px, py, mx, my, along);
     }
     // Rings around p's cell, or around the nearest cell when p is outside the grid (a bent limb mapped beyond the
     // template's box: 4 % of the queries of a deformed view's fits, which scanned every edge).
@@ -87,10 +110,11 @@ public:
           continue;
         const bool edgeRow = j == cj - r || j == cj + r;
         for (int i = ci - r; i <= ci + r; i += (edgeRow || r == 0) ? 1 : 2 * r) {
-          if (i < 0 || i >= m_nx)
+          if (i < 0 || i >= m_nx || fartherThanBest(i, j, px, py, b))
             continue;
-          for (std::size_t k : m_cells[std::size_t(j) * std::size_t(m_nx) + std::size_t(i)])
-            visit(k, px, py, b);
+          const std::size_t cell = std::size_t(j) * std::size_t(m_nx) + std::size_t(i);
+          for (std::size_t e = m_first[cell]; e < m_first[cell + 1]; ++e)
+            visit(m_cellEdges[e], px, py, b);
         }
       }
       // Every cell not searched yet lies beyond a side of the (2r + 1)^2 block that has not reached the grid's edge,
@@ -108,16 +132,27 @@ public:
       if (b.d2 < std::numeric_limits<double>::max() && std::sqrt(b.d2) <= border)
         break;
     }
-    return finish(b, px, py, mx, my);
+    return finish(b, px, py, mx, my, along);
   }
 
-private:
   struct Best
   {
     double d2 = std::numeric_limits<double>::max(), fx = 0, fy = 0;
     bool interior = true;
     std::size_t k = std::numeric_limits<std::size_t>::max();
   };
+  /*
+    Whether cell (i, j) lies farther from p than the best edge found (with a relative margin for rounding): an edge's
+    nearest point to p lies in a cell the edge is bucketed in, so such a cell cannot hold a nearer one. Skipping it
+    leaves the result as is; of a ring's cells, most are skipped once ring 0 has found the outline a pixel away.
+  */
+  bool fartherThanBest(int i, int j, double px, double py, const Best &b) const
+  {
+    const double xa = m_x0 + i * m_h, ya = m_y0 + j * m_h;
+    const double dx = std::max(0.0, std::max(xa - px, px - (xa + m_h)));
+    const double dy = std::max(0.0, std::max(ya - py, py - (ya + m_h)));
+    return dx * dx + dy * dy > b.d2 * (1.0 + 1e-9);
+  }
   int cellX(double x) const { return vpMorphGridCell((x - m_x0) / m_h, m_nx); }
   int cellY(double y) const { return vpMorphGridCell((y - m_y0) / m_h, m_ny); }
   void visit(std::size_t k, double px, double py, Best &b) const
@@ -143,10 +178,12 @@ private:
       b.interior = in;
     }
   }
-  double finish(const Best &b, double px, double py, double &mx, double &my) const
+  double finish(const Best &b, double px, double py, double &mx, double &my, double *along) const
   {
     if (b.k >= m_edges.size()) { // no edge compared: a non-finite query point (a map that overflowed)
       mx = my = 0.0;
+      if (along)
+        *along = 0.0;
       return std::numeric_limits<double>::quiet_NaN();
     }
     const double nx = m_edges[b.k].nx, ny = m_edges[b.k].ny;
@@ -154,10 +191,14 @@ private:
     if (b.interior || e <= 0.0) {
       mx = nx;
       my = ny;
+      if (along)
+        *along = 1.0;
       return nx * ex + ny * ey;
     }
     mx = ex / e;
     my = ey / e;
+    if (along)
+      *along = mx * nx + my * ny;
     return e;
   }
 
@@ -169,7 +210,7 @@ private:
   std::vector<Edge> m_edges;
   double m_x0 = 0, m_y0 = 0, m_h = 1;
   int m_nx = 0, m_ny = 0;
-  std::vector<std::vector<std::size_t>> m_cells;
+  std::vector<std::size_t> m_first, m_cellEdges; // empty without a grid
 };
 
 #endif

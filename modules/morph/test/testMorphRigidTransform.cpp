@@ -407,6 +407,62 @@ TEST_CASE("vpMorphRigidTransform: refineOnOutline aligns a cut outline to the wh
                   vpMorphException);
 }
 
+// \e c with every edge moved by d along its left normal (-dy, dx) / |d|, the vertices where the moved edges meet.
+vpMorphContour offsetEdges(const vpMorphContour &c, double d)
+{
+  const std::size_t n = c.size();
+  std::vector<double> x(n), y(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t p = (k + n - 1) % n, q = (k + 1) % n;
+    const double l1 = std::hypot(c.x(k) - c.x(p), c.y(k) - c.y(p)), l2 = std::hypot(c.x(q) - c.x(k), c.y(q) - c.y(k));
+    const double n1x = -(c.y(k) - c.y(p)) / l1, n1y = (c.x(k) - c.x(p)) / l1;
+    const double n2x = -(c.y(q) - c.y(k)) / l2, n2y = (c.x(q) - c.x(k)) / l2;
+    const double f = d / (1.0 + n1x * n2x + n1y * n2y);
+    x[k] = c.x(k) + f * (n1x + n2x);
+    y[k] = c.y(k) + f * (n1y + n2y);
+  }
+  return vpMorphContour(x, y);
+}
+
+TEST_CASE("vpMorphRigidTransform: refineOnOutline with an edge offset is not fooled by an outline grown all round",
+          "[morph][rigid]")
+{
+  // A thin outline measured a tenth of a pixel too large all round (an edge level biased by a clipped background)
+  // and seen through a similarity: a plain fit takes part of the band for scale, the fit with an offset takes it for
+  // what it is and finds the similarity.
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 10; ++trial) {
+    const vpMorphContour B = starPolygon(rng, 40, 4.0).counterClockwise(); // 480 x 120 px at most
+    const double grown = 0.1 + 0.02 * trial;                               // pixels, outwards
+    const vpMorphRigidTransform truth = randomSimilarity(rng, B);
+    // Counter-clockwise: the left normals point inwards, so growing is a negative offset along them.
+    const vpMorphContour A = truth.inverse().apply(offsetEdges(B, -grown));
+    const vpMorphRigidTransform initial = vpMorphRigidTransform(0.01, 1.0, -1.0, 1.002, truth.cx(), truth.cy()) * truth;
+    const vpMorphRigidTransform plain = vpMorphRigidTransform::refineOnOutline(A, B, initial, true, 0.01, 30);
+    double offset = 1.0;
+    const vpMorphRigidTransform fitted = vpMorphRigidTransform::refineOnOutline(A, B, initial, true, 0.01, 30, &offset);
+    INFO("trial " << trial << ": plain scale " << plain.scale() / truth.scale() << ", with the offset "
+                  << fitted.scale() / truth.scale() << " and offset " << offset);
+    CHECK(std::fabs(plain.scale() / truth.scale() - 1.0) > 2e-4);
+    CHECK(std::fabs(fitted.scale() / truth.scale() - 1.0) < 5e-5);
+    CHECK(offset == Approx(-grown).margin(2e-3));
+    CHECK(maxVertexError(A, fitted, truth) < 0.01);
+  }
+  // On a disc, growing and scaling are the same: the offset stays 0 and the fit is the plain one.
+  std::vector<double> x, y;
+  for (int k = 0; k < 64; ++k) {
+    x.push_back(100.0 * std::cos(2.0 * M_PI * k / 64));
+    y.push_back(100.0 * std::sin(2.0 * M_PI * k / 64));
+  }
+  const vpMorphContour disc(x, y);
+  const vpMorphContour bigger = vpMorphRigidTransform(0.0, 0.0, 0.0, 1.01, 0.0, 0.0).apply(disc);
+  double offset = 1.0;
+  const vpMorphRigidTransform T =
+      vpMorphRigidTransform::refineOnOutline(bigger, disc, vpMorphRigidTransform(), true, 0.01, 30, &offset);
+  CHECK(std::fabs(offset) < 1e-3);
+  CHECK(T.scale() == Approx(1.0 / 1.01).epsilon(1e-5));
+}
+
 TEST_CASE("vpMorphRigidTransform::apply moves a contour's measured edge outline with it", "[morph][rigid][outline]")
 {
   vpMorphContour c({0.0, 40.0, 40.0, 0.0}, {0.0, 0.0, 40.0, 40.0});
