@@ -24,6 +24,8 @@
   - BM_morphIterationDeformedFollow: the same without its first iteration (the overlap's search, once per run): the
     periods that follow the overlap and the part from the previous period (and search the part every 8th);
   - BM_morphStart: that first call alone (full cyclic search, morph, sequence);
+  - BM_edgeBand: the fit vpServoMorph measures the edge band with on the final approach (every 8th period: the current
+    outline on the target's with one common offset of its edges), and BM_edgeFit the same fit without the offset;
   - BM_ibvs4Points: the baseline, a stock vpServo on 4 points (IBVS, current L), one computeControlLaw().
   CPU time of the fastest repetition; the table at the end gives the ratios to the IBVS baseline.
 
@@ -45,6 +47,7 @@
 #include <visp3/core/vpVelocityTwistMatrix.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphPolygonApproximation.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 #include <visp3/morph_sim/vpMorphSimRobot.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
@@ -290,6 +293,26 @@ void BM_morphStart(benchmark::State &state)
   }
 }
 
+// The fit vpServoMorph measures the edge band with on the final approach (every 8th period): the last recorded
+// contour's outline, resampled to 256 points, on the target's, 5 rounds from the identity; \e offset: with the edges'
+// offset fitted too, else the plain similarity (the same fit's cost without it).
+void edgeFit(benchmark::State &state, bool offset)
+{
+  const Recording &r = recording();
+  const vpCameraParameters cam = vpMorphPlanarScene::defaultCamera();
+  const vpMorphContour o = r.contours.back().toNormalized(cam).outline().resampled(256);
+  const vpMorphContour t = r.target.toNormalized(cam).outline();
+  for (auto _ : state) {
+    double e = 0.0;
+    benchmark::DoNotOptimize(
+        vpMorphRigidTransform::refineOnOutline(o, t, vpMorphRigidTransform(), true, 1e-4, 5, offset ? &e : nullptr)
+            .scale());
+    benchmark::DoNotOptimize(e);
+  }
+}
+void BM_edgeBand(benchmark::State &state) { edgeFit(state, true); }
+void BM_edgeFit(benchmark::State &state) { edgeFit(state, false); }
+
 void BM_ibvs4Points(benchmark::State &state)
 {
   vpServo task;
@@ -335,6 +358,8 @@ BENCHMARK(BM_morphIterationTilt)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIterationDeformed)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIterationDeformedFollow)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphStart)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_edgeBand)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_edgeFit)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ibvs4Points)->Unit(benchmark::kMicrosecond);
 
 int main(int argc, char **argv)

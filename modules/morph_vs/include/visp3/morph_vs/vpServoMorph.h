@@ -51,6 +51,10 @@
   more than 2 % from the target's when the sequence starts: part of the object hidden, or deformed): then the whole
   similarity comes from the outline, the robust vertex fit refined by a trimmed outline fit
   (vpMorphRigidTransform::refineOnOutline), for the whole sequence (Iteration::areaBased).
+  On the target, when both carry their measured region and edges, the area ratio is the regions', the target's less
+  the band along its edges that the current edges lie off it by (one common offset fitted with a similarity, every
+  8th period): a background clipped by the lighting shrinks the measured region by such a band, which the ratio
+  would take for depth (1.5 mm on a thin pliers).
   At the first fit to the target, the current region laid on it is checked: an occluder only hides, so a region
   that sticks out of the target's by more than 2 % of its area (on the edge outlines when both contours carry
   them; not a silhouette joined across a cut, which has no measured region) is deformed, for the rest of the
@@ -445,8 +449,11 @@ private:
                                    const vpMorphRigidTransform &T);
   // A new sequence: the tilt's correspondence, warm start, latch and guard start again.
   void forgetTilt();
-  // A new sequence: whether the view is deformed, and its offsets, are decided again.
+  // A new sequence: whether the view is deformed, and its offsets, are decided again; the edges' band measured again.
   void forgetDeformation();
+  // Target's over current region's area (both measured with their edges, views alike, the target the sub-goal), the
+  // target's less the band along its edges that the current edges lie off it by (see the source), fitted from T.
+  double bandCorrectedAreaRatio(const vpMorphContour &currentN, const vpMorphRigidTransform &T);
   bool tiltActive() const;
   bool estimateTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &cMct, double &Zp);
   void fuseTilt(const vpMatrix &C, double &angle, double &ax, double &ay, double &sa);
@@ -512,6 +519,8 @@ private:
   bool m_edgePartKnown = false;       // its largest part lying on the target's covers kEdgePartMinShare of it
   vpMorphRigidTransform m_edgePartOffset; // that part's fit o the edge fit^-1, carried between its searches
   unsigned int m_edgePartMisses = 0;      // searches in a row that did not find it
+  unsigned int m_bandCount = 0;           // periods of the final approach of a view alike its target
+  double m_band = 0.0; // area of the band along the target's edges that the current edges lie off (normalised units)
   double m_tiltRes = 0;
   bool m_tiltOk = false, m_tiltLatched = false;
   // Tilt executed since the first tilt command of the final approach (camera frame, rad), the estimate at that
