@@ -155,8 +155,8 @@ public:
     as the target runs) by one common offset, fitted with the similarity and returned there (target units; 0 if the
     fit failed). Why: an edge level biased by the image (a background clipped at the sensor's limit) measures an
     outline grown or shrunk all round. That changes the area and a plain fit's scale with the outline's width (a
-    thin tool: 0.58 % of area, 1.5 mm of depth at 0.5 m, for a tenth of a pixel), whereas an offset does not stretch
-    the outline along its length: fitted apart, it leaves the scale to the outline's extent.
+    thin tool: 0.58 % of area, 1.5 mm of depth at 0.5 m, for a twentieth of a pixel), whereas an offset does not
+    stretch the outline along its length: fitted apart, it leaves the scale to the outline's extent.
     \throw vpMorphException on empty contours, different units, a bad \e minSigma or \e maxIterations.
   */
   static vpMorphRigidTransform refineOnOutline(const vpMorphContour &input, const vpMorphContour &target,
