@@ -626,8 +626,10 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
       if (m_k + 1 == m_subGoals.size() && currentN.hasOutline() && m_target.hasOutline() && m_deformed != DEFORMED) {
         const vpMorphContour &o = currentN.outline();
         const vpMorphContour targetOutline = m_target.toNormalized(m_cam).outline();
+        // Five rounds from T: the fit has settled by then (ten gave the held-out runs the same outcomes, final errors
+        // within 0.002 mm and iterations within 2, at twice the cost).
         const vpMorphRigidTransform Te =
-            vpMorphRigidTransform::refineOnOutline(o, targetOutline, T, true, 0.2 * halfPixel);
+            vpMorphRigidTransform::refineOnOutline(o, targetOutline, T, true, 0.2 * halfPixel, 5);
         // A bend that only takes area away (a wedge whose top sags) is not found deformed by overlapFit() (nothing
         // of the view lies outside the target), and the edge fit, pulled by the bent stretch, ended 1.6 % off in
         // scale (8 mm deep). So the pose is the fit of the largest part of the outline lying on the target's, when
