@@ -185,6 +185,13 @@ Eigen::Vector2d linearMap(const Eigen::Vector4d &x, const Eigen::Vector2d &p)
   return Eigen::Vector2d(x[0] * p.x() - x[1] * p.y() + x[2], x[1] * p.x() + x[0] * p.y() + x[3]);
 }
 
+// Tukey's biweight of a residual r at cut-off c: (1 - (r / c)^2)^2 inside, 0 beyond.
+double tukeyWeight(double r, double c)
+{
+  const double u = r / c;
+  return u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
+}
+
 /*
   One round of edgeIcp(): the weighted normal equations of the pairs (nearest points Q, normals N, distances d) for
   the 4 unknowns (a, b, tx, ty), solved into \e x. False when no pair is kept.
@@ -196,8 +203,7 @@ bool edgeIcpRound(const std::vector<Eigen::Vector2d> &P, const std::vector<Eigen
   Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
   double W = 0.0;
   for (std::size_t k = 0; k < P.size(); ++k) {
-    const double u = d[k] / cut;
-    const double w = u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
+    const double w = tukeyWeight(d[k], cut);
     if (w == 0.0)
       continue;
     W += w;
@@ -233,8 +239,7 @@ bool edgeIcpRoundWithOffset(const std::vector<Eigen::Vector2d> &P, const std::ve
   double sw = 0.0, swx = 0.0, swy = 0.0, swr = 0.0, sqx = 0.0, sqy = 0.0, sa = 0.0, sb = 0.0;
   Eigen::Index n = 0;
   for (std::size_t k = 0; k < P.size(); ++k) {
-    const double u = d[k] / cut;
-    const double wk = u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
+    const double wk = tukeyWeight(d[k], cut);
     if (wk == 0.0)
       continue;
     const double px = P[k].x(), py = P[k].y(), qx = Q[k].x(), qy = Q[k].y();
@@ -579,12 +584,10 @@ vpMorphRigidTransform vpMorphRigidTransform::fitLeastSquares(const vpMorphContou
       for (std::size_t k = 0; k < w.size(); ++k) {
         const double r = (T(s.P[k]) - s.Q[k]).norm();
         double rho;
-        if (tukey) {
-          const double u = r / c;
-          rho = u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
-        } else {
+        if (tukey)
+          rho = tukeyWeight(r, c);
+        else
           rho = r <= c ? 1.0 : c / r;
-        }
         w[k] = s.w[k] * rho;
         W += w[k];
       }

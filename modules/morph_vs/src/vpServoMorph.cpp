@@ -818,7 +818,7 @@ double vpServoMorph::bandCorrectedAreaRatio(const vpMorphContour &currentN, cons
   // the current ones, fitted on them with a similarity from T, lie on (a twentieth of a pixel there), times the
   // target's perimeter. Why not the scale of that fit: it rests on the outline's ends, which a blur rounds off
   // (0.07 % under a 1.4 px blur), where an area keeps what a blur spreads. The band belongs to the scene (its
-  // lighting, the edges' blur): fitted every kRigidPartPeriod periods (a quarter of a millisecond) and carried in
+  // lighting, the edges' blur): fitted every kRigidPartPeriod periods (a fifth of a millisecond) and carried in
   // between. Not when the fit moves the outline by more than two pixels from T's (another basin): no band then.
   if (m_bandCount++ % kRigidPartPeriod == 0) {
     const double halfPixel = normalisedPixels(0.5);
