@@ -163,11 +163,11 @@ TEST_CASE("database: JSON round trip keeps every field", "[database]")
   db.setMinimumSupport(std::numeric_limits<double>::infinity()); // the distance alone: written as null
   db.save(file.string());
   CHECK(readText(file).find("\"support\": null") != std::string::npos);
-  db.setSupportFloor(0.5);
+  db.setSupportFloor(0.4);
   db.save(file.string());
   const vpMorphDatabase m = vpMorphDatabase::load(file.string());
   CHECK(std::isinf(m.minimumSupport()));
-  CHECK(m.supportFloor() == 0.5);
+  CHECK(m.supportFloor() == 0.4);
   CHECK(m.distance().name() == "multiscale");
   CHECK(m.distance().scales() == db.distance().scales());
   CHECK(m.distance().points() == db.distance().points());
@@ -224,21 +224,21 @@ TEST_CASE("database: bad files give clear errors", "[database]")
     badSupport.replace(badSupport.find("\"support\": 0.75"), 15, std::string("\"support\": ") + bad);
     expectIo(loadText(badSupport), "support must be a number in (0, 1] or null");
   }
-  REQUIRE(text.find("\"support_floor\": 0.35") != std::string::npos);
+  REQUIRE(text.find("\"support_floor\": 0.5") != std::string::npos);
   for (const char *bad : {"1.5", "-0.1", "null", "\"low\""}) {
     std::string badFloor = text;
-    badFloor.replace(badFloor.find("\"support_floor\": 0.35"), 21, std::string("\"support_floor\": ") + bad);
+    badFloor.replace(badFloor.find("\"support_floor\": 0.5"), 20, std::string("\"support_floor\": ") + bad);
     expectIo(loadText(badFloor), "support_floor must be a number in [0, 1]");
   }
   // Files written before the support (or its floor) existed have the defaults.
   std::string noSupport = text;
   noSupport.replace(noSupport.find("\"support\": 0.75"), 15, "\"supporx\": 0.75");
-  noSupport.replace(noSupport.find("\"support_floor\": 0.35"), 21, "\"supporx_floor\": 0.35");
+  noSupport.replace(noSupport.find("\"support_floor\": 0.5"), 20, "\"supporx_floor\": 0.5");
   {
     const fs::path p = dir / "old.json";
     writeText(p, noSupport);
     CHECK(vpMorphDatabase::load(p.string()).minimumSupport() == 0.75);
-    CHECK(vpMorphDatabase::load(p.string()).supportFloor() == 0.35);
+    CHECK(vpMorphDatabase::load(p.string()).supportFloor() == 0.5);
   }
   expectIo(errorOf([&] { vpMorphDatabase::load((dir / "absent.json").string()); }), "cannot open");
   // Found by fuzz_database_json: a number beyond double made the JSON parser throw out_of_range, which escaped

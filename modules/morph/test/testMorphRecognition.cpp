@@ -268,7 +268,9 @@ TEST_CASE("recognition: support and acceptance of a given template, and bad inpu
   const std::size_t key = db.find("key"), wedge = db.find("wedge");
   const vpMorphContour c = extract(view(readGray(objectPath("key")), 120, 5, 5, 6, 2));
   CHECK(db.support(c, key) > 0.95);
-  CHECK(db.support(c, wedge) < 0.5);
+  // Fitted either way, about half of the wedge's outline comes within 2 px of the key's (0.51): short of the 0.75 that
+  // an occluded view shows.
+  CHECK(db.support(c, wedge) < 0.6);
   double d = -1.0;
   CHECK(db.accepts(c, key, 1.0, &d));
   CHECK(d == Approx(db.distance().distance(c, db[key].contour())));
@@ -544,7 +546,7 @@ TEST_CASE("recognition: unknown shapes that the distance accepts show little of 
           "[recognition][datasets]")
 {
   const vpMorphDatabase &db = objectDatabase();
-  REQUIRE(db.supportFloor() == 0.35);
+  REQUIRE(db.supportFloor() == 0.5);
   vpMorphDatabase noFloor = db;
   noFloor.setSupportFloor(0.0);
   // Kimia-99 shapes that are none of the six tools but cost the distance little work: a fish (taken for the wrench)
