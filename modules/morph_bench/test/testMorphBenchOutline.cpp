@@ -68,6 +68,24 @@ vpMorphBenchResult viperRun(const std::string &set, std::size_t index, const std
   return benchRun(set, index, object, vpMorphSimRobot::VIPER850);
 }
 
+// The recognition of a held-out start's first image (free camera), printed: whether accepted, as what, the distance,
+// the support and the distance's own choice.
+vpMorphRecognition heldOutRecognition(const std::string &set, unsigned int seed, std::size_t index,
+                                      const std::string &object)
+{
+  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate(set, 20, seed, VISPMORPH_DATA_DIR)[index];
+  REQUIRE(sc.object == object);
+  const vpMorphDatabase &db = sharedBench(vpMorphSimRobot::FREE_CAMERA).database();
+  const vpMorphRecognition rec = sharedBench(vpMorphSimRobot::FREE_CAMERA).recognizeStart(sc);
+  std::printf("[outline] %s %s, seed %u start %zu: %s %s, distance %.2f (threshold %.2f), support %.2f, distance's "
+              "choice %s\n",
+              set.c_str(), object.c_str(), seed, index, rec.accepted ? "accepted" : "rejected",
+              db[rec.index].name().c_str(), rec.distance, rec.threshold, rec.support,
+              rec.secondIndex < db.size() && rec.reranked ? db[rec.secondIndex].name().c_str()
+                                                          : db[rec.index].name().c_str());
+  return rec;
+}
+
 // The silhouette of the scene seen from cMo, the tag masked at its true corners.
 vpMorphContour silhouette(const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cMo)
 {
@@ -354,21 +372,14 @@ TEST_CASE("An occluded wedge nearer another tool by the distance, both rejected,
   // Held-out occlusion set, seed 2, start 1: a card over the wedge's thin end. D_morph puts the screwdriver nearest
   // (2.05, beyond its threshold 1.23; the wedge at 2.35), so the view was rejected at the first image although it
   // shows 0.90 of the wedge's outline and 0.38 of the screwdriver's.
-  const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("occlusion", 20, 2, data)[1];
-  REQUIRE(sc.object == "wedge");
-  const vpMorphBench &bench = sharedBench(vpMorphSimRobot::FREE_CAMERA);
-  const vpMorphDatabase &db = bench.database();
-  const vpMorphRecognition rec = bench.recognizeStart(sc);
-  std::printf("[outline] occluded wedge, seed 2 start 1: %s %s, support %.2f, distance's choice %s\n",
-              rec.accepted ? "accepted" : "rejected", db[rec.index].name().c_str(), rec.support,
-              rec.secondIndex < db.size() ? db[rec.secondIndex].name().c_str() : "-");
+  const vpMorphDatabase &db = sharedBench(vpMorphSimRobot::FREE_CAMERA).database();
+  const vpMorphRecognition rec = heldOutRecognition("occlusion", 2, 1, "wedge");
   CHECK(db[rec.index].name() == "wedge");
   CHECK(rec.accepted);
   CHECK(rec.reranked);
   CHECK(db[rec.secondIndex].name() == "screwdriver");
   CHECK(rec.distance > rec.threshold);
-  const vpMorphBenchResult r = bench.run(sc, "morph");
+  const vpMorphBenchResult r = heldOutRun("occlusion", 2, 1, "wedge");
   CHECK(r.recognized == "wedge");
   CHECK(r.success);
 }
@@ -380,20 +391,13 @@ TEST_CASE("An occluded wedge whose card edge runs along its top is aligned by it
   // top, leaves a sliver joining the two ends. Fitted onto the template, the view's outline along the card's edge is
   // pulled onto the wedge's top and drags the fit (0.32 of the outline shown, rejected at the first image); the
   // template fitted onto the view weighs its hidden stretch out and shows 0.83 of it.
-  const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("occlusion", 20, 3, data)[13];
-  REQUIRE(sc.object == "wedge");
-  const vpMorphBench &bench = sharedBench(vpMorphSimRobot::FREE_CAMERA);
-  const vpMorphDatabase &db = bench.database();
-  const vpMorphRecognition rec = bench.recognizeStart(sc);
-  std::printf("[outline] occluded wedge, seed 3 start 13: %s %s, distance %.2f (threshold %.2f), support %.2f\n",
-              rec.accepted ? "accepted" : "rejected", db[rec.index].name().c_str(), rec.distance, rec.threshold,
-              rec.support);
+  const vpMorphDatabase &db = sharedBench(vpMorphSimRobot::FREE_CAMERA).database();
+  const vpMorphRecognition rec = heldOutRecognition("occlusion", 3, 13, "wedge");
   CHECK(db[rec.index].name() == "wedge");
   CHECK(rec.distance > rec.threshold);
   CHECK(rec.support >= db.minimumSupport());
   CHECK(rec.accepted);
-  const vpMorphBenchResult r = bench.run(sc, "morph");
+  const vpMorphBenchResult r = heldOutRun("occlusion", 3, 13, "wedge");
   CHECK(r.recognized == "wedge");
   CHECK(r.success);
 }
