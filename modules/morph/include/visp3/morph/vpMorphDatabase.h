@@ -192,9 +192,9 @@ public:
     for end), and 512 points spread evenly along the template's outline are counted when they lie within 1/256 of its
     perimeter of the aligned \e c (2 px on a 500-px outline); the best of the four alignments counts. \e mirrored also
     aligns \e c's mirror image (a part turned over, vpMorphRecognition::mirrored; a nearly symmetric part may be matched
-    either way), and the better counts. 0 when \e c cannot be aligned (a degenerate fit). \throw
-    vpMorphException::notFoundError if \e k is out of range, badContourError on an empty contour or badParameterError on
-    units that differ from the template's.
+    either way), and the better counts. 0 when \e c cannot be aligned (a degenerate fit).
+    \throw vpMorphException::notFoundError if \e k is out of range, badContourError on an empty contour or
+    badParameterError on units that differ from the template's.
   */
   double support(const vpMorphContour &c, std::size_t k, bool mirrored = false) const;
   //! Least support() that accepts a view its distance rejects (an occluded view); +inf: the distance alone decides.
