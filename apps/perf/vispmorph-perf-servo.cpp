@@ -26,6 +26,9 @@
   - BM_morphStart: that first call alone (full cyclic search, morph, sequence);
   - BM_edgeBand: the fit vpServoMorph measures the edge band with on the final approach (every 8th period: the current
     outline on the target's with one common offset of its edges), and BM_edgeFit the same fit without the offset;
+  - BM_planOccluded: the plan's correspondence of an occluded wedge to its taught view
+  (vpMorphMatcher::matchOnRegions(): the minimal work checked on the regions, then on the outlines half a turn round),
+  and BM_matchOccluded the minimal work alone (vpMorphMatcher::match()), to give the checks' cost;
   - BM_ibvs4Points: the baseline, a stock vpServo on 4 points (IBVS, current L), one computeControlLaw().
   CPU time of the fastest repetition; the table at the end gives the ratios to the IBVS baseline.
 
@@ -46,6 +49,7 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpVelocityTwistMatrix.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphMatcher.h>
 #include <visp3/morph/vpMorphPolygonApproximation.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
@@ -313,6 +317,36 @@ void edgeFit(benchmark::State &state, bool offset)
 void BM_edgeBand(benchmark::State &state) { edgeFit(state, true); }
 void BM_edgeFit(benchmark::State &state) { edgeFit(state, false); }
 
+// The plan's correspondence of an occluded wedge (a card over 15 % of its outline, the recorded run's first view) to
+// its taught view: the minimal work alone (\e checked false), or checked on the regions and, as the regions of an
+// occluded view leave the choice to the work, on the outlines half a turn round (vpMorphMatcher::matchOnRegions()).
+void plan(benchmark::State &state, bool checked)
+{
+  const std::string wedge = std::string(VISPMORPH_DATA_DIR) + "/objects/wedge.png";
+  vpMorphPlanarScene scene(wedge), taught(wedge);
+  vpImage<unsigned char> I;
+  std::vector<vpImagePoint> corners;
+  vpHomogeneousMatrix cMt;
+  taught.render(vpHomogeneousMatrix(0.0, 0.0, 0.5, 0, 0, 0), I);
+  taught.tagPoseEstimator().estimate(I, cMt, &corners);
+  const vpMorphContour target = vpMorphTagPoseEstimator::silhouette(I, corners);
+  vpMorphPlanarScene::Faults f;
+  f.occludedShare = 0.15;
+  f.occluderPosition = 0.5;
+  I = firstView(scene, f);
+  corners.clear();
+  scene.tagPoseEstimator().estimate(I, cMt, &corners);
+  const vpMorphContour view = vpMorphTagPoseEstimator::silhouette(I, corners);
+  vpMorphMatcher matcher;
+  double gain = 0.0;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        (checked ? matcher.matchOnRegions(view, target, 0.1, &gain) : matcher.match(view, target)).work());
+  state.counters["gain"] = gain;
+}
+void BM_planOccluded(benchmark::State &state) { plan(state, true); }
+void BM_matchOccluded(benchmark::State &state) { plan(state, false); }
+
 void BM_ibvs4Points(benchmark::State &state)
 {
   vpServo task;
@@ -360,6 +394,8 @@ BENCHMARK(BM_morphIterationDeformedFollow)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphStart)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_edgeBand)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_edgeFit)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_planOccluded)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_matchOccluded)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ibvs4Points)->Unit(benchmark::kMicrosecond);
 
 int main(int argc, char **argv)

@@ -20,7 +20,7 @@
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 
-#include "vpMorphNearestEdge.h"
+#include "vpMorphOutlineShare.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -98,51 +98,20 @@ std::vector<cv::Point2d> chordCut(const vpMorphContour &c, double s0, double fra
   return cut;
 }
 
-// Share of the points \e s within \e tol of the outline \e c.
-double shareOn(const vpMorphContour &s, const vpMorphContour &c, double tol)
-{
-  const vpMorphNearestEdge onC(c);
-  std::size_t on = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    double mx, my;
-    on += std::fabs(onC(s.x(i), s.y(i), mx, my)) <= tol ? 1 : 0; // NaN (an overflowed fit): not on it
-  }
-  return static_cast<double>(on) / static_cast<double>(s.size());
-}
-
 // vpMorphDatabase::support() of view q on template t, from the correspondence q -> t.
 double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorphCorrespondence &correspondence)
 {
-  const std::size_t n = 512;
-  const double tol = t.perimeter() / 256.0;
   double best = 0.0;
   try {
-    // The scale of the robust fits is floored at a quarter of the tolerance: the vertices of both polygons lie on
-    // the pixel grid, and a scale of zero would keep only those that coincide.
+    const vpMorphOutlineShare shown(t);
     const vpMorphRigidTransform T0 = vpMorphRigidTransform::fitLeastSquares(
-        q, t, correspondence, true, vpMorphRigidTransform::TUKEY, 30, 0.25 * tol);
-    const vpMorphContour s = t.resampled(n);
+        q, t, correspondence, true, vpMorphRigidTransform::TUKEY, 30, 0.25 * shown.tolerance());
     double cx, cy;
     t.centroid(cx, cy);
     // From the fit and from it turned half a turn about the template's centre: the correspondence of a nearly
     // symmetric outline (a wedge, end for end) can put the view the wrong way round, where the refinement stays.
-    for (const vpMorphRigidTransform &start : {T0, vpMorphRigidTransform(M_PI, 0.0, 0.0, 1.0, cx, cy) * T0}) {
-      // Refined both ways, the better counting. The view onto the template, and the template onto the view: an
-      // occluder's edge belongs to the view alone and may run a few pixels from a template edge, where it drags the
-      // first fit (a wedge under a card whose edge runs along its top: 0.32 shown), while the template's hidden
-      // stretch lies far from every edge of the view and is weighed out of the second (0.83).
-      for (const bool templateOntoView : {false, true}) {
-        try {
-          const vpMorphRigidTransform F =
-              templateOntoView
-                  ? vpMorphRigidTransform::refineOnOutline(t, q, start.inverse(), true, 0.25 * tol).inverse()
-                  : vpMorphRigidTransform::refineOnOutline(q, t, start, true, 0.25 * tol);
-          best = std::max(best, shareOn(s, F.apply(q), tol));
-        } catch (const vpException &) {
-          // that fit degenerated (a scale run to zero or beyond the doubles): the other may not have
-        }
-      }
-    }
+    for (const vpMorphRigidTransform &start : {T0, vpMorphRigidTransform(M_PI, 0.0, 0.0, 1.0, cx, cy) * T0})
+      best = std::max(best, shown.aligned(q, start));
   } catch (const vpException &) {
     // no similarity aligns them (a degenerate fit): the view shows nothing more of the template
   }

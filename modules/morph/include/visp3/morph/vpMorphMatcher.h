@@ -93,7 +93,15 @@ public:
     covers to within \e minGain are not searched (the usual case: a rigid view covers itself to 1). Where the
     regions cannot be compared (self-intersecting contours, a placement degenerate in floating point), the
     minimal work decides.
-    \param minGain the intersection over union the other placement must win by, in (0, 1].
+    A view whose regions leave the choice to the work is then checked on the outlines, half a turn round: an
+    occluded view's region is not its target's, so no placement wins on the regions, and the work can match a
+    nearly symmetric outline end for end (wedges under a card, planned 156-186 deg off their goal). The share of
+    B's outline that A shows, laid from the work's robust fit and from that fit turned half a turn about B's centroid
+    (each refined point to edge both ways, as vpMorphDatabase::support() measures it), picks the placement when it
+    wins by \e minGain and shows at least 3/4 of B's outline (measured: 0.83-0.86 against 0.23-0.24; a view in
+    perspective, not a similarity of B, shows less either way, and its fits can fall into another basin).
+    \param minGain the intersection over union, or the share of B's outline, the other placement must win by, in
+    (0, 1].
     \param gain if not null, receives that win when the correspondence was replaced, else 0.
     \throw vpMorphException as match(), and on a bad \e minGain.
   */
@@ -121,6 +129,9 @@ private:
   void solveBetween(int bLo, int bHi, const Path &lo, const Path &hi, std::size_t depth, Best &best);
   vpMorphCorrespondence solveRange(int count);
   vpMorphCorrespondence toCorrespondence(const std::vector<std::pair<int, int>> &cells, double tableWork);
+  //! The least work among the starts whose fitted rotation is within \e tolerance of \e theta; false if none.
+  bool matchTurned(const vpMorphContour &A, const vpMorphContour &B, double theta, double tolerance,
+                   vpMorphCorrespondence &placed);
 
   vpMorphWorkModel m_model;
   bool m_normalizeScale;
