@@ -104,13 +104,10 @@ double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorp
   double best = 0.0;
   try {
     const vpMorphOutlineShare shown(t);
-    const vpMorphRigidTransform T0 = vpMorphRigidTransform::fitLeastSquares(
-        q, t, correspondence, true, vpMorphRigidTransform::TUKEY, 30, 0.25 * shown.tolerance());
-    double cx, cy;
-    t.centroid(cx, cy);
+    const vpMorphRigidTransform T0 = shown.fitted(q, correspondence);
     // From the fit and from it turned half a turn about the template's centre: the correspondence of a nearly
     // symmetric outline (a wedge, end for end) can put the view the wrong way round, where the refinement stays.
-    for (const vpMorphRigidTransform &start : {T0, vpMorphRigidTransform(M_PI, 0.0, 0.0, 1.0, cx, cy) * T0})
+    for (const vpMorphRigidTransform &start : {T0, shown.halfTurned(T0)})
       best = std::max(best, shown.aligned(q, start));
   } catch (const vpException &) {
     // no similarity aligns them (a degenerate fit): the view shows nothing more of the template

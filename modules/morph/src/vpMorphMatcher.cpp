@@ -510,16 +510,14 @@ vpMorphCorrespondence vpMorphMatcher::matchOnRegions(const vpMorphContour &A, co
     // The regions leave it to the work: checked on the outlines, half a turn round (an occluded view, its region
     // not its target's, matched end for end).
     const vpMorphOutlineShare shown(B);
-    const vpMorphRigidTransform T0 = vpMorphRigidTransform::fitLeastSquares(
-        A, B, best, true, vpMorphRigidTransform::TUKEY, 30, 0.25 * shown.tolerance());
-    const vpMorphRigidTransform Thalf = vpMorphRigidTransform(M_PI, 0.0, 0.0, 1.0, bx, by) * T0;
+    const vpMorphRigidTransform T0 = shown.fitted(A, best);
     // Only a view that shows most of B's outline from there: 3/4 of it, what an occluder hiding a fifth leaves
     // (vpMorphDatabase::minimumSupport()). Measured first: most views show far less half a turn round, and then the
     // work's side needs no measuring. A view in perspective (tilted, or through wrong intrinsics) is not a similarity
     // of B, and its fits can fall into another basin at either start: a wrench's fit from its right placement showed
     // 0.18 of its outline once, half a turn round 0.53, and the plan turned it away (calib, seed 2 start 5).
     vpMorphRigidTransform Fhalf;
-    const double shareHalf = shown.aligned(A, Thalf, &Fhalf);
+    const double shareHalf = shown.aligned(A, shown.halfTurned(T0), &Fhalf);
     if (!(shareHalf >= kHalfTurnMinShare))
       return best;
     // The least work on that side: within 45 deg of it, as the fit of a correspondence to a view with a part hidden

@@ -11,6 +11,7 @@
 
 #include <visp3/core/vpException.h>
 #include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphCorrespondence.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 
 #include "vpMorphNearestEdge.h"
@@ -34,6 +35,24 @@ public:
   }
 
   double tolerance() const { return m_tolerance; }
+
+  /*
+    The starts aligned() is given: the similarity fitted robustly (Tukey) to \e correspondence (input to target), and
+    the same turned half a turn about the target's centroid, as the least work can match a nearly symmetric outline
+    (a wedge) end for end. The robust fit's scale is floored at a quarter of the tolerance, as in aligned().
+    \throw vpMorphException when the correspondence admits no fit.
+  */
+  vpMorphRigidTransform fitted(const vpMorphContour &input, const vpMorphCorrespondence &correspondence) const
+  {
+    return vpMorphRigidTransform::fitLeastSquares(input, m_target, correspondence, true, vpMorphRigidTransform::TUKEY,
+                                                  30, 0.25 * m_tolerance);
+  }
+  vpMorphRigidTransform halfTurned(const vpMorphRigidTransform &T) const
+  {
+    double cx, cy;
+    m_target.centroid(cx, cy);
+    return vpMorphRigidTransform(M_PI, 0.0, 0.0, 1.0, cx, cy) * T;
+  }
 
   //! Share of the target's samples within tolerance() of \e moved (NaN distances, an overflowed fit: not on it).
   double shownBy(const vpMorphContour &moved) const
