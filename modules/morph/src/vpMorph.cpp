@@ -43,6 +43,18 @@ vpMorph::vpMorph(const vpMorphContour &input, const vpMorphContour &target, cons
                  Estimator estimator, bool withScale)
   : m_input(input), m_target(target), m_estimator(estimator), m_withScale(withScale), m_corr(correspondence)
 {
+  if (estimator == GIVEN)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorph: the GIVEN estimator needs the constructor that takes the rigid part");
+  checkContours(input, target);
+  vpMorphRigidTransform::checkCorrespondence(input, target, correspondence, "vpMorph");
+  build();
+}
+
+vpMorph::vpMorph(const vpMorphContour &input, const vpMorphContour &target, const vpMorphCorrespondence &correspondence,
+                 const vpMorphRigidTransform &rigid)
+  : m_input(input), m_target(target), m_estimator(GIVEN), m_withScale(true), m_corr(correspondence), m_rigid(rigid)
+{
   checkContours(input, target);
   vpMorphRigidTransform::checkCorrespondence(input, target, correspondence, "vpMorph");
   build();
@@ -62,6 +74,8 @@ void vpMorph::build()
   case NONE:
     m_rigid = vpMorphRigidTransform(0.0, 0.0, 0.0, 1.0, cx, cy);
     break;
+  case GIVEN:
+    break; // set by the constructor
   default: {
     std::ostringstream os;
     os << "vpMorph: unknown rigid estimator " << static_cast<int>(m_estimator);

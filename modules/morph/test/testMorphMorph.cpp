@@ -130,6 +130,31 @@ TEST_CASE("vpMorph: exact recovery of a pure similarity", "[morph][vpMorph]")
   CHECK(sameContour(mm.sequence(6).back(), B));
 }
 
+TEST_CASE("vpMorph: a rigid part given by the caller rectifies the input and leads the rigid frames",
+          "[morph][vpMorph]")
+{
+  const vpMorphContour A = keyShape().resampled(40);
+  const vpMorphContour B = A.transformed(0.9, 20.0, -10.0, 1.1);
+  const vpMorphCorrespondence c = vpMorphTest::shiftedIdentity(A.size(), 0);
+  // A rigid part other than the least squares' (as a fit on the edges of an occluded view would give): kept as given.
+  double cx, cy;
+  A.centroid(cx, cy);
+  const vpMorphRigidTransform given(0.8, 18.0, -12.0, 1.05, cx, cy);
+  const vpMorph m(A, B, c, given);
+  CHECK(m.estimator() == vpMorph::GIVEN);
+  CHECK(m.rigidTransform().theta() == 0.8);
+  CHECK(m.rigidTransform().scale() == 1.05);
+  CHECK(sameContour(m.rectified(), given.apply(A)));
+  const std::vector<vpMorphContour> frames = m.sequence(6);
+  CHECK(pairDistance(frames[m.rigidFrameCount(6) - 1], given.apply(A), c) < 1e-9);
+  CHECK(sameContour(frames.back(), B));
+  // The least squares would have found the similarity itself, not the given part.
+  CHECK(vpMorph(A, B, c).rigidTransform().scale() == Approx(1.1));
+  // GIVEN without a rigid part is an error, as is a correspondence that does not fit the contours.
+  CHECK_THROWS_AS(vpMorph(A, B, c, vpMorph::GIVEN), vpMorphException);
+  CHECK_THROWS_AS(vpMorph(A, B.resampled(30), c, given), vpMorphException);
+}
+
 TEST_CASE("vpMorph: 180 deg rotation - rectification keeps the contours simple, plain Eq. 1 does not",
           "[morph][vpMorph]")
 {

@@ -80,6 +80,9 @@ const unsigned int kEdgePartRetries = 3;
 const double kBendLengthChange = 0.01;
 // Points of the resampled outlines the overlap is measured on (about 5 pixels apart: 0.025 ms an evaluation).
 const std::size_t kOverlapPoints = 128;
+// The plan of a view whose regions are not alike: the outline fit's robust scale floor (pixels), and how much less of
+// the view's area it must leave outside the target than the least squares to replace them (see start()).
+const double kPlanOutlineSigmaPx = 0.1, kPlanInsideGain = 0.01;
 
 // The largest part of the outline \e dense lying within \e tolerance of \e target: searched over the whole outline, or
 // followed from its last \e offset to \e base (a few rounds).
@@ -204,7 +207,9 @@ double refinedRotation(const vpMorphContour &goal, const vpMorphContour &current
 double outsideShare(const vpMorphRigidTransform &F, const vpMorphContour &view, const vpMorphContour &goal)
 {
   const vpMorphContour laid = F.apply(view);
-  return 1.0 - laid.overlapArea(goal) / laid.area();
+  const double a = laid.area();
+  // A fit run to a point lays nothing on the goal (0 / 0 would make it win every comparison).
+  return a > 0.0 && std::isfinite(a) ? 1.0 - laid.overlapArea(goal) / a : 1.0;
 }
 
 // The largest distance between the points of \e c moved by \e A and by \e B.
@@ -494,9 +499,31 @@ void vpServoMorph::start(const vpMorphContour &current)
     // vpMorphCorrespondenceTracker): otherwise a deformed view is planned half a turn round and then fitted the
     // other way at the last sub-goal, a jump that re-plans the same way again.
     vpMorphMatcher &matcher = m_tracker.matcher();
-    const vpMorph morph(current, m_target,
-                        m_tracker.regionCheck() ? matcher.matchOnRegions(current, m_target)
-                                                : matcher.match(current, m_target));
+    const vpMorphCorrespondence corr =
+        m_tracker.regionCheck() ? matcher.matchOnRegions(current, m_target) : matcher.match(current, m_target);
+    vpMorph morph(current, m_target, corr);
+    // Whether the two regions are one shape seen twice is a property of the current object against the target
+    // (the sub-goals before the deformation frames are views of the current contour itself): see fitToSubGoal().
+    m_regionsAlike =
+        regionsAlike(m_target, current, morph.rigidTransform().scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
+    if (m_regionsAlike == NOT_ALIKE) {
+      // Part of the object hidden: the least-squares fit crowds the pairs of the hidden stretch onto the occluder's
+      // edge and its scale carries the missing part (a card over a pliers' jaws: 20 % large), so the rigid frames
+      // drove the camera 9 cm towards the object and the deformation frames back (path 5 times the straight line).
+      // The visible outline laid on the target's does not: that fit is the plan's rigid part when it lays the view
+      // inside the target clearly better (1 % of its area) than the least squares. Not for a bent view, which both
+      // lay out of the target alike and whose bend drags the outline fit (a bent hammer's scale 1.9 % off where the
+      // least squares were 0.1 %); it keeps the least squares.
+      try {
+        const vpMorphRigidTransform Tls = morph.rigidTransform();
+        const vpMorphRigidTransform Te =
+            vpMorphRigidTransform::refineOnOutline(current, m_target, Tls, true, kPlanOutlineSigmaPx);
+        if (outsideShare(Te, current, m_target) + kPlanInsideGain < outsideShare(Tls, current, m_target))
+          morph = vpMorph(current, m_target, corr, Te);
+      } catch (const vpException &) {
+        // the outline fit degenerated: the least squares stand
+      }
+    }
     // The rigid transform (pixels) as a camera displacement cMc' = [Rz(-theta), d] at the current depth.
     const vpMorphRigidTransform &Tp = morph.rigidTransform();
     const double px = m_cam.get_px(), py = m_cam.get_py();
@@ -517,9 +544,6 @@ void vpServoMorph::start(const vpMorphContour &current)
     }
     const double turn = m_longWay ? longTurn : theta; // the image's rotation along the rigid frames
     m_subGoals = morph.sequence(m_nSub, m_longWay);
-    // Whether the two regions are one shape seen twice is a property of the current object against the target
-    // (the sub-goals before the deformation frames are views of the current contour itself): see fitToSubGoal().
-    m_regionsAlike = regionsAlike(m_target, current, Tp.scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
     const std::size_t nr = morph.rigidFrameCount(m_nSub);
     if (m_rigidPath == CAMERA_STRAIGHT_LINE && nr > 1) {
       // The pose alpha of the way along the straight line is [Rz(-alpha theta), alpha d] (theta: the turn chosen
@@ -542,6 +566,7 @@ void vpServoMorph::start(const vpMorphContour &current)
   forgetTilt();
   forgetDeformation();
   m_haveWork = false;
+  m_fittedInSequence = false;
   m_started = true;
 }
 
@@ -605,12 +630,18 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
       // The fit over a tracked correspondence can start it in another basin when the joined outline changes its
       // vertices (a wrench cut in two by a card: 21 % off in scale and 20 px away for one period, taken for a jump,
       // re-planned, three times over). Then it is refined from the last fit to the same sub-goal too, and that one
-      // is kept if it is no jump and leaves less of the view outside the goal.
-      if (m_haveWork && viewJumped(T)) {
+      // is kept if it is no jump and leaves less of the view outside the goal. A fit whose scale ran away (a
+      // drifting correspondence fitted at a fifth of the view's size, then refined to a point, inside the goal) is no
+      // view either: the second opinion is kept whenever its own scale is steady.
+      const bool switchJump = m_switching && m_fittedInSequence && !scaleNearPrevious(T);
+      if ((m_haveWork && (viewJumped(T) || !scaleConsistent(T))) || switchJump) {
         try {
           const vpMorphRigidTransform Tw =
               vpMorphRigidTransform::refineOnOutline(currentN, goalN, m_prevT, true, 0.2 * halfPixel);
-          if (!viewJumped(Tw) && outsideShare(Tw, currentN, goalN) < outsideShare(T, currentN, goalN))
+          if (switchJump
+                  ? scaleNearPrevious(Tw)
+                  : !viewJumped(Tw) && scaleConsistent(Tw) &&
+                        (!scaleConsistent(T) || outsideShare(Tw, currentN, goalN) < outsideShare(T, currentN, goalN)))
             T = Tw;
         } catch (const vpException &) {
           // no second opinion (a view the outline fit or the overlap cannot take): the jump stands
@@ -688,6 +719,18 @@ bool vpServoMorph::rotationConsistent(const vpMorphRigidTransform &T) const
 {
   const double dth = std::fabs(std::remainder(T.theta() - m_prevT.theta(), 2 * M_PI));
   return dth <= m_gain * std::fabs(m_prevT.theta()) + m_jumpRotation;
+}
+
+bool vpServoMorph::scaleConsistent(const vpMorphRigidTransform &T) const
+{
+  // A view does not halve or double in one period: such a fit ran away (to a point, or to the view's double).
+  return T.scale() > 0.0 && std::isfinite(T.scale()) &&
+         std::fabs(std::log(T.scale() / m_prevT.scale())) <= std::log(2.0);
+}
+
+bool vpServoMorph::scaleNearPrevious(const vpMorphRigidTransform &T) const
+{
+  return std::fabs(std::log(T.scale() / m_prevT.scale())) <= 0.1;
 }
 
 bool vpServoMorph::viewJumped(const vpMorphRigidTransform &T) const
@@ -986,7 +1029,9 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       m_haveWork = false;
       m_haveMove = false; // fits to another sub-goal: re-anchor the calibration
       m_status = SUBGOAL_REACHED;
+      m_switching = true;
       T = fitToSubGoal(currentN, current, Z);
+      m_switching = false;
     }
     // Out-of-plane part from the homography to the target (zero displacement when off or not estimated).
     vpHomogeneousMatrix cMct;
@@ -1031,6 +1076,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       m_accCmd.eye();
     }
     m_prevT = T;
+    m_fittedInSequence = true;
     m_prevContour = current;
     m_prevWork = m_work;
     m_haveWork = true;

@@ -36,7 +36,8 @@ public:
   enum Estimator {
     ELONGATION,    //!< The paper's elongation vectors (principal axes); ill-posed for isotropic shapes.
     LEAST_SQUARES, //!< Robust weighted least squares over all pairs (default: more accurate, always posed).
-    NONE           //!< No rigid rectification: plain Eq. 1 on the raw input (the paper's failure case, for comparison).
+    NONE,          //!< No rigid rectification: plain Eq. 1 on the raw input (the paper's failure case, for comparison).
+    GIVEN //!< Given by the caller (the constructor that takes it): e.g. fitted on the edges of an occluded view.
   };
 
   /*!
@@ -55,6 +56,16 @@ public:
   */
   vpMorph(const vpMorphContour &input, const vpMorphContour &target, const vpMorphCorrespondence &correspondence,
           Estimator estimator = LEAST_SQUARES, bool withScale = true);
+
+  /*!
+    Morph over a given correspondence and a rigid part estimated by the caller (estimator() is GIVEN), for an input
+    whose corresponded vertices do not tell its pose: with part of the object hidden, the least-squares fit crowds the
+    pairs of the hidden stretch onto the occluder's edge, and its scale carries the missing part into the rigid frames
+    (vpServoMorph fits those views on their edges instead).
+    \throw vpMorphException as the constructor above.
+  */
+  vpMorph(const vpMorphContour &input, const vpMorphContour &target, const vpMorphCorrespondence &correspondence,
+          const vpMorphRigidTransform &rigid);
 
   const vpMorphContour &input() const { return m_input; }
   const vpMorphContour &target() const { return m_target; }

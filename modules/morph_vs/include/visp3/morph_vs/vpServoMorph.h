@@ -37,7 +37,12 @@
 
   <b>Sequence.</b> At the first call of computeControlLaw() (and after restart()), vpMorph builds the morph from
   the current contour to the target (rigid rectification, then deformation) and takes its sequence(n) as the
-  sub-goals, n = subGoalCount() (0: the target only). A sub-goal is reached when the residual similarity from
+  sub-goals, n = subGoalCount() (0: the target only). When the current region is not the target's seen again (below),
+  the rigid part of the plan is the outline fit (vpMorphRigidTransform::refineOnOutline, from the least squares) if
+  it lays the view inside the target better, by 1 % of its area: with part of the object hidden, the least squares
+  carry the hidden part into their scale, and the rigid frames moved the camera towards the object for the
+  deformation frames to take it back (paths of 3-7 times the straight line on the occlusion set). A bent view keeps
+  the least squares, which the bend drags less. A sub-goal is reached when the residual similarity from
   the current contour to it is below subGoalThresholds() (the paper's 0.10 rad and 5 px); the last one (the
   target) needs the finer finalThresholds(), then the status is CONVERGED and the velocity zero.
 
@@ -443,6 +448,8 @@ private:
   // the view jumped when it did not, or when the translation moved beyond what one step explains plus jumpPixels().
   bool rotationConsistent(const vpMorphRigidTransform &T) const;
   bool viewJumped(const vpMorphRigidTransform &T) const;
+  bool scaleConsistent(const vpMorphRigidTransform &T) const;
+  bool scaleNearPrevious(const vpMorphRigidTransform &T) const;
   // n pixels in normalised image units (along the finer axis).
   double normalisedPixels(double n) const { return n / std::max(m_cam.get_px(), m_cam.get_py()); }
   vpMorphRigidTransform overlapFit(const vpMorphContour &currentN, const vpMorphContour &goalN,
@@ -540,6 +547,8 @@ private:
   vpHomogeneousMatrix m_cMcdH;
   // For the distance-jump test and the calibration: the previous iteration to the same sub-goal.
   bool m_haveWork = false, m_haveMove = false;
+  bool m_fittedInSequence = false; // m_prevT is a fit of this sequence (to this sub-goal or the one before)
+  bool m_switching = false;        // fitToSubGoal() runs on a sub-goal just reached for the first time
   double m_prevWork = 0, m_margin = 1;
   vpMorphRigidTransform m_prevT;
   vpHomogeneousMatrix m_prevCmd; // eMe' commanded at the previous iteration
