@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <visp3/core/vpMath.h>
@@ -438,7 +439,7 @@ TEST_CASE("Occluded wedges matched end for end are planned the way the outline t
   }
 }
 
-TEST_CASE("An occluded view's plan takes its rigid part from the outline it shows", "[bench][outline]")
+TEST_CASE("An occluded view is planned on the outline it shows", "[bench][outline]")
 {
   // Held-out occlusion set, seed 2: start 0, a card over the pliers' jaws; start 3, over the hammer's head. Planned
   // on the least squares over the corresponded vertices, whose scale carries the hidden part (the pliers 20 % large),
@@ -446,9 +447,17 @@ TEST_CASE("An occluded view's plan takes its rigid part from the outline it show
   // the straight line. Start 15 (a hammer): with the outline's plan, a correspondence that drifted near the goal was
   // fitted to a point, which lay inside the goal and won over the fit from the last period; re-planned from there,
   // the camera went 40 cm away and back (path 21.6 times the straight line).
-  for (std::size_t k : {std::size_t(0), std::size_t(3), std::size_t(15)}) {
-    const vpMorphBenchResult r = heldOutRun("occlusion", 2, k, k == 0 ? "pliers" : "hammer");
-    INFO("start " << k << ": path ratio " << r.pathRatio());
+  // Seed 3 start 19, a wedge: planned on its outline, its deformation frames grew the card's bite into the hidden
+  // stretch, and the view fitted to them was 17 % small, then 10 % large: the camera went 10 cm off the way and back
+  // (path 19 times its 12 mm straight line). They are left out of an occluded view's plan.
+  const std::pair<unsigned int, std::size_t> starts[] = {{2, 0}, {2, 3}, {2, 15}, {3, 19}};
+  for (const auto &st : starts) {
+    const std::size_t k = st.second;
+    const vpMorphBenchResult r = heldOutRun("occlusion", st.first, k,
+                                            st.first == 3 ? "wedge"
+                                            : k == 0      ? "pliers"
+                                                          : "hammer");
+    INFO("seed " << st.first << " start " << k << ": path ratio " << r.pathRatio());
     CHECK(r.success);
     CHECK(r.pathRatio() < 2.0);
   }

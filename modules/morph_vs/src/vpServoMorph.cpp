@@ -83,6 +83,9 @@ const std::size_t kOverlapPoints = 128;
 // The plan of a view whose regions are not alike: the outline fit's robust scale floor (pixels), and how much less of
 // the view's area it must leave outside the target than the least squares to replace them (see start()).
 const double kPlanOutlineSigmaPx = 0.1, kPlanInsideGain = 0.01;
+// Largest change of the fitted scale (log) from the last period's fit to a sub-goal's first fit: the sub-goals are a
+// step apart (the sub-goal thresholds: 5 px on a 100 px object), a tenth is a jump to another basin.
+const double kSwitchScaleJump = 0.1;
 
 // The largest part of the outline \e dense lying within \e tolerance of \e target: searched over the whole outline, or
 // followed from its last \e offset to \e base (a few rounds).
@@ -506,6 +509,7 @@ void vpServoMorph::start(const vpMorphContour &current)
     // (the sub-goals before the deformation frames are views of the current contour itself): see fitToSubGoal().
     m_regionsAlike =
         regionsAlike(m_target, current, morph.rigidTransform().scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
+    bool occludedPlan = false;
     if (m_regionsAlike == NOT_ALIKE) {
       // Part of the object hidden: the least-squares fit crowds the pairs of the hidden stretch onto the occluder's
       // edge and its scale carries the missing part (a card over a pliers' jaws: 20 % large), so the rigid frames
@@ -518,8 +522,10 @@ void vpServoMorph::start(const vpMorphContour &current)
         const vpMorphRigidTransform Tls = morph.rigidTransform();
         const vpMorphRigidTransform Te =
             vpMorphRigidTransform::refineOnOutline(current, m_target, Tls, true, kPlanOutlineSigmaPx);
-        if (outsideShare(Te, current, m_target) + kPlanInsideGain < outsideShare(Tls, current, m_target))
+        if (outsideShare(Te, current, m_target) + kPlanInsideGain < outsideShare(Tls, current, m_target)) {
           morph = vpMorph(current, m_target, corr, Te);
+          occludedPlan = true;
+        }
       } catch (const vpException &) {
         // the outline fit degenerated: the least squares stand
       }
@@ -560,6 +566,12 @@ void vpServoMorph::start(const vpMorphContour &current)
         m_subGoals[k - 1] = Ta.apply(currentN).toPixels(m_cam);
       }
     }
+    // An occluded view planned on its outline is rectified onto the target where it shows it: its deformation frames
+    // only grow the occluder's bite into the hidden stretch, which no camera motion shows, and the view fitted to
+    // them was 17 % small, then 10 % large (a wedge whose camera went 10 cm off the way and back: path 19 times its
+    // 12 mm straight line). Its sequence goes from the last rigid frame to the target.
+    if (occludedPlan && m_subGoals.size() > nr + 1)
+      m_subGoals.erase(m_subGoals.begin() + static_cast<std::ptrdiff_t>(nr), m_subGoals.end() - 1);
   }
   m_k = 0;
   m_tracker.reset();
@@ -581,7 +593,7 @@ vpColVector vpServoMorph::stop(Status s)
 }
 
 vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx,
-                                                 double Z)
+                                                 double Z, bool switching)
 {
   const vpMorphContour goalN = m_subGoals[m_k].toNormalized(m_cam);
   vpMorphRigidTransform T;
@@ -632,8 +644,11 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
       // re-planned, three times over). Then it is refined from the last fit to the same sub-goal too, and that one
       // is kept if it is no jump and leaves less of the view outside the goal. A fit whose scale ran away (a
       // drifting correspondence fitted at a fifth of the view's size, then refined to a point, inside the goal) is no
-      // view either: the second opinion is kept whenever its own scale is steady.
-      const bool switchJump = m_switching && m_fittedInSequence && !scaleNearPrevious(T);
+      // view either: the second opinion is kept whenever its own scale is steady. At a sub-goal switch there is no
+      // fit to this sub-goal yet, but the sub-goals are a step apart: a first fit more than kSwitchScaleJump in scale
+      // from the last period's (a wrench cut in two, first fitted on its target at 0.78 of its size, then re-planned)
+      // is refined from that one too, which is kept if it stays within it.
+      const bool switchJump = switching && m_fittedInSequence && !scaleNearPrevious(T);
       if ((m_haveWork && (viewJumped(T) || !scaleConsistent(T))) || switchJump) {
         try {
           const vpMorphRigidTransform Tw =
@@ -730,7 +745,7 @@ bool vpServoMorph::scaleConsistent(const vpMorphRigidTransform &T) const
 
 bool vpServoMorph::scaleNearPrevious(const vpMorphRigidTransform &T) const
 {
-  return std::fabs(std::log(T.scale() / m_prevT.scale())) <= 0.1;
+  return std::fabs(std::log(T.scale() / m_prevT.scale())) <= kSwitchScaleJump;
 }
 
 bool vpServoMorph::viewJumped(const vpMorphRigidTransform &T) const
@@ -1029,9 +1044,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       m_haveWork = false;
       m_haveMove = false; // fits to another sub-goal: re-anchor the calibration
       m_status = SUBGOAL_REACHED;
-      m_switching = true;
-      T = fitToSubGoal(currentN, current, Z);
-      m_switching = false;
+      T = fitToSubGoal(currentN, current, Z, true);
     }
     // Out-of-plane part from the homography to the target (zero displacement when off or not estimated).
     vpHomogeneousMatrix cMct;

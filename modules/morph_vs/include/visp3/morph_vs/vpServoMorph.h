@@ -41,8 +41,11 @@
   the rigid part of the plan is the outline fit (vpMorphRigidTransform::refineOnOutline, from the least squares) if
   it lays the view inside the target better, by 1 % of its area: with part of the object hidden, the least squares
   carry the hidden part into their scale, and the rigid frames moved the camera towards the object for the
-  deformation frames to take it back (paths of 3-7 times the straight line on the occlusion set). A bent view keeps
-  the least squares, which the bend drags less. A sub-goal is reached when the residual similarity from
+  deformation frames to take it back (paths of 3-7 times the straight line on the occlusion set). Such a view then
+  lies on the target where it shows it, and its deformation frames would only grow the occluder's bite into the
+  hidden stretch, which no camera motion shows: they are left out, and the sequence goes from the last rigid frame
+  to the target (fewer sub-goals than subGoalCount()). A bent view keeps the least squares, which the bend drags
+  less, and all its frames. A sub-goal is reached when the residual similarity from
   the current contour to it is below subGoalThresholds() (the paper's 0.10 rad and 5 px); the last one (the
   target) needs the finer finalThresholds(), then the status is CONVERGED and the velocity zero.
 
@@ -436,7 +439,9 @@ public:
 private:
   void start(const vpMorphContour &current);
   vpColVector stop(Status s);
-  vpMorphRigidTransform fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx, double Z);
+  // \e switching: the sub-goal was just reached (no fit to it yet; the last period's fit was to the one before).
+  vpMorphRigidTransform fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx, double Z,
+                                     bool switching = false);
   vpHomogeneousMatrix cameraDisplacement(const vpMorphRigidTransform &T, double Z, double k) const;
   // The joints' end predicted (first order) for the plan cMcp turned by \e turn (image, rad), from setJointState()'s.
   vpColVector jointEnd(const vpMatrix &eJeInv, const vpVelocityTwistMatrix &eVc, const vpHomogeneousMatrix &cMcp,
@@ -548,7 +553,6 @@ private:
   // For the distance-jump test and the calibration: the previous iteration to the same sub-goal.
   bool m_haveWork = false, m_haveMove = false;
   bool m_fittedInSequence = false; // m_prevT is a fit of this sequence (to this sub-goal or the one before)
-  bool m_switching = false;        // fitToSubGoal() runs on a sub-goal just reached for the first time
   double m_prevWork = 0, m_margin = 1;
   vpMorphRigidTransform m_prevT;
   vpHomogeneousMatrix m_prevCmd; // eMe' commanded at the previous iteration
