@@ -86,6 +86,9 @@ const double kPlanOutlineSigmaPx = 0.1, kPlanInsideGain = 0.01;
 // Largest change of the fitted scale (log) from the last period's fit to a sub-goal's first fit: the sub-goals are a
 // step apart (the sub-goal thresholds: 5 px on a 100 px object), a tenth is a jump to another basin.
 const double kSwitchScaleJump = 0.1;
+// A view does not halve or double in one period: a fit whose scale changes by more (log) ran away (to a point, or to
+// the view's double).
+const double kScaleRunaway = std::log(2.0);
 
 // The largest part of the outline \e dense lying within \e tolerance of \e target: searched over the whole outline, or
 // followed from its last \e offset to \e base (a few rounds).
@@ -648,15 +651,15 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
       // fit to this sub-goal yet, but the sub-goals are a step apart: a first fit more than kSwitchScaleJump in scale
       // from the last period's (a wrench cut in two, first fitted on its target at 0.78 of its size, then re-planned)
       // is refined from that one too, which is kept if it stays within it.
-      const bool switchJump = switching && m_fittedInSequence && !scaleNearPrevious(T);
-      if ((m_haveWork && (viewJumped(T) || !scaleConsistent(T))) || switchJump) {
+      const bool switchJump = switching && m_fittedInSequence && scaleChange(T) > kSwitchScaleJump;
+      if ((m_haveWork && (viewJumped(T) || scaleChange(T) > kScaleRunaway)) || switchJump) {
         try {
           const vpMorphRigidTransform Tw =
               vpMorphRigidTransform::refineOnOutline(currentN, goalN, m_prevT, true, 0.2 * halfPixel);
-          if (switchJump
-                  ? scaleNearPrevious(Tw)
-                  : !viewJumped(Tw) && scaleConsistent(Tw) &&
-                        (!scaleConsistent(T) || outsideShare(Tw, currentN, goalN) < outsideShare(T, currentN, goalN)))
+          if (switchJump ? scaleChange(Tw) <= kSwitchScaleJump
+                         : !viewJumped(Tw) && scaleChange(Tw) <= kScaleRunaway &&
+                               (scaleChange(T) > kScaleRunaway ||
+                                outsideShare(Tw, currentN, goalN) < outsideShare(T, currentN, goalN)))
             T = Tw;
         } catch (const vpException &) {
           // no second opinion (a view the outline fit or the overlap cannot take): the jump stands
@@ -736,16 +739,10 @@ bool vpServoMorph::rotationConsistent(const vpMorphRigidTransform &T) const
   return dth <= m_gain * std::fabs(m_prevT.theta()) + m_jumpRotation;
 }
 
-bool vpServoMorph::scaleConsistent(const vpMorphRigidTransform &T) const
+double vpServoMorph::scaleChange(const vpMorphRigidTransform &T) const
 {
-  // A view does not halve or double in one period: such a fit ran away (to a point, or to the view's double).
-  return T.scale() > 0.0 && std::isfinite(T.scale()) &&
-         std::fabs(std::log(T.scale() / m_prevT.scale())) <= std::log(2.0);
-}
-
-bool vpServoMorph::scaleNearPrevious(const vpMorphRigidTransform &T) const
-{
-  return std::fabs(std::log(T.scale() / m_prevT.scale())) <= kSwitchScaleJump;
+  // The fits' scales are finite and > 0 (vpMorphRigidTransform's invariant): the log is defined.
+  return std::fabs(std::log(T.scale() / m_prevT.scale()));
 }
 
 bool vpServoMorph::viewJumped(const vpMorphRigidTransform &T) const

@@ -453,8 +453,8 @@ private:
   // the view jumped when it did not, or when the translation moved beyond what one step explains plus jumpPixels().
   bool rotationConsistent(const vpMorphRigidTransform &T) const;
   bool viewJumped(const vpMorphRigidTransform &T) const;
-  bool scaleConsistent(const vpMorphRigidTransform &T) const;
-  bool scaleNearPrevious(const vpMorphRigidTransform &T) const;
+  // |ln(scale / the last period's)|: how far the fit's scale moved since the last period's fit.
+  double scaleChange(const vpMorphRigidTransform &T) const;
   // n pixels in normalised image units (along the finer axis).
   double normalisedPixels(double n) const { return n / std::max(m_cam.get_px(), m_cam.get_py()); }
   vpMorphRigidTransform overlapFit(const vpMorphContour &currentN, const vpMorphContour &goalN,
