@@ -36,7 +36,7 @@ RUN_COLUMNS = [
 CURVE_COLUMNS = ["set", "robot", "controller", "scenario", "iteration", "t_mm", "r_deg"]
 
 # Canonical orders (DESIGN.md, benchmark protocol); names not listed here are appended in order of appearance.
-SETS = ["planar", "planar-hard", "6dof", "calib", "noise", "occlusion", "deformable", "faults"]
+SETS = ["planar", "planar-hard", "6dof", "calib", "calib-no-tilt", "noise", "occlusion", "deformable", "faults"]
 CONTROLLERS = ["morph", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments"]
 FAILURES = ["out-of-view", "feature-lost", "joint-limit", "budget", "final-error", "diverged", "recognition",
             "unreachable", "lost-too-long", "too-many-replans", "target-mismatch"]

@@ -3,7 +3,7 @@
   \brief The comparison: VISPMorph and ViSP's stock controllers on identical simulated starts.
 
   \code
-  vispmorph-bench --set planar|planar-hard|6dof|calib|noise|occlusion|deformable|faults|all[,...]
+  vispmorph-bench --set planar|planar-hard|6dof|calib|calib-no-tilt|noise|occlusion|deformable|faults|all[,...]
                   [--controllers morph,morph-planar,morph-vpservo,ibvs-current,ibvs-desired,ibvs-mean,pbvs,moments]
                   [--robot camera|viper850|afma6] [--count N] [--seed S] --out DIR
                   [--threads T] [--max-iterations N] [--lambda L] [--no-curves] [--no-plots] [--recognition]
@@ -49,8 +49,10 @@ void usage(std::ostream &os)
 {
   os << "Usage: vispmorph-bench --set SETS --out DIR [options]\n"
         "  --set SETS         comma-separated: planar, planar-hard, 6dof, calib, noise, occlusion, deformable,\n"
-        "                     faults (timed faults, 5 kinds in turn), all\n"
-        "  --controllers L    comma-separated (default all): morph, morph-planar, morph-vpservo, ibvs-current, ibvs-desired,\n"
+        "                     faults (timed faults, 5 kinds in turn), calib-no-tilt (calib's starts, the hand-eye\n"
+        "                     rotation error about the optical axis only), all\n"
+        "  --controllers L    comma-separated (default all): morph, morph-planar, morph-vpservo, ibvs-current, "
+        "ibvs-desired,\n"
         "                     ibvs-mean, pbvs, moments\n"
         "  --robot R          camera (default), viper850 or afma6\n"
         "  --count N          scenarios per set (default 10)\n"

@@ -81,7 +81,8 @@ std::string vpMorphBenchScenario::describe() const
 
 std::vector<std::string> vpMorphBenchScenario::setNames()
 {
-  return {"planar", "planar-hard", "6dof", "calib", "noise", "occlusion", "deformable", "faults"};
+  // New sets go at the end: a set's place seeds its starts (generate()).
+  return {"planar", "planar-hard", "6dof", "calib", "noise", "occlusion", "deformable", "faults", "calib-no-tilt"};
 }
 
 std::vector<std::string> vpMorphBenchScenario::objectNames()
@@ -104,10 +105,13 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
                                                                  unsigned int seed, const std::string &dataDir)
 {
   const std::vector<std::string> sets = setNames();
-  if (std::find(sets.begin(), sets.end(), set) == sets.end())
+  if (std::find(sets.begin(), sets.end(), set) == sets.end()) {
+    std::string known;
+    for (const std::string &s : sets)
+      known += (known.empty() ? "" : ", ") + s;
     throw vpMorphException(vpMorphException::badParameterError,
-                           "vpMorphBenchScenario::generate: unknown set '" + set +
-                               "' (planar, planar-hard, 6dof, calib, noise, occlusion, deformable, faults)");
+                           "vpMorphBenchScenario::generate: unknown set '" + set + "' (" + known + ")");
+  }
   if (count == 0)
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphBenchScenario::generate: count must be > 0");
 
@@ -128,8 +132,10 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
     return *s;
   };
 
-
-  const unsigned int setIndex = static_cast<unsigned int>(std::find(sets.begin(), sets.end(), set) - sets.begin());
+  // calib-no-tilt draws calib's starts and errors (the same seeds), then drops the hand-eye tilt.
+  const bool calib = set == "calib" || set == "calib-no-tilt";
+  const std::string seedSet = calib ? "calib" : set;
+  const unsigned int setIndex = static_cast<unsigned int>(std::find(sets.begin(), sets.end(), seedSet) - sets.begin());
   const std::vector<std::string> objects = objectNames();
   std::vector<vpMorphBenchScenario> out;
   for (unsigned int i = 0; i < count; ++i) {
@@ -152,7 +158,7 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
     sc.faults.seed = sc.seed;
 
     // Faults and calibration errors first (they do not depend on the start).
-    if (set == "calib") {
+    if (calib) {
       sc.focalScaleX = uni(0.8, 1.2);
       sc.focalScaleY = uni(0.8, 1.2);
       sc.principalShiftU = uni(-16, 16);
@@ -162,7 +168,8 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
       const double az2 = uni(-M_PI, M_PI), el2 = std::asin(uni(-1, 1));
       const vpTranslationVector t(dt * std::cos(el) * std::cos(az), dt * std::cos(el) * std::sin(az),
                                   dt * std::sin(el));
-      const vpThetaUVector tu(dr * std::cos(el2) * std::cos(az2), dr * std::cos(el2) * std::sin(az2),
+      const double tilt = set == "calib-no-tilt" ? 0.0 : 1.0; // the rotation about the optical axis only
+      const vpThetaUVector tu(tilt * dr * std::cos(el2) * std::cos(az2), tilt * dr * std::cos(el2) * std::sin(az2),
                               dr * std::sin(el2));
       sc.eMcError = vpHomogeneousMatrix(t, tu);
     } else if (set == "noise") {

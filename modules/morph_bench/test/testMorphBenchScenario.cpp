@@ -45,6 +45,31 @@ TEST_CASE("bench scenarios are reproducible from their seed and differ across se
   CHECK(samePose(d[1].cdMc, a[1].cdMc));
 }
 
+TEST_CASE("calib-no-tilt draws calib's starts and errors, the hand-eye rotation error about the optical axis only",
+          "[bench]")
+{
+  const auto calib = vpMorphBenchScenario::generate("calib", 8, 3, kData);
+  const auto noTilt = vpMorphBenchScenario::generate("calib-no-tilt", 8, 3, kData);
+  REQUIRE(noTilt.size() == calib.size());
+  unsigned int tilted = 0;
+  for (std::size_t i = 0; i < calib.size(); ++i) {
+    CHECK(noTilt[i].set == "calib-no-tilt");
+    CHECK(noTilt[i].seed == calib[i].seed);
+    CHECK(noTilt[i].object == calib[i].object);
+    CHECK(samePose(noTilt[i].cdMc, calib[i].cdMc));
+    CHECK(noTilt[i].focalScaleX == calib[i].focalScaleX);
+    CHECK(noTilt[i].principalShiftV == calib[i].principalShiftV);
+    const vpTranslationVector t = noTilt[i].eMcError.getTranslationVector(),
+                              tc = calib[i].eMcError.getTranslationVector();
+    CHECK((t - tc).frobeniusNorm() == 0.0);
+    const vpThetaUVector tu(noTilt[i].eMcError.getRotationMatrix()), tuc(calib[i].eMcError.getRotationMatrix());
+    CHECK(std::hypot(tu[0], tu[1]) < 1e-12);
+    CHECK(tu[2] == Approx(tuc[2]).margin(1e-12));
+    tilted += std::hypot(tuc[0], tuc[1]) > vpMath::rad(1) ? 1 : 0;
+  }
+  CHECK(tilted > 0); // calib's own errors do tilt the camera on the hand
+}
+
 TEST_CASE("bench scenario sets follow the protocol's ranges and show object and tag at the start", "[bench]")
 {
   for (const std::string &set : vpMorphBenchScenario::setNames()) {
@@ -73,7 +98,7 @@ TEST_CASE("bench scenario sets follow the protocol's ranges and show object and 
         CHECK(s.startDepthChange == 0.0);
         CHECK(std::fabs(s.cdMc[2][3]) < 1e-12); // same depth
       }
-      if (set == "calib") {
+      if (set == "calib" || set == "calib-no-tilt") {
         CHECK(std::fabs(s.focalScaleX - 1) <= 0.2);
         CHECK(std::fabs(s.focalScaleY - 1) <= 0.2);
         CHECK(s.eMcError.getTranslationVector().frobeniusNorm() <= 0.02);

@@ -30,6 +30,9 @@
     [0, 30] deg about a random in-plane axis, and its depth changes by a factor in [0.6, 1.4];
   - calib: planar, with intrinsics given to the controllers off by up to 20 % (each focal length scaled by
     [0.8, 1.2], principal point shifted by up to 16 px) and a hand-eye estimate off by up to 20 mm and 10 deg;
+  - calib-no-tilt: calib's starts and errors (the same seeds), but the hand-eye rotation error kept about the
+    optical axis only, the part the online estimation observes: it tells a tilt of the camera on the hand, which
+    turns about the optical axis carry into a tilt the thin objects' outlines do not show, from the other errors;
   - noise: planar, with Gaussian noise (sigma in [1, 6] grey levels), blur (sigma in [0, 1.5] px) and an
     illumination change (gain in [0.7, 1.3], offset in [-25, 25]);
   - occlusion: planar, with a card hiding a share in [5, 20] % of the object's outline at a random place;
