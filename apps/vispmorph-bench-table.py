@@ -1,0 +1,161 @@
+#!/usr/bin/python3
+"""One controller's results over several vispmorph-bench runs (robots, seeds) as one markdown table.
+
+Usage: vispmorph-bench-table.py [--controller NAME] OUTDIR [OUTDIR ...]
+
+Reads each OUTDIR/runs.csv (and OUTDIR/summary.json when present, for the machine yardstick) and prints, per set:
+the successes of each OUTDIR (a column each, headed by its robot and seed), all of them together, the median path
+ratio of the successful runs, the mean compute time per iteration (measure + control, CPU ms, over the runs that
+measured) and its ratio to each run's machine yardstick, and issue 5's target for the set, met or not over all the
+OUTDIRs given. The table is computed from the files only: what it says is what the runs did.
+"""
+
+import csv
+import json
+import os
+import statistics
+import sys
+
+SETS = ["planar", "planar-hard", "6dof", "calib", "calib-no-tilt", "noise", "occlusion", "deformable", "faults"]
+# Issue 5's targets for morph: (least success rate, largest median path ratio or None).
+TARGETS = {
+    "planar": (1.0, 1.1),
+    "planar-hard": (1.0, None),
+    "calib": (0.95, None),
+    "noise": (0.95, None),
+    "occlusion": (0.95, None),
+    "deformable": (0.95, None),
+}
+COMPUTE_TARGET_MS = 2.0
+
+
+def fail(message):
+    sys.stderr.write("vispmorph-bench-table: " + message + "\n")
+    sys.exit(2)
+
+
+def number(text):
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        return None
+    return value if value == value and abs(value) != float("inf") else None
+
+
+def read_dir(path, controller):
+    runs_csv = os.path.join(path, "runs.csv")
+    try:
+        with open(runs_csv, newline="") as f:
+            rows = [r for r in csv.DictReader(f) if r.get("controller") == controller]
+    except OSError as e:
+        fail("cannot read %s: %s" % (runs_csv, e.strerror))
+    except csv.Error as e:
+        fail("malformed %s: %s" % (runs_csv, e))
+    for r in rows:
+        for column in ("set", "robot", "seed", "success", "path_ratio", "measure_ms", "control_ms"):
+            if column not in r:
+                fail("%s has no column '%s'" % (runs_csv, column))
+    meta = {}
+    try:
+        with open(os.path.join(path, "summary.json")) as f:
+            meta = json.load(f).get("meta", {})
+    except (OSError, ValueError, AttributeError):
+        meta = {}  # no summary (or an unreadable one): no yardstick, the directory's name for the seed
+    if not isinstance(meta, dict):
+        meta = {}
+    values = [number(meta.get(k)) for k in ("yardstick_extract_ms_before", "yardstick_extract_ms_after")]
+    values = [v for v in values if v and v > 0]
+    yardstick = sum(values) / len(values) if values else None
+    # runs.csv's seed column is each scenario's own seed: the set seed is in the summary.
+    robots = "/".join(sorted({r["robot"] for r in rows})) or "?"
+    seed = meta.get("seed")
+    label = "%s seed %s" % (robots, seed) if seed else "%s (%s)" % (robots, os.path.basename(os.path.normpath(path)))
+    return {"label": label, "rows": rows, "yardstick": yardstick}
+
+
+def ordered_sets(dirs):
+    seen = []
+    for d in dirs:
+        for r in d["rows"]:
+            if r["set"] not in seen:
+                seen.append(r["set"])
+    return [s for s in SETS if s in seen] + [s for s in seen if s not in SETS]
+
+
+def table(dirs, controller):
+    out = []
+    head = ["set"] + [d["label"] for d in dirs] + ["all", "median path ratio", "compute (ms)", "compute / yardstick",
+                                                  "issue 5 target"]
+    out.append("| " + " | ".join(head) + " |")
+    out.append("|" + "---|" * len(head))
+    for s in ordered_sets(dirs):
+        cells, successes, runs, ratios, compute, per_yardstick = [s], 0, 0, [], [], []
+        for d in dirs:
+            rows = [r for r in d["rows"] if r["set"] == s]
+            ok = sum(1 for r in rows if r["success"] == "1")
+            cells.append("%d/%d" % (ok, len(rows)) if rows else "-")
+            successes += ok
+            runs += len(rows)
+            for r in rows:
+                ratio = number(r["path_ratio"])
+                if r["success"] == "1" and ratio is not None:
+                    ratios.append(ratio)
+                m, c = number(r["measure_ms"]), number(r["control_ms"])
+                if m is not None and c is not None and m > 0:
+                    compute.append(m + c)
+                    if d["yardstick"]:
+                        per_yardstick.append((m + c) / d["yardstick"])
+        rate = successes / runs if runs else 0.0
+        cells.append("%d/%d (%.0f %%)" % (successes, runs, 100 * rate))
+        median_ratio = statistics.median(ratios) if ratios else None
+        cells.append("%.2f" % median_ratio if median_ratio is not None else "-")
+        mean_compute = statistics.mean(compute) if compute else None
+        cells.append("%.2f" % mean_compute if mean_compute is not None else "-")
+        cells.append("%.1f" % statistics.mean(per_yardstick) if per_yardstick else "-")
+        cells.append(target(s, controller, rate, median_ratio, mean_compute))
+        out.append("| " + " | ".join(cells) + " |")
+    return "\n".join(out)
+
+
+def target(set_name, controller, rate, median_ratio, mean_compute):
+    if controller != "morph":
+        return "(for morph)"
+    notes, met = [], True
+    if set_name in TARGETS:
+        least, largest_ratio = TARGETS[set_name]
+        notes.append(">= %.0f %%" % (100 * least))
+        met &= rate >= least
+        if largest_ratio is not None:
+            notes.append("ratio <= %.1f" % largest_ratio)
+            met &= median_ratio is not None and median_ratio <= largest_ratio
+    notes.append("< %.0f ms" % COMPUTE_TARGET_MS)
+    met &= mean_compute is not None and mean_compute < COMPUTE_TARGET_MS
+    return "%s: %s" % (", ".join(notes), "met" if met else "not met")
+
+
+def main(argv):
+    controller, dirs = "morph", []
+    i = 1
+    while i < len(argv):
+        if argv[i] == "--controller":
+            if i + 1 >= len(argv):
+                fail("--controller needs a value")
+            controller = argv[i + 1]
+            i += 2
+        elif argv[i] in ("-h", "--help"):
+            print(__doc__)
+            return 0
+        else:
+            dirs.append(argv[i])
+            i += 1
+    if not dirs:
+        fail("no OUTDIR given (usage: vispmorph-bench-table.py [--controller NAME] OUTDIR [OUTDIR ...])")
+    data = [read_dir(d, controller) for d in dirs]
+    if not any(d["rows"] for d in data):
+        fail("no run of controller '%s' in %s" % (controller, ", ".join(dirs)))
+    print(table(data, controller))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
