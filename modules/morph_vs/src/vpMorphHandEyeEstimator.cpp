@@ -89,10 +89,17 @@ void vpMorphHandEyeEstimator::addMove(const vpHomogeneousMatrix &eMe, const vpHo
 
 void vpMorphHandEyeEstimator::solve()
 {
-  const vpColVector u = m_M.inverseByLU() * m_r;
+  vpColVector u = m_M.inverseByLU() * m_r;
   const double k = std::hypot(u[2], u[3]);
   if (!std::isfinite(k) || k < 1e-3 || !std::isfinite(u[0]) || !std::isfinite(u[1]))
     return;
+  // The intrinsics given are a calibrated camera's: a scale beyond kMaxTranslationScale is the planar model failing,
+  // not a calibration. Measured: a pliers seen 21 deg tilted (hand-eye and intrinsics exact) pulled k from 1 to 0.02
+  // in 80 periods through moves the outlier gate let through; every translation command shrank fifty times and the
+  // camera stopped 4.4 mm off after 419 iterations.
+  const double kb = std::min(kMaxTranslationScale, std::max(1.0 / kMaxTranslationScale, k));
+  u[2] *= kb / k;
+  u[3] *= kb / k;
   const double psi = std::atan2(u[3], u[2]);
   m_u = u;
   m_eMc = m_eMc0 * vpHomogeneousMatrix(u[0], u[1], 0, 0, 0, psi);
