@@ -14,7 +14,6 @@ Every file is written even when data are missing (a panel then says so). Run it 
 (python3-matplotlib); MPLBACKEND=Agg for headless machines.
 """
 
-import csv
 import math
 import os
 import sys
@@ -26,6 +25,8 @@ if not os.environ.get("MPLBACKEND"):
     matplotlib.use("Agg")  # files only: no window is ever opened
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from vispmorph_bench_files import SETS, BenchFileError, number, ordered, success  # noqa: E402
+from vispmorph_bench_files import read_csv as read_bench_csv  # noqa: E402
 
 RUN_COLUMNS = [
     "set", "robot", "controller", "scenario", "seed", "object", "start_rotation_deg", "start_translation_mm",
@@ -35,8 +36,8 @@ RUN_COLUMNS = [
 ]
 CURVE_COLUMNS = ["set", "robot", "controller", "scenario", "iteration", "t_mm", "r_deg"]
 
-# Canonical orders (DESIGN.md, benchmark protocol); names not listed here are appended in order of appearance.
-SETS = ["planar", "planar-hard", "6dof", "calib", "calib-no-tilt", "noise", "occlusion", "deformable", "faults"]
+# Canonical orders (DESIGN.md, benchmark protocol; the sets' in vispmorph_bench_files); names not listed here are
+# appended in order of appearance.
 CONTROLLERS = ["morph", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments"]
 FAILURES = ["out-of-view", "feature-lost", "joint-limit", "budget", "final-error", "diverged", "recognition",
             "unreachable", "lost-too-long", "too-many-replans", "target-mismatch"]
@@ -75,39 +76,11 @@ def fail(msg):
     sys.exit(1)
 
 
-def number(text):
-    """Float of a CSV field, None when empty or not a finite number."""
-    if text is None:
-        return None
-    text = text.strip()
-    if not text:
-        return None
-    try:
-        v = float(text)
-    except ValueError:
-        return None
-    return v if math.isfinite(v) else None
-
-
 def read_csv(path, columns):
-    if not os.path.isfile(path):
-        fail("cannot open " + path)
-    with open(path, newline="") as f:
-        reader = csv.DictReader(f)
-        header = reader.fieldnames or []
-        missing = [c for c in columns if c not in header]
-        if missing:
-            fail("%s: missing column(s) %s" % (path, ", ".join(missing)))
-        return [row for row in reader if any((v or "").strip() for v in row.values() if isinstance(v, str))]
-
-
-def ordered(present, canonical):
-    """The names of \a canonical that are present, then the others in order of appearance."""
-    seen = []
-    for name in present:
-        if name not in seen:
-            seen.append(name)
-    return [n for n in canonical if n in seen] + [n for n in seen if n not in canonical]
+    try:
+        return read_bench_csv(path, columns)
+    except BenchFileError as e:
+        fail(str(e))
 
 
 def colour_map(controllers):
@@ -119,10 +92,6 @@ def colour_map(controllers):
             colours[c] = EXTRA_COLOURS[extra % len(EXTRA_COLOURS)]
             extra += 1
     return colours
-
-
-def success(row):
-    return (row.get("success") or "").strip() == "1"
 
 
 def save(fig, outdir, name, written):

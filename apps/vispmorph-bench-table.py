@@ -10,13 +10,13 @@ measured) and its ratio to each run's machine yardstick, and issue 5's target fo
 OUTDIRs given. The table is computed from the files only: what it says is what the runs did.
 """
 
-import csv
 import json
 import os
 import statistics
 import sys
 
-SETS = ["planar", "planar-hard", "6dof", "calib", "calib-no-tilt", "noise", "occlusion", "deformable", "faults"]
+from vispmorph_bench_files import SETS, BenchFileError, number, ordered, read_csv, success
+
 # Issue 5's targets for morph: (least success rate, largest median path ratio or None).
 TARGETS = {
     "planar": (1.0, 1.1),
@@ -34,27 +34,12 @@ def fail(message):
     sys.exit(2)
 
 
-def number(text):
-    try:
-        value = float(text)
-    except (TypeError, ValueError):
-        return None
-    return value if value == value and abs(value) != float("inf") else None
-
-
 def read_dir(path, controller):
-    runs_csv = os.path.join(path, "runs.csv")
+    columns = ("set", "robot", "controller", "success", "path_ratio", "measure_ms", "control_ms")
     try:
-        with open(runs_csv, newline="") as f:
-            rows = [r for r in csv.DictReader(f) if r.get("controller") == controller]
-    except OSError as e:
-        fail("cannot read %s: %s" % (runs_csv, e.strerror))
-    except csv.Error as e:
-        fail("malformed %s: %s" % (runs_csv, e))
-    for r in rows:
-        for column in ("set", "robot", "seed", "success", "path_ratio", "measure_ms", "control_ms"):
-            if column not in r:
-                fail("%s has no column '%s'" % (runs_csv, column))
+        rows = [r for r in read_csv(os.path.join(path, "runs.csv"), columns) if r["controller"] == controller]
+    except BenchFileError as e:
+        fail(str(e))
     meta = {}
     try:
         with open(os.path.join(path, "summary.json")) as f:
@@ -74,12 +59,7 @@ def read_dir(path, controller):
 
 
 def ordered_sets(dirs):
-    seen = []
-    for d in dirs:
-        for r in d["rows"]:
-            if r["set"] not in seen:
-                seen.append(r["set"])
-    return [s for s in SETS if s in seen] + [s for s in seen if s not in SETS]
+    return ordered([r["set"] for d in dirs for r in d["rows"]], SETS)
 
 
 def table(dirs, controller):
@@ -92,13 +72,13 @@ def table(dirs, controller):
         cells, successes, runs, ratios, compute, per_yardstick = [s], 0, 0, [], [], []
         for d in dirs:
             rows = [r for r in d["rows"] if r["set"] == s]
-            ok = sum(1 for r in rows if r["success"] == "1")
+            ok = sum(1 for r in rows if success(r))
             cells.append("%d/%d" % (ok, len(rows)) if rows else "-")
             successes += ok
             runs += len(rows)
             for r in rows:
                 ratio = number(r["path_ratio"])
-                if r["success"] == "1" and ratio is not None:
+                if success(r) and ratio is not None:
                     ratios.append(ratio)
                 m, c = number(r["measure_ms"]), number(r["control_ms"])
                 if m is not None and c is not None and m > 0:

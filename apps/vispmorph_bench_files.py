@@ -1,0 +1,58 @@
+"""What vispmorph-bench-plots.py and vispmorph-bench-table.py both read from a vispmorph-bench output folder: the
+canonical order of the sets, runs.csv's fields as numbers, and the CSV files themselves. No matplotlib here: the
+table needs none.
+"""
+
+import csv
+import math
+import os
+
+# Canonical order of the sets (DESIGN.md, benchmark protocol); names not listed are appended in order of appearance.
+SETS = ["planar", "planar-hard", "6dof", "calib", "calib-no-tilt", "noise", "occlusion", "deformable", "faults"]
+
+
+class BenchFileError(Exception):
+    """A bench output file that cannot be read: missing, or without the columns asked for."""
+
+
+def number(text):
+    """Float of a CSV field, None when empty or not a finite number."""
+    if text is None:
+        return None
+    text = text.strip()
+    if not text:
+        return None
+    try:
+        v = float(text)
+    except ValueError:
+        return None
+    return v if math.isfinite(v) else None
+
+
+def success(row):
+    return (row.get("success") or "").strip() == "1"
+
+
+def read_csv(path, columns):
+    """The non-blank rows of a CSV file as dicts. \\throw BenchFileError when it is missing or lacks a column."""
+    if not os.path.isfile(path):
+        raise BenchFileError("cannot open " + path)
+    try:
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            header = reader.fieldnames or []
+            missing = [c for c in columns if c not in header]
+            if missing:
+                raise BenchFileError("%s: missing column(s) %s" % (path, ", ".join(missing)))
+            return [row for row in reader if any((v or "").strip() for v in row.values() if isinstance(v, str))]
+    except (OSError, csv.Error) as e:
+        raise BenchFileError("%s: %s" % (path, e))
+
+
+def ordered(present, canonical):
+    """The names of \\a canonical that are present, then the others in order of appearance."""
+    seen = []
+    for name in present:
+        if name not in seen:
+            seen.append(name)
+    return [n for n in canonical if n in seen] + [n for n in seen if n not in canonical]
