@@ -316,6 +316,7 @@ Eigen::Vector4d edgeIcp(const std::vector<Eigen::Vector2d> &P, const vpMorphNear
     // where every kept point lies on one straight edge.
     const double sigma = sigmaFixed > 0.0 ? sigmaFixed : std::max(1.4826 * median(d), sigmaMin), cut = 5.0 * sigma;
     Eigen::Vector4d xn;
+    const double deltaBefore = delta;
     if (offset) {
       Eigen::Matrix<double, 5, 1> z;
       if (!edgeIcpRoundWithOffset(P, Q, N, d, along, cut, z) || !z.allFinite())
@@ -329,9 +330,15 @@ Eigen::Vector4d edgeIcp(const std::vector<Eigen::Vector2d> &P, const vpMorphNear
       break;
     if (!withScale)
       xn.head<2>() /= xn.head<2>().norm();
-    const double change = (xn - x).cwiseAbs().maxCoeff();
+    // How far the round moved the points, at most: (a, b) times the target's spread, t and the offset as they are.
+    // Under a billionth of the spread (a ten-millionth of a pixel on a 100 px object) the fit has settled: the rounds
+    // that follow a part from the last image stop there within 10 of their 20 (the bound used to be 1e-12 in the
+    // contours' units, which normalised coordinates never reach).
+    const Eigen::Vector4d step = xn - x;
+    const double moved = std::max({step.head<2>().cwiseAbs().maxCoeff() * spread, step.tail<2>().cwiseAbs().maxCoeff(),
+                                   std::fabs(delta - deltaBefore)});
     x = xn;
-    if (change < 1e-12 * std::max(spread, 1.0))
+    if (moved < 1e-9 * spread)
       break;
   }
   if (offset)
