@@ -468,6 +468,8 @@ private:
   double bandCorrectedAreaRatio(const vpMorphContour &currentN, const vpMorphRigidTransform &T);
   bool tiltActive() const;
   bool estimateTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &cMct, double &Zp);
+  // estimateTilt()'s fit, each time it is tried.
+  bool fitTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &cMct, double &Zp);
   void fuseTilt(const vpMatrix &C, double &angle, double &ax, double &ay, double &sa);
   void record();
   bool targetMismatch(const vpMorphContour &current);
@@ -539,6 +541,8 @@ private:
   // command, and the periods in a row the estimate has not come down along it (see estimateTilt()).
   double m_tiltSumX = 0.0, m_tiltSumY = 0.0, m_tiltRefX = 0.0, m_tiltRefY = 0.0;
   unsigned int m_tiltNoProgress = 0;
+  // Tries in a row without a usable homography, then counting the periods between tries (see estimateTilt()).
+  unsigned int m_tiltMisses = 0;
   // The outlines' tilt estimates of the final approach, fused by fuseTilt().
   struct TiltSample
   {
