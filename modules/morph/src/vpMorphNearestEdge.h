@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <vector>
 
@@ -54,6 +55,7 @@ public:
     m_nx = std::min(1024, int((x1 - m_x0) / m_h) + 1);
     m_ny = std::min(1024, int((y1 - m_y0) / m_h) + 1);
     m_h = std::max((x1 - m_x0) / m_nx, (y1 - m_y0) / m_ny) * (1.0 + 1e-12) + 1e-300;
+    m_invH = 1.0 / m_h;
     // The cells' edge lists laid out one after the other (m_first[cell] to m_first[cell + 1] in m_cellEdges), each in
     // increasing edge order: counted, then filled.
     m_first.assign(std::size_t(m_nx) * std::size_t(m_ny) + 1, 0);
@@ -110,11 +112,8 @@ private:
           continue;
         const bool edgeRow = j == cj - r || j == cj + r;
         for (int i = ci - r; i <= ci + r; i += (edgeRow || r == 0) ? 1 : 2 * r) {
-          if (i < 0 || i >= m_nx || fartherThanBest(i, j, px, py, b))
-            continue;
-          const std::size_t cell = std::size_t(j) * std::size_t(m_nx) + std::size_t(i);
-          for (std::size_t e = m_first[cell]; e < m_first[cell + 1]; ++e)
-            visit(m_cellEdges[e], px, py, b);
+          if (i >= 0 && i < m_nx)
+            visitCell(i, j, px, py, b);
         }
       }
       // Every cell not searched yet lies beyond a side of the (2r + 1)^2 block that has not reached the grid's edge,
@@ -129,8 +128,21 @@ private:
         border = std::min(border, py - (m_y0 + (cj - r) * m_h));
       if (cj + r + 1 < m_ny)
         border = std::min(border, m_y0 + (cj + r + 1) * m_h - py);
-      if (b.d2 < std::numeric_limits<double>::max() && std::sqrt(b.d2) <= border)
+      if (b.k >= m_edges.size())
+        continue; // nothing yet: the next ring
+      if (border >= 0.0 && b.d2 <= border * border)
         break;
+      // A nearer edge's nearest point lies within the best distance d of p: in a cell of the box p +- d (the cells
+      // hold every edge whose box they meet, and the cell of a coordinate grows with it). Those cells not in the
+      // block are searched, and that is all: a cell or two where the rings went on with a whole ring (a query a pixel
+      // off a dense outline: 95 -> 80 ns).
+      const double d = std::sqrt(b.d2);
+      const int i0 = cellX(px - d), i1 = cellX(px + d), j0 = cellY(py - d), j1 = cellY(py + d);
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+          if (std::abs(i - ci) > r || std::abs(j - cj) > r)
+            visitCell(i, j, px, py, b);
+      break;
     }
     return finish(b, px, py, mx, my, along);
   }
@@ -153,8 +165,17 @@ private:
     const double dy = std::max(0.0, std::max(ya - py, py - (ya + m_h)));
     return dx * dx + dy * dy > b.d2 * (1.0 + 1e-9);
   }
-  int cellX(double x) const { return vpMorphGridCell((x - m_x0) / m_h, m_nx); }
-  int cellY(double y) const { return vpMorphGridCell((y - m_y0) / m_h, m_ny); }
+  // The edges of cell (i, j) of the grid, unless it lies farther than the best.
+  void visitCell(int i, int j, double px, double py, Best &b) const
+  {
+    if (fartherThanBest(i, j, px, py, b))
+      return;
+    const std::size_t cell = std::size_t(j) * std::size_t(m_nx) + std::size_t(i);
+    for (std::size_t e = m_first[cell]; e < m_first[cell + 1]; ++e)
+      visit(m_cellEdges[e], px, py, b);
+  }
+  int cellX(double x) const { return vpMorphGridCell((x - m_x0) * m_invH, m_nx); }
+  int cellY(double y) const { return vpMorphGridCell((y - m_y0) * m_invH, m_ny); }
   void visit(std::size_t k, double px, double py, Best &b) const
   {
     const Edge &e = m_edges[k];
@@ -208,7 +229,7 @@ private:
     double nx, ny; // the unit normal (0, 1 for a null edge), computed once: a query used to take two hypot()s
   };
   std::vector<Edge> m_edges;
-  double m_x0 = 0, m_y0 = 0, m_h = 1;
+  double m_x0 = 0, m_y0 = 0, m_h = 1, m_invH = 1; // m_invH: a product instead of two divisions per query
   int m_nx = 0, m_ny = 0;
   std::vector<std::size_t> m_first, m_cellEdges; // empty without a grid
 };
