@@ -89,6 +89,33 @@ public:
     return query(px, py, mx, my, &along);
   }
 
+  /*
+    Whether an edge lies within \e tol (> 0) of p: the nearest point's distance compared with tol, but only the cells
+    that the box p +- tol meets are searched, and only until one edge is within (a stretch of an outline that lies on
+    the target is searched for over the whole outline at every hypothesis, where its distance is not needed).
+  */
+  bool within(double px, double py, double tol) const
+  {
+    if (!std::isfinite(px) || !std::isfinite(py))
+      return false;
+    const double tol2 = tol * tol;
+    if (m_first.empty()) {
+      for (std::size_t k = 0; k < m_edges.size(); ++k)
+        if (distance2(k, px, py) < tol2)
+          return true;
+      return false;
+    }
+    const int i0 = cellX(px - tol), i1 = cellX(px + tol), j0 = cellY(py - tol), j1 = cellY(py + tol);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const std::size_t cell = std::size_t(j) * std::size_t(m_nx) + std::size_t(i);
+        for (std::size_t e = m_first[cell]; e < m_first[cell + 1]; ++e)
+          if (distance2(m_cellEdges[e], px, py) < tol2)
+            return true;
+      }
+    return false;
+  }
+
 private:
   double query(double px, double py, double &mx, double &my, double *along) const
   {
@@ -176,6 +203,14 @@ private:
   }
   int cellX(double x) const { return vpMorphGridCell((x - m_x0) * m_invH, m_nx); }
   int cellY(double y) const { return vpMorphGridCell((y - m_y0) * m_invH, m_ny); }
+  // The squared distance from p to edge k, as visit() computes it.
+  double distance2(std::size_t k, double px, double py) const
+  {
+    const Edge &e = m_edges[k];
+    const double t = e.l2 > 0 ? std::min(1.0, std::max(0.0, ((px - e.ax) * e.dx + (py - e.ay) * e.dy) / e.l2)) : 0.0;
+    const double qx = e.ax + t * e.dx, qy = e.ay + t * e.dy;
+    return (px - qx) * (px - qx) + (py - qy) * (py - qy);
+  }
   void visit(std::size_t k, double px, double py, Best &b) const
   {
     const Edge &e = m_edges[k];

@@ -809,8 +809,7 @@ public:
     std::size_t count = 0;
     for (std::size_t j = 0; j < m_n; ++j) {
       const Eigen::Vector2d q = linearMap(x, m_P[j]);
-      double mx, my;
-      in[j] = std::fabs(m_nearest(q.x(), q.y(), mx, my)) < m_tol;
+      in[j] = m_nearest.within(q.x(), q.y(), m_tol);
       count += in[j];
     }
     Stretch best;

@@ -705,7 +705,9 @@ TEST_CASE("vpMorphRigidTransform::fitRigidPart takes the part whose scale is bes
 // the grid's box (a bent limb mapped beyond the template's box; the grid used to fall back on the scan there).
 #include "../src/vpMorphNearestEdge.h"
 
-TEST_CASE("vpMorphNearestEdge finds the scan's nearest point, inside and outside its grid", "[rigid][nearest]")
+TEST_CASE(
+    "vpMorphNearestEdge finds the scan's nearest point, inside and outside its grid, and what is within a distance",
+    "[rigid][nearest]")
 {
   // The plain scan: the nearest point of every edge, the first of equal distances.
   struct Nearest
@@ -774,7 +776,13 @@ TEST_CASE("vpMorphNearestEdge finds the scan's nearest point, inside and outside
       outside += px < x0 || px > x1 || py < y0 || py > y1;
       double mx, my;
       const double d = nearest(px, py, mx, my);
-      check(c, scan(c, px, py), px, py, d, mx, my);
+      const Nearest o = scan(c, px, py);
+      check(c, o, px, py, d, mx, my);
+      // within(): whether the scan's nearest point is within a tolerance, at tolerances about the distance.
+      const double off = std::hypot(px - o.fx, py - o.fy);
+      for (const double tol : {0.25, 0.9 * off, 1.1 * off, 3.0})
+        if (tol > 0.0 && std::fabs(off - tol) > 1e-9 * tol)
+          CHECK(nearest.within(px, py, tol) == (off < tol));
     }
     CHECK(outside > 1000);
     // Far away and non-finite: a distance, then NaN.
@@ -783,7 +791,23 @@ TEST_CASE("vpMorphNearestEdge finds the scan's nearest point, inside and outside
     CHECK(nearest(1e12, -3e11, mx, my) == Approx(std::hypot(1e12 - far.fx, -3e11 - far.fy)).epsilon(1e-12));
     CHECK(std::isnan(nearest(std::numeric_limits<double>::quiet_NaN(), 0.0, mx, my)));
     CHECK(std::isnan(nearest(0.0, std::numeric_limits<double>::infinity(), mx, my)));
+    CHECK(!nearest.within(std::numeric_limits<double>::quiet_NaN(), 0.0, 1.0));
     CHECK(mx == 0.0);
     CHECK(my == 0.0);
+  }
+  // A polygon of a few edges, scanned without a grid.
+  const vpMorphContour poly = starPolygon(rng, 12, 1.2);
+  const vpMorphNearestEdge nearPoly(poly);
+  std::normal_distribution<double> off(0.0, 3.0);
+  for (int q = 0; q < 500; ++q) {
+    const std::size_t k = std::size_t(q) % poly.size();
+    const double px = poly.x(k) + off(rng), py = poly.y(k) + off(rng);
+    double mx, my;
+    const Nearest o = scan(poly, px, py);
+    const double signedDistance = nearPoly(px, py, mx, my);
+    check(poly, o, px, py, signedDistance, mx, my);
+    const double d = std::hypot(px - o.fx, py - o.fy);
+    CHECK(nearPoly.within(px, py, 1.1 * d + 1e-12));
+    CHECK(!nearPoly.within(px, py, 0.9 * d));
   }
 }
