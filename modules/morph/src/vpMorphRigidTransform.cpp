@@ -193,6 +193,47 @@ double tukeyWeight(double r, double c)
 }
 
 /*
+  The point-to-point terms of an ICP round (weight 1e-3 w per pair, rows (px, -py, 1, 0) -> qx and (py, px, 0, 1) ->
+  qy), summed over the pairs in closed form and added to the first four unknowns' normal equations: two 4 x 4 outer
+  products per pair were most of a round's own time.
+*/
+struct PointToPointSums
+{
+  double sw = 0.0, swx = 0.0, swy = 0.0, swr = 0.0, sqx = 0.0, sqy = 0.0, sa = 0.0, sb = 0.0;
+  void add(double w, double px, double py, double qx, double qy)
+  {
+    sw += w;
+    swx += w * px;
+    swy += w * py;
+    swr += w * (px * px + py * py);
+    sqx += w * qx;
+    sqy += w * qy;
+    sa += w * (px * qx + py * qy);
+    sb += w * (px * qy - py * qx);
+  }
+  template <typename Matrix, typename Vector> void addTo(Matrix &A, Vector &rhs) const
+  {
+    const double e = 1e-3;
+    A(0, 0) += e * swr;
+    A(1, 1) += e * swr;
+    A(0, 2) += e * swx;
+    A(2, 0) += e * swx;
+    A(0, 3) += e * swy;
+    A(3, 0) += e * swy;
+    A(1, 2) -= e * swy;
+    A(2, 1) -= e * swy;
+    A(1, 3) += e * swx;
+    A(3, 1) += e * swx;
+    A(2, 2) += e * sw;
+    A(3, 3) += e * sw;
+    rhs[0] += e * sa;
+    rhs[1] += e * sb;
+    rhs[2] += e * sqx;
+    rhs[3] += e * sqy;
+  }
+};
+
+/*
   One round of edgeIcp(): the weighted normal equations of the pairs (nearest points Q, normals N, distances d) for
   the 4 unknowns (a, b, tx, ty), solved into \e x. False when no pair is kept.
 */
@@ -201,24 +242,22 @@ bool edgeIcpRound(const std::vector<Eigen::Vector2d> &P, const std::vector<Eigen
 {
   Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
   Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
-  double W = 0.0;
+  PointToPointSums pp;
   for (std::size_t k = 0; k < P.size(); ++k) {
     const double w = tukeyWeight(d[k], cut);
     if (w == 0.0)
       continue;
-    W += w;
     const double px = P[k].x(), py = P[k].y();
-    auto add = [&](const Eigen::Vector4d &J, double target_, double weight) {
-      A += weight * J * J.transpose();
-      rhs += weight * target_ * J;
-    };
     const Eigen::Vector2d &nk = N[k];
-    add(Eigen::Vector4d(nk.x() * px + nk.y() * py, nk.y() * px - nk.x() * py, nk.x(), nk.y()), nk.dot(Q[k]), w);
-    add(Eigen::Vector4d(px, -py, 1, 0), Q[k].x(), 1e-3 * w);
-    add(Eigen::Vector4d(py, px, 0, 1), Q[k].y(), 1e-3 * w);
+    const Eigen::Vector4d J(nk.x() * px + nk.y() * py, nk.y() * px - nk.x() * py, nk.x(), nk.y());
+    A.selfadjointView<Eigen::Lower>().rankUpdate(J, w);
+    rhs += (w * nk.dot(Q[k])) * J;
+    pp.add(w, px, py, Q[k].x(), Q[k].y());
   }
-  if (!(W > 0.0))
+  if (!(pp.sw > 0.0))
     return false;
+  A.triangularView<Eigen::StrictlyUpper>() = A.transpose();
+  pp.addTo(A, rhs);
   x = A.ldlt().solve(rhs);
   return true;
 }
@@ -235,8 +274,7 @@ bool edgeIcpRoundWithOffset(const std::vector<Eigen::Vector2d> &P, const std::ve
 {
   Eigen::Matrix<double, Eigen::Dynamic, 5> J(P.size(), 5);
   Eigen::VectorXd w(P.size()), b(P.size());
-  // The point-point terms (weight 1e-3 w): rows (px, -py, 1, 0) -> qx and (py, px, 0, 1) -> qy.
-  double sw = 0.0, swx = 0.0, swy = 0.0, swr = 0.0, sqx = 0.0, sqy = 0.0, sa = 0.0, sb = 0.0;
+  PointToPointSums pp;
   Eigen::Index n = 0;
   for (std::size_t k = 0; k < P.size(); ++k) {
     const double wk = tukeyWeight(d[k], cut);
@@ -248,38 +286,16 @@ bool edgeIcpRoundWithOffset(const std::vector<Eigen::Vector2d> &P, const std::ve
     w[n] = wk;
     b[n] = nk.dot(Q[k]);
     ++n;
-    sw += wk;
-    swx += wk * px;
-    swy += wk * py;
-    swr += wk * (px * px + py * py);
-    sqx += wk * qx;
-    sqy += wk * qy;
-    sa += wk * (px * qx + py * qy);
-    sb += wk * (px * qy - py * qx);
+    pp.add(wk, px, py, qx, qy);
   }
   if (n == 0)
     return false;
   const auto Jn = J.topRows(n);
   Eigen::Matrix<double, 5, 5> A = Jn.transpose() * w.head(n).asDiagonal() * Jn;
   Eigen::Matrix<double, 5, 1> rhs = Jn.transpose() * w.head(n).cwiseProduct(b.head(n));
-  const double e = 1e-3;
-  A(0, 0) += e * swr;
-  A(1, 1) += e * swr;
-  A(0, 2) += e * swx;
-  A(2, 0) += e * swx;
-  A(0, 3) += e * swy;
-  A(3, 0) += e * swy;
-  A(1, 2) -= e * swy;
-  A(2, 1) -= e * swy;
-  A(1, 3) += e * swx;
-  A(3, 1) += e * swx;
-  A(2, 2) += e * sw;
-  A(3, 3) += e * sw;
-  rhs[0] += e * sa;
-  rhs[1] += e * sb;
-  rhs[2] += e * sqx;
-  rhs[3] += e * sqy;
-  A(4, 4) += 1e-9 * sw; // a faint pull of the offset to 0: on a disc, growing the outline and scaling it are the same
+  pp.addTo(A, rhs);
+  A(4, 4) +=
+      1e-9 * pp.sw; // a faint pull of the offset to 0: on a disc, growing the outline and scaling it are the same
   z = A.ldlt().solve(rhs);
   return true;
 }
