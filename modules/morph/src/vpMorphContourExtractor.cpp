@@ -29,8 +29,12 @@ vpImage<unsigned char> toGrey(const vpImage<vpRGBa> &I)
   return g;
 }
 
-// Object mask (255 = object) from Otsu's threshold and the border-minority polarity rule.
-cv::Mat mask(const vpImage<unsigned char> &I)
+/*
+  Object mask (255 = object) from Otsu's threshold and the border-minority polarity rule. It is a view of \e padded,
+  which has one pixel of background all round (what findContours() needs to close objects that touch the border),
+  written in place rather than copied into it.
+*/
+cv::Mat mask(const vpImage<unsigned char> &I, cv::Mat &padded)
 {
   if (I.getSize() == 0 || I.bitmap == nullptr)
     fail("the image is empty");
@@ -51,11 +55,16 @@ cv::Mat mask(const vpImage<unsigned char> &I)
     os << "the image is uniform (every pixel is " << lo << "): no contrast to separate an object";
     fail(os.str());
   }
-  cv::Mat bin;
+  const int rows = grey.rows, cols = grey.cols;
+  padded.create(rows + 2, cols + 2, CV_8UC1);
+  padded.row(0).setTo(0);
+  padded.row(rows + 1).setTo(0);
+  padded.col(0).setTo(0);
+  padded.col(cols + 1).setTo(0);
+  cv::Mat bin = padded(cv::Rect(1, 1, cols, rows));
   cv::threshold(grey, bin, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
 
   // Polarity: the class that dominates the border is the background.
-  const int rows = bin.rows, cols = bin.cols;
   long bright = 0, border = 0;
   for (int c = 0; c < cols; ++c) {
     bright += (bin.at<unsigned char>(0, c) != 0) + (bin.at<unsigned char>(rows - 1, c) != 0);
@@ -484,12 +493,10 @@ void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg, const Region 
 // null, receives the object mask they were found in.
 std::vector<Region> regions(const vpImage<unsigned char> &I, std::size_t measured = 0, cv::Mat *binOut = nullptr)
 {
-  const cv::Mat bin = mask(I);
+  cv::Mat padded;
+  const cv::Mat bin = mask(I, padded);
   if (binOut)
     *binOut = bin;
-  // One pixel of background all round closes objects that touch the border.
-  cv::Mat padded;
-  cv::copyMakeBorder(bin, padded, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
   std::vector<std::vector<cv::Point> > contours;
   cv::findContours(padded, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
 
@@ -731,7 +738,8 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<vpRGBa> &I) 
 
 vpImage<unsigned char> vpMorphContourExtractor::objectMask(const vpImage<unsigned char> &I) const
 {
-  const cv::Mat bin = mask(I);
+  cv::Mat padded;
+  const cv::Mat bin = mask(I, padded);
   vpImage<unsigned char> M(I.getHeight(), I.getWidth());
   for (int r = 0; r < bin.rows; ++r)
     std::copy(bin.ptr<unsigned char>(r), bin.ptr<unsigned char>(r) + bin.cols, M[static_cast<unsigned int>(r)]);
