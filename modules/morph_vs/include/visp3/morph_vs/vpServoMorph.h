@@ -541,8 +541,10 @@ private:
   // command, and the periods in a row the estimate has not come down along it (see estimateTilt()).
   double m_tiltSumX = 0.0, m_tiltSumY = 0.0, m_tiltRefX = 0.0, m_tiltRefY = 0.0;
   unsigned int m_tiltNoProgress = 0;
-  // Tries in a row without a usable homography, then counting the periods between tries (see estimateTilt()).
+  // Tries in a row without a usable homography, then counting the periods between tries, until one is fitted in the
+  // sequence (see estimateTilt()).
   unsigned int m_tiltMisses = 0;
+  bool m_tiltFitted = false;
   // The outlines' tilt estimates of the final approach, fused by fuseTilt().
   struct TiltSample
   {
