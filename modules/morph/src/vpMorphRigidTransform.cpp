@@ -294,8 +294,8 @@ bool edgeIcpRoundWithOffset(const std::vector<Eigen::Vector2d> &P, const std::ve
   Eigen::Matrix<double, 5, 5> A = Jn.transpose() * w.head(n).asDiagonal() * Jn;
   Eigen::Matrix<double, 5, 1> rhs = Jn.transpose() * w.head(n).cwiseProduct(b.head(n));
   pp.addTo(A, rhs);
-  A(4, 4) +=
-      1e-9 * pp.sw; // a faint pull of the offset to 0: on a disc, growing the outline and scaling it are the same
+  // A faint pull of the offset to 0: on a disc, growing the outline and scaling it are the same.
+  A(4, 4) += 1e-9 * pp.sw;
   z = A.ldlt().solve(rhs);
   return true;
 }
