@@ -99,9 +99,15 @@ public:
     if (!std::isfinite(px) || !std::isfinite(py))
       return false;
     const double tol2 = tol * tol;
+    // Edge k's squared distance to p, as the nearest-point search computes it.
+    auto distance2 = [&](std::size_t k) {
+      Best b;
+      visit(k, px, py, b);
+      return b.d2;
+    };
     if (m_first.empty()) {
       for (std::size_t k = 0; k < m_edges.size(); ++k)
-        if (distance2(k, px, py) < tol2)
+        if (distance2(k) < tol2)
           return true;
       return false;
     }
@@ -110,7 +116,7 @@ public:
       for (int i = i0; i <= i1; ++i) {
         const std::size_t cell = std::size_t(j) * std::size_t(m_nx) + std::size_t(i);
         for (std::size_t e = m_first[cell]; e < m_first[cell + 1]; ++e)
-          if (distance2(m_cellEdges[e], px, py) < tol2)
+          if (distance2(m_cellEdges[e]) < tol2)
             return true;
       }
     return false;
@@ -203,14 +209,6 @@ private:
   }
   int cellX(double x) const { return vpMorphGridCell((x - m_x0) * m_invH, m_nx); }
   int cellY(double y) const { return vpMorphGridCell((y - m_y0) * m_invH, m_ny); }
-  // The squared distance from p to edge k, as visit() computes it.
-  double distance2(std::size_t k, double px, double py) const
-  {
-    const Edge &e = m_edges[k];
-    const double t = e.l2 > 0 ? std::min(1.0, std::max(0.0, ((px - e.ax) * e.dx + (py - e.ay) * e.dy) / e.l2)) : 0.0;
-    const double qx = e.ax + t * e.dx, qy = e.ay + t * e.dy;
-    return (px - qx) * (px - qx) + (py - qy) * (py - qy);
-  }
   void visit(std::size_t k, double px, double py, Best &b) const
   {
     const Edge &e = m_edges[k];
