@@ -4,6 +4,7 @@
 #include <limits>
 #include <sstream>
 
+#include <visp3/core/vpExponentialMap.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/morph/vpMorphException.h>
@@ -189,6 +190,20 @@ void vpMorphSimRobot::setDesiredPose(const vpHomogeneousMatrix &cdMo)
   m_limitHits = 0;
   m_steps = 0;
   m_path = 0.0;
+}
+
+bool vpMorphSimRobot::setDesiredPoseMidway(const vpHomogeneousMatrix &cdMo, const vpHomogeneousMatrix &cdMc)
+{
+  checkPose(cdMo, "cdMo");
+  checkPose(cdMc, "cdMc");
+  const vpHomogeneousMatrix cdMm = vpExponentialMap::direct(0.5 * vpExponentialMap::inverse(cdMc));
+  setDesiredPose(cdMm.inverse() * cdMo); // the reference configuration sees the object from midway
+  m_cdMo = cdMo;
+  if (!placeCamera(m_fMo * cdMo.inverse(), referenceJointPositions())) {
+    m_status = UNREACHABLE;
+    return false;
+  }
+  return true;
 }
 
 bool vpMorphSimRobot::placeCamera(const vpHomogeneousMatrix &fMc, const vpColVector &qSeed)

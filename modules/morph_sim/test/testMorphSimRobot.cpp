@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpThetaUVector.h>
@@ -186,7 +187,42 @@ TEST_CASE("Afma6 reports its wrist joint limit on a 180 deg turn about the optic
   CHECK(vpMath::deg(std::sqrt(tu.sumSquare())) == Approx(180).margin(0.01));
 }
 
-TEST_CASE("the arms start off their singularities, and a turn about the optical axis stays a turn", "[morph_sim][robot]")
+TEST_CASE("Afma6 reaches a start turned by 180 deg when the goal and the start straddle its reference",
+          "[morph_sim][robot]")
+{
+  vpMorphSimRobot afma(vpMorphSimRobot::AFMA6);
+  const vpHomogeneousMatrix cdMc = cdMo * startOf(0.02, -0.01, 180).inverse(); // start camera in the goal's frame
+  afma.setDesiredPose(cdMo);
+  CHECK_FALSE(afma.initialiseCameraRelativeToDesired(cdMc));
+  REQUIRE(afma.setDesiredPoseMidway(cdMo, cdMc));
+  double t = 0, r = 0;
+  vpMorphTagPoseEstimator::poseDifference(afma.get_cMo(), cdMo, t, r); // the robot waits at the goal
+  CHECK(t < 1e-9);
+  CHECK(r < 1e-9);
+  CHECK(afma.get_cdMo() == cdMo);
+  // The reference configuration sees the object from half-way: half the turn from the goal and from the start.
+  vpMorphSimRobot ref(vpMorphSimRobot::AFMA6);
+  ref.setDesiredPose(cdMo);
+  const vpHomogeneousMatrix fMcRef = ref.get_fMc();
+  const vpHomogeneousMatrix goalFromRef = fMcRef.inverse() * afma.get_fMc();
+  CHECK(vpMath::deg(std::sqrt(vpThetaUVector(goalFromRef.getRotationMatrix()).sumSquare())) == Approx(90).margin(1e-6));
+  REQUIRE(afma.initialiseCameraRelativeToDesired(cdMc));
+  vpMorphTagPoseEstimator::poseDifference(afma.get_cMo(), cdMc.inverse() * cdMo, t, r);
+  CHECK(t < 1e-9);
+  CHECK(r < 1e-9);
+  const vpHomogeneousMatrix startFromRef = fMcRef.inverse() * afma.get_fMc();
+  CHECK(vpMath::deg(std::sqrt(vpThetaUVector(startFromRef.getRotationMatrix()).sumSquare())) ==
+        Approx(90).margin(1e-6));
+  // A goal beyond the gantry's reach is reported, not hidden.
+  CHECK_FALSE(afma.setDesiredPoseMidway(cdMo, vpHomogeneousMatrix(3.0, 0, 0, 0, 0, 0)));
+  CHECK(afma.status() == vpMorphSimRobot::UNREACHABLE);
+  vpHomogeneousMatrix bad;
+  bad[0][3] = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS(afma.setDesiredPoseMidway(cdMo, bad), vpMorphException);
+}
+
+TEST_CASE("the arms start off their singularities, and a turn about the optical axis stays a turn",
+          "[morph_sim][robot]")
 {
   // The Afma6 looking straight down (joint 5 at 90 deg) is its wrist singularity: eJe loses rank, and turns about
   // the optical axis near it became large joint velocities (benchmark runs leaving the view).

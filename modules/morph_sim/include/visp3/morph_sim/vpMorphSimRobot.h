@@ -84,6 +84,16 @@ public:
   */
   void setDesiredPose(const vpHomogeneousMatrix &cdMo);
   /*!
+    Like setDesiredPose(), but the reference configuration sees the object from half-way between the desired camera
+    and the start camera \e cdMc (half the screw motion from one to the other), so that the start and the goal
+    straddle it; then puts the robot at the desired pose. For a wrist that cannot turn the camera about its axis
+    all the way round: the Afma6 turns it by about 100 deg either way from one configuration, so from the goal's
+    configuration a start turned by more than that is out of reach, while from half-way turns up to about 200 deg
+    are within it. Returns false and sets status UNREACHABLE when the desired pose has no inverse-kinematics
+    solution within the limits. Then initialiseCameraRelativeToDesired(cdMc) places the start.
+  */
+  bool setDesiredPoseMidway(const vpHomogeneousMatrix &cdMo, const vpHomogeneousMatrix &cdMc);
+  /*!
     Moves the robot (instantly, in position) so that the true camera sees the object at \e cMo: inverse
     kinematics with the true eMc, nearest solution to the reference configuration. Returns false and sets
     status UNREACHABLE (robot not moved) when no solution lies within the joint limits. Resets the path
