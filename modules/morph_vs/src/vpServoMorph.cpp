@@ -86,6 +86,9 @@ const unsigned int kTiltRetryPeriod = 8;
 const double kBendLengthChange = 0.01;
 // Points of the resampled outlines the overlap is measured on (about 5 pixels apart: 0.025 ms an evaluation).
 const std::size_t kOverlapPoints = 128;
+// Turn of the outline (or area) fit from one period to the next beyond which the overlap's warm start is checked
+// against the last placement (a period's step at the final approach is a tenth of a residual of a few degrees).
+const double kOverlapStartJump = vpMath::rad(1.0);
 // The plan of a view whose regions are not alike: the outline fit's robust scale floor (pixels), and how much less of
 // the view's area it must leave outside the target than the least squares to replace them (see start()).
 const double kPlanOutlineSigmaPx = 0.1, kPlanInsideGain = 0.01;
@@ -837,14 +840,26 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   // The offset between the largest overlap and the outline (or area) fit is a property of the two shapes: it
   // barely changes from one period to the next, so it warm-starts the search; the first time, starts over
   // +-10 deg on the polygons find the right basin.
-  const vpMorphRigidTransform start =
+  vpMorphRigidTransform start =
       m_overlapWarm ? m_overlapOffset * Ts
                     : vpMorphRigidTransform::fitOnOverlap(currentN, goalN, Ts, vpMath::rad(10.0), 5, 25);
+  // The offset carries the error of the fit it was learnt from: when that fit turned by more than a period's step
+  // since, one of the two was off, and the last placement, a period's motion away, is the better start if it leaves
+  // less of the view outside (measured: a bent hammer's fit at its switch to the target 10 deg off, whose offset
+  // put the next period's start 10 deg away, in another basin: a jump, re-planned, then stopped as unreliable).
+  if (m_overlapWarm && std::fabs(std::remainder(Ts.theta() - m_overlapTs.theta(), 2.0 * M_PI)) > kOverlapStartJump) {
+    const vpMorphRigidTransform last(m_overlapLast.theta(), m_overlapLast.tx(), m_overlapLast.ty(), s,
+                                     m_overlapLast.cx(), m_overlapLast.cy());
+    if (outsideShare(last, cur, goal) < outsideShare(start, cur, goal))
+      start = last;
+  }
   // Then on the outlines, from within a fraction of a pixel: a short first step and a few rounds, the search
   // going on from there at the next period (a whole search from each start costs tens of milliseconds).
   const vpMorphRigidTransform Tovl =
       vpMorphRigidTransform::refineOnOverlap(cur, goal, start, m_overlapWarm ? 6 : 20, 0.002);
   m_overlapOffset = Tovl * Ts.inverse(); // scale 1: Tovl keeps Ts's
+  m_overlapTs = Ts;
+  m_overlapLast = Tovl;
   m_overlapWarm = true;
   m_overlapBased = true;
   // The scale of the largest undeformed part, when one is found: searched every kRigidPartPeriod periods (the whole

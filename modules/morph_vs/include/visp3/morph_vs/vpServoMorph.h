@@ -525,6 +525,7 @@ private:
   bool m_overlapWarm = false;          // m_overlapOffset holds the last deformed view's offset
   enum { SHAPE_UNDECIDED, DEFORMED, UNDEFORMED } m_deformed = SHAPE_UNDECIDED; // decided at the first fit to the target
   vpMorphRigidTransform m_overlapOffset; // largest-overlap fit o (outline or area fit)^-1, to warm-start the next
+  vpMorphRigidTransform m_overlapTs, m_overlapLast; // the outline (or area) fit and the placement of the last period
   double m_scaleBias = 1.0; // scale of the largest undeformed part over the outlines' length ratio (a deformed view)
   unsigned int m_rigidPartCount = 0; // periods since the deformed view was found, for the part's search
   bool m_partKnown = false;          // the undeformed part was found at the last period
