@@ -11,6 +11,7 @@
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 #include <visp3/morph_sim/vpMorphThreadCpuClock.h>
 #include <visp3/morph_vs/vpFeatureMorph.h>
+#include <visp3/morph_vs/vpMorphJointVelocity.h>
 #include <visp3/morph_vs/vpServoMorph.h>
 #include <visp3/visual_features/vpFeatureBuilder.h>
 #include <visp3/visual_features/vpFeatureMomentCommon.h>
@@ -234,7 +235,9 @@ protected:
   out-of-plane (tilt) correction on the final approach (vpServoMorph::TILT_FINAL_APPROACH: the contour's homography
   refined on the measured edge outlines, default dead zones) ("morph"); or the paper's planar law alone, no tilt
   command ("morph-planar"). Both give the servo the robot's joints (vpServoMorph::setJointState()), so that a half
-  turn is planned the way that keeps them clear of their limits.
+  turn is planned the way that keeps them clear of their limits, and send joint velocities from the Jacobian at the
+  middle of each period (vpMorphJointVelocity): held for the period from the Jacobian at its start, a turn about the
+  optical axis tilts the Afma6's camera, a tilt the planar law does not take back.
 */
 class MorphController : public MorphBase
 {
@@ -266,7 +269,12 @@ public:
       cmd.rerecognized = true;
       cmd.v = m_servo->computeControlLaw(c);
     }
-    return fromStatus(cmd);
+    cmd = fromStatus(cmd);
+    const Clock::time_point t1 = Clock::now(); // the joint velocities are part of the law's time
+    cmd.v = m_joints.compute(eJe, q, cmd.v);
+    cmd.controlMs += msSince(t1);
+    cmd.frame = vpRobot::JOINT_STATE;
+    return cmd;
   }
   Command missingFrame() override
   {
@@ -329,11 +337,14 @@ private:
       m_servo->setTiltCorrection(vpServoMorph::TILT_FINAL_APPROACH);
     m_servo->setMaxLostIterations(8); // its own stop before the loop's feature-lost (10)
     m_targetSet = false;
+    m_joints.setSamplingTime(m_ctx.samplingTime);
+    m_joints.reset();
   }
 
   bool m_tilt;
   std::string m_name;
   std::unique_ptr<vpServoMorph> m_servo;
+  vpMorphJointVelocity m_joints;
   bool m_targetSet = false;
 };
 
