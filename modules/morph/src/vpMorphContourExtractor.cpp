@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <climits>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
 #include <vector>
 
@@ -29,6 +32,59 @@ vpImage<unsigned char> toGrey(const vpImage<vpRGBa> &I)
   return g;
 }
 
+using Histogram = std::array<long, 256>;
+
+// Grey-level histogram of the \e n pixels at \e p. A run of 8 equal pixels counts at once, and the others go to
+// 4 interleaved tables, so that a background of one level does not chain every increment on one counter.
+Histogram histogram(const unsigned char *p, std::size_t n)
+{
+  std::array<Histogram, 4> h{};
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    std::uint64_t w;
+    std::memcpy(&w, p + i, 8);
+    if (w == p[i] * 0x0101010101010101ULL) {
+      h[0][p[i]] += 8;
+      continue;
+    }
+    for (std::size_t k = 0; k < 8; ++k)
+      ++h[k & 3][p[i + k]];
+  }
+  for (; i < n; ++i)
+    ++h[0][p[i]];
+  for (std::size_t v = 0; v < 256; ++v)
+    h[0][v] += h[1][v] + h[2][v] + h[3][v];
+  return h[0];
+}
+
+// Otsu's threshold of a histogram of \e total pixels: cv::threshold()'s THRESH_OTSU computation, operation for
+// operation (the same double sums in the same order), so the mask is the one it gives (test_morph checks it).
+int otsu(const Histogram &h, long total)
+{
+  const double scale = 1.0 / static_cast<double>(total);
+  double mu = 0.0;
+  for (int i = 0; i < 256; ++i)
+    mu += i * static_cast<double>(h[i]);
+  mu *= scale;
+  double mu1 = 0.0, q1 = 0.0, maxSigma = 0.0;
+  int best = 0;
+  for (int i = 0; i < 256; ++i) {
+    const double p = static_cast<double>(h[i]) * scale;
+    mu1 *= q1;
+    q1 += p;
+    const double q2 = 1.0 - q1;
+    if (std::min(q1, q2) < FLT_EPSILON || std::max(q1, q2) > 1.0 - FLT_EPSILON)
+      continue;
+    mu1 = (mu1 + i * p) / q1;
+    const double mu2 = (mu - q1 * mu1) / q2, sigma = q1 * q2 * (mu1 - mu2) * (mu1 - mu2);
+    if (sigma > maxSigma) {
+      maxSigma = sigma;
+      best = i;
+    }
+  }
+  return best;
+}
+
 /*
   Object mask (255 = object) from Otsu's threshold and the border-minority polarity rule. It is a view of \e padded,
   which has one pixel of background all round (what findContours() needs to close objects that touch the border),
@@ -48,11 +104,12 @@ cv::Mat mask(const vpImage<unsigned char> &I, cv::Mat &padded)
   // Wraps the ViSP buffer (row-major, 8 bits) without copying; it is only read.
   const cv::Mat grey(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
                      const_cast<unsigned char *>(I.bitmap));
-  double lo = 0.0, hi = 0.0;
-  cv::minMaxLoc(grey, &lo, &hi);
-  if (lo == hi) {
+  const long total = static_cast<long>(I.getSize());
+  const Histogram h = histogram(I.bitmap, I.getSize());
+  const auto lo = std::find_if(h.begin(), h.end(), [](long c) { return c > 0; });
+  if (*lo == total) {
     std::ostringstream os;
-    os << "the image is uniform (every pixel is " << lo << "): no contrast to separate an object";
+    os << "the image is uniform (every pixel is " << (lo - h.begin()) << "): no contrast to separate an object";
     fail(os.str());
   }
   const int rows = grey.rows, cols = grey.cols;
@@ -62,7 +119,7 @@ cv::Mat mask(const vpImage<unsigned char> &I, cv::Mat &padded)
   padded.col(0).setTo(0);
   padded.col(cols + 1).setTo(0);
   cv::Mat bin = padded(cv::Rect(1, 1, cols, rows));
-  cv::threshold(grey, bin, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
+  cv::threshold(grey, bin, otsu(h, total), 255, cv::THRESH_BINARY);
 
   // Polarity: the class that dominates the border is the background.
   long bright = 0, border = 0;
@@ -744,6 +801,13 @@ vpImage<unsigned char> vpMorphContourExtractor::objectMask(const vpImage<unsigne
   for (int r = 0; r < bin.rows; ++r)
     std::copy(bin.ptr<unsigned char>(r), bin.ptr<unsigned char>(r) + bin.cols, M[static_cast<unsigned int>(r)]);
   return M;
+}
+
+int vpMorphContourExtractor::otsuThreshold(const vpImage<unsigned char> &I)
+{
+  if (I.getSize() == 0 || I.bitmap == nullptr)
+    fail("the image is empty");
+  return otsu(histogram(I.bitmap, I.getSize()), static_cast<long>(I.getSize()));
 }
 
 std::vector<std::vector<vpImagePoint> > vpMorphContourExtractor::boundaries(const vpImage<unsigned char> &I) const

@@ -486,6 +486,51 @@ TEST_CASE("extractor: MPEG-7 and Kimia-99 samples", "[extract][datasets]")
   }
 }
 
+TEST_CASE("extractor: Otsu's threshold is cv::threshold's, on rendered, noisy, random and odd-sized images",
+          "[extract][otsu]")
+{
+  auto check = [](const vpImage<unsigned char> &I, const std::string &what) {
+    const cv::Mat m(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
+                    const_cast<unsigned char *>(I.bitmap));
+    cv::Mat dst;
+    const double expected = cv::threshold(m, dst, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
+    INFO(what << " (" << I.getWidth() << "x" << I.getHeight() << ")");
+    CHECK(vpMorphContourExtractor::otsuThreshold(I) == static_cast<int>(expected));
+  };
+  vpImage<unsigned char> I;
+  for (const char *name : {"pliers", "wedge", "key-deformed", "hammer"}) {
+    REQUIRE(readPng(std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png", I));
+    check(I, name);
+  }
+  for (const char *name : {"pliers-view", "key-view"}) { // rendered views: runs of equal background pixels
+    REQUIRE(readPng(std::string(VISPMORPH_DATA_DIR) + "/demo/" + name + ".png", I));
+    check(I, name);
+  }
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> level(0, 255), side(3, 700);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int w = trial < 2 ? 3 : side(rng), h = trial < 2 ? 3 + trial : side(rng) % 500 + 3;
+    cv::Mat m(h, w, CV_8UC1);
+    const int a = level(rng), b = std::min(255, a + 1 + level(rng) % 64);
+    if (trial % 3 == 0) { // two levels with an object, blurred: a rendered view
+      m.setTo(a);
+      m(cv::Rect(w / 4, h / 4, std::max(1, w / 3), std::max(1, h / 3))).setTo(b);
+      cv::GaussianBlur(m, m, cv::Size(5, 5), 1.2);
+    } else {
+      cv::randu(m, a, b + 1);
+      if (trial % 3 == 1)
+        m(cv::Rect(0, 0, std::max(1, w / 2), h)).setTo(level(rng));
+    }
+    if (trial == 5)
+      m.setTo(a), m.at<unsigned char>(h - 1, w - 1) = static_cast<unsigned char>(255 - a); // one odd pixel
+    I.resize(static_cast<unsigned int>(h), static_cast<unsigned int>(w));
+    for (int r = 0; r < h; ++r)
+      std::copy(m.ptr<unsigned char>(r), m.ptr<unsigned char>(r) + w, I[static_cast<unsigned int>(r)]);
+    check(I, "random image " + std::to_string(trial));
+  }
+  CHECK_THROWS_AS(vpMorphContourExtractor::otsuThreshold(vpImage<unsigned char>()), vpMorphException);
+}
+
 TEST_CASE("extractor: bad images throw vpMorphException", "[extract][bad]")
 {
   const vpMorphContourExtractor ex;
