@@ -34,8 +34,9 @@ void vpMorphJointVelocity::setSamplingTime(double samplingTime)
 
 void vpMorphJointVelocity::reset()
 {
-  m_prevJ.resize(0, 0);
-  m_prevQ.resize(0);
+  // Moved from empty ones: ViSP's resize() to 0 passes a null pointer to memset (UBSan).
+  m_prevJ = vpMatrix();
+  m_prevQ = vpColVector();
 }
 
 vpColVector vpMorphJointVelocity::compute(const vpMatrix &eJe, const vpColVector &q, const vpColVector &ve)
