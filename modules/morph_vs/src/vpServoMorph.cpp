@@ -847,7 +847,7 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   // since, one of the two was off, and the last placement, a period's motion away, is the better start if it leaves
   // less of the view outside (measured: a bent hammer's fit at its switch to the target 10 deg off, whose offset
   // put the next period's start 10 deg away, in another basin: a jump, re-planned, then stopped as unreliable).
-  if (m_overlapWarm && std::fabs(std::remainder(Ts.theta() - m_overlapTs.theta(), 2.0 * M_PI)) > kOverlapStartJump) {
+  if (m_overlapWarm && std::fabs(std::remainder(Ts.theta() - m_overlapFitTheta, 2.0 * M_PI)) > kOverlapStartJump) {
     const vpMorphRigidTransform last(m_overlapLast.theta(), m_overlapLast.tx(), m_overlapLast.ty(), s,
                                      m_overlapLast.cx(), m_overlapLast.cy());
     if (outsideShare(last, cur, goal) < outsideShare(start, cur, goal))
@@ -858,7 +858,7 @@ vpMorphRigidTransform vpServoMorph::overlapFit(const vpMorphContour &currentN, c
   const vpMorphRigidTransform Tovl =
       vpMorphRigidTransform::refineOnOverlap(cur, goal, start, m_overlapWarm ? 6 : 20, 0.002);
   m_overlapOffset = Tovl * Ts.inverse(); // scale 1: Tovl keeps Ts's
-  m_overlapTs = Ts;
+  m_overlapFitTheta = Ts.theta();
   m_overlapLast = Tovl;
   m_overlapWarm = true;
   m_overlapBased = true;

@@ -25,7 +25,8 @@
     the end-effector velocity, eJe = identity; no joint limits.
   - VIPER850: the 6-axis PUMA-like arm, with ViSP's vpViper850 kinematic model and joint limits.
   - AFMA6: the gantry, with ViSP's vpAfma6 model and joint limits (its wrist joints cannot turn the camera by
-    180 deg about the optical axis: it is reported, not hidden). Its reference configuration has joint 5 at 45 deg:
+    180 deg about the optical axis from one configuration: it is reported, not hidden; setDesiredPoseMidway() puts
+    such a start within reach). Its reference configuration has joint 5 at 45 deg:
     at 90 deg (the tool looking straight down) joints 4 and 6 are aligned, the wrist singularity.
 
   <b>Why not vpSimulatorViper850 / vpSimulatorAfma6 directly:</b> they integrate the joint velocity in a

@@ -522,13 +522,14 @@ private:
   unsigned int m_iter = 0;
   double m_rotRes = 0, m_transRes = 0, m_scaleRes = 0, m_scaleRel = 0, m_work = 0;
   bool m_fullMatch = false, m_areaBased = false, m_overlapBased = false;
-  bool m_overlapWarm = false;          // m_overlapOffset holds the last deformed view's offset
+  bool m_overlapWarm = false; // m_overlapOffset holds the last deformed view's offset
   enum { SHAPE_UNDECIDED, DEFORMED, UNDEFORMED } m_deformed = SHAPE_UNDECIDED; // decided at the first fit to the target
   vpMorphRigidTransform m_overlapOffset; // largest-overlap fit o (outline or area fit)^-1, to warm-start the next
-  vpMorphRigidTransform m_overlapTs, m_overlapLast; // the outline (or area) fit and the placement of the last period
+  vpMorphRigidTransform m_overlapLast;   // the last period's placement of largest overlap
+  double m_overlapFitTheta = 0.0;        // and the rotation of the outline (or area) fit it was found from
   double m_scaleBias = 1.0; // scale of the largest undeformed part over the outlines' length ratio (a deformed view)
-  unsigned int m_rigidPartCount = 0; // periods since the deformed view was found, for the part's search
-  bool m_partKnown = false;          // the undeformed part was found at the last period
+  unsigned int m_rigidPartCount = 0;  // periods since the deformed view was found, for the part's search
+  bool m_partKnown = false;           // the undeformed part was found at the last period
   vpMorphRigidTransform m_partOffset; // its fit o the overlap fit^-1, to follow it to the next period
   unsigned int m_edgePartCount = 0;   // periods of the final approach of a view not alike its target
   bool m_edgePartKnown = false;       // its largest part lying on the target's covers kEdgePartMinShare of it
