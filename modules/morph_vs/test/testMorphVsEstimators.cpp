@@ -58,6 +58,49 @@ TEST_CASE("vpMorphCorrespondenceTracker: full search first, then tracked, full a
   CHECK_THROWS_AS(tr.setWorkFloor(-1), vpMorphException);
 }
 
+TEST_CASE("vpMorphCorrespondenceTracker: a vertex gained is a jump the full search confirms, without the region check",
+          "[tracker]")
+{
+  // The extracted wedge, tracked, then the same view with one more vertex, pushed off its edge: the work jumps
+  // many times over while the best start stays where it was.
+  vpImage<unsigned char> I;
+  vpImageIo::read(I, std::string(VISPMORPH_DATA_DIR) + "/objects/wedge.png");
+  const vpMorphContour wedge = vpMorphContourExtractor().extract(I);
+  const vpMorphContour view = wedge.transformed(0.2, 4, -3);
+  std::vector<double> x = view.xs(), y = view.ys();
+  const double ex = x[1] - x[0], ey = y[1] - y[0], len = std::hypot(ex, ey);
+  x.insert(x.begin() + 1, 0.5 * (x[0] + x[1]) - 6.0 * ey / len);
+  y.insert(y.begin() + 1, 0.5 * (y[0] + y[1]) + 6.0 * ex / len);
+  const vpMorphContour gained(x, y);
+
+  vpMorphCorrespondenceTracker tr;
+  tr.update(view, wedge);
+  tr.update(view.transformed(0.01, 1, 0), wedge);
+  REQUIRE(tr.lastSource() == vpMorphCorrespondenceTracker::TRACKED);
+  const double before = tr.work();
+  const vpMorphCorrespondence &corr = tr.update(gained, wedge);
+  CHECK(corr.work() > tr.jumpFactor() * before + tr.workFloor()); // a jump
+  CHECK(tr.lastSource() == vpMorphCorrespondenceTracker::FULL);
+  CHECK(tr.rejectedTrackCount() == 1);
+  CHECK(tr.confirmedJumpCount() == 1);
+  // What the full search with the region check gives, start and work.
+  vpMorphMatcher m;
+  const vpMorphCorrespondence full = m.matchOnRegions(gained, wedge);
+  CHECK(corr.start() == full.start());
+  CHECK(corr.work() == Approx(full.work()).epsilon(1e-12));
+  CHECK(tr.margin() > 0.05);
+
+  // The view turned half round at once: the window no longer holds the least work, the full search (checked) runs.
+  vpMorphCorrespondenceTracker turned;
+  turned.update(view, wedge);
+  const vpMorphContour flipped = view.transformed(M_PI, 0, 0);
+  const vpMorphCorrespondence &c2 = turned.update(flipped, wedge);
+  CHECK(turned.lastSource() == vpMorphCorrespondenceTracker::FULL);
+  CHECK(turned.rejectedTrackCount() == 1);
+  CHECK(turned.confirmedJumpCount() == 0);
+  CHECK(c2.work() == Approx(m.matchOnRegions(flipped, wedge).work()).epsilon(1e-12));
+}
+
 TEST_CASE("vpMorphCorrespondenceTracker checks its full searches on the regions", "[tracker]")
 {
   // The sagging wedge against its template: the minimal work turns it by about 155 deg, its region says 0.

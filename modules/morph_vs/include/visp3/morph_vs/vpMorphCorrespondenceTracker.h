@@ -32,6 +32,12 @@
   - the best start is strictly inside the window (on its edge the optimum may lie outside it);
   - no distance jump: work <= jumpFactor() * previous work + workFloor().
 
+  A window that fails the jump test only (its best start inside it) is confirmed by the least work over all starts
+  (vpMorphMatcher::match) when that is no lower: a real contour that gains or loses a vertex from one image to the
+  next changes its work many times over while the window still holds the best start. Then the region check is not
+  repeated: the tracked correspondence passed it (unless the last region check replaced the least work, after which
+  every rejected window gets the full search with the check).
+
   <b>Region check</b> (on by default): a full search is vpMorphMatcher::matchOnRegions(), so a deformed view
   whose minimal work lies half a turn round (a sagging wedge) is matched the way its region lies on the target's.
   The margin of such a correspondence is the intersection over union it won by.
@@ -73,6 +79,9 @@ public:
   unsigned int trackedMatchCount() const { return m_trackedCount; }
   //! Number of tracked results rejected by the reliability test.
   unsigned int rejectedTrackCount() const { return m_rejectedCount; }
+  //! Number of rejected windows (a jump only) that the least work over all starts confirmed (see the class
+  //! description); they are counted as full searches too.
+  unsigned int confirmedJumpCount() const { return m_confirmedJumps; }
 
   double jumpFactor() const { return m_jumpFactor; }
   //! Tracked work above jumpFactor * previous work + workFloor is a jump (default 1.5, >= 1).
@@ -103,6 +112,8 @@ private:
   std::size_t m_halfWidth = 0;
   bool m_regionCheck = true;
   unsigned int m_regionOverrides = 0;
+  bool m_lastOverride = false; // the last full search's region check replaced the least-work correspondence
+  unsigned int m_confirmedJumps = 0;
   unsigned int m_fullCount = 0, m_trackedCount = 0, m_rejectedCount = 0;
 };
 
