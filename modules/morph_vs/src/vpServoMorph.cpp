@@ -702,11 +702,21 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
           const vpMorphContour dense = o.resampled(2 * kOverlapPoints);
           const double tolerance = normalisedPixels(kRigidPartTolerancePx);
           double share = 0.0;
-          const vpMorphRigidTransform R =
-              rigidPart(dense, targetOutline, Te, search, m_edgePartOffset, tolerance, share);
+          vpMorphRigidTransform R = rigidPart(dense, targetOutline, Te, search, m_edgePartOffset, tolerance, share);
           m_edgePartKnown = share >= kEdgePartMinShare && R.scale() > 0.0;
-          if (m_edgePartKnown)
+          // The edge fit itself has two basins on a sagging wedge (scales 1.6 % apart, the polygon's correspondence
+          // picking one or the other from one period to the next), so the part followed from its offset to the edge
+          // fit was lost whenever the edge fit changed basin, and the fallback's scale kicked the depth every few
+          // periods (a wedge wandering 0.5-2 mm off until the budget ran out, deformable seed 3 start 19). Then it is
+          // followed from where it was found at the last period, which does not depend on the edge fit's basin.
+          if (!m_edgePartKnown && !search) {
+            R = vpMorphRigidTransform::refineRigidPart(dense, targetOutline, m_edgePartLast, tolerance, &share);
+            m_edgePartKnown = share >= kEdgePartMinShare && R.scale() > 0.0;
+          }
+          if (m_edgePartKnown) {
             m_edgePartOffset = R * Te.inverse();
+            m_edgePartLast = R;
+          }
           m_edgePartMisses = m_edgePartKnown ? 0 : m_edgePartMisses + 1;
         }
         if (m_edgePartKnown)

@@ -534,6 +534,7 @@ private:
   unsigned int m_edgePartCount = 0;   // periods of the final approach of a view not alike its target
   bool m_edgePartKnown = false;       // its largest part lying on the target's covers kEdgePartMinShare of it
   vpMorphRigidTransform m_edgePartOffset; // that part's fit o the edge fit^-1, carried between its searches
+  vpMorphRigidTransform m_edgePartLast;   // that part's fit itself, at the last period it was found
   unsigned int m_edgePartMisses = 0;      // searches in a row that did not find it
   unsigned int m_bandCount = 0;           // periods of the final approach of a view alike its target
   double m_band = 0.0; // area of the band along the target's edges that the current edges lie off (normalised units)
