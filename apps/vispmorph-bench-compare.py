@@ -17,11 +17,10 @@ Exit status: 0; 1 with --strict when an outcome changed or a run is in one folde
 a folder cannot be read.
 """
 
-import json
 import os
 import sys
 
-from vispmorph_bench_files import SETS, BenchFileError, number, ordered, read_csv, success
+from vispmorph_bench_files import SETS, BenchFileError, number, ordered, read_csv, read_meta, success, yardstick
 
 KEY = ("set", "robot", "controller", "scenario", "seed")
 RESULT = ("success", "failure", "iterations", "final_t_mm", "final_r_deg")
@@ -44,16 +43,7 @@ def read_dir(path):
         if k in runs:
             fail("%s: run %s appears twice" % (path, "/".join(k)))
         runs[k] = r
-    yardstick = None
-    try:
-        with open(os.path.join(path, "summary.json")) as f:
-            meta = json.load(f).get("meta", {})
-        values = [number(meta.get(k)) for k in ("yardstick_extract_ms_before", "yardstick_extract_ms_after")]
-        values = [v for v in values if v and v > 0]
-        yardstick = sum(values) / len(values) if values else None
-    except (OSError, ValueError, AttributeError):
-        yardstick = None  # no summary: no ratio
-    return runs, yardstick
+    return runs, yardstick(read_meta(path))  # no summary: no yardstick, no ratio
 
 
 def outcome(r):
@@ -66,6 +56,19 @@ def final(r):
 
 def run_name(k):
     return "%s | %s | %s | %s" % (k[0], k[1], k[2], k[3])
+
+
+def print_runs(keys, before, after, both_outcomes):
+    """The runs \a keys as a markdown table: outcome (before -> after, or the one they share), iterations, final error."""
+    print()
+    print("| set | robot | controller | scenario | object | %s | iterations | final error (mm / deg) |"
+          % ("before -> after" if both_outcomes else "outcome"))
+    print("|---|---|---|---|---|---|---|---|")
+    for k in keys:
+        b, a = before[k], after[k]
+        result = "%s -> %s" % (outcome(b), outcome(a)) if both_outcomes else outcome(a)
+        print("| %s | %s | %s | %s -> %s | %s -> %s |" % (
+            run_name(k), b["object"], result, b["iterations"], a["iterations"], final(b), final(a)))
 
 
 def compute(rows):
@@ -104,14 +107,7 @@ def main(argv):
     if changed_outcome:
         print()
         print("Outcome changed:")
-        print()
-        print("| set | robot | controller | scenario | object | before | after | iterations | final error (mm / deg) |")
-        print("|---|---|---|---|---|---|---|---|---|")
-        for k in changed_outcome:
-            b, a = before[k], after[k]
-            print("| %s | %s | %s -> %s | %s -> %s | %s -> %s |" % (
-                run_name(k), b["object"], outcome(b), outcome(a), b["iterations"], a["iterations"], final(b),
-                final(a)))
+        print_runs(changed_outcome, before, after, True)
 
     if changed_result:
         nearer = farther = 0
@@ -126,13 +122,7 @@ def main(argv):
         print("Same outcome, other result (successes: %d nearer the goal%s, %d farther%s):" % (
             nearer, " by up to %.3g mm" % -min(deltas) if nearer else "", farther,
             " by up to %.3g mm" % max(deltas) if farther else ""))
-        print()
-        print("| set | robot | controller | scenario | object | outcome | iterations | final error (mm / deg) |")
-        print("|---|---|---|---|---|---|---|---|")
-        for k in changed_result:
-            b, a = before[k], after[k]
-            print("| %s | %s | %s | %s -> %s | %s -> %s |" % (
-                run_name(k), b["object"], outcome(a), b["iterations"], a["iterations"], final(b), final(a)))
+        print_runs(changed_result, before, after, False)
 
     print()
     print("Compute per iteration (measure + control, mean over the runs that measured; yardstick %s -> %s ms):" % (

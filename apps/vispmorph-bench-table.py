@@ -10,12 +10,11 @@ measured) and its ratio to each run's machine yardstick, and issue 5's target fo
 OUTDIRs given. The table is computed from the files only: what it says is what the runs did.
 """
 
-import json
 import os
 import statistics
 import sys
 
-from vispmorph_bench_files import SETS, BenchFileError, number, ordered, read_csv, success
+from vispmorph_bench_files import SETS, BenchFileError, number, ordered, read_csv, read_meta, success, yardstick
 
 # Issue 5's targets for morph: (least success rate, largest median path ratio or None).
 TARGETS = {
@@ -40,22 +39,12 @@ def read_dir(path, controller):
         rows = [r for r in read_csv(os.path.join(path, "runs.csv"), columns) if r["controller"] == controller]
     except BenchFileError as e:
         fail(str(e))
-    meta = {}
-    try:
-        with open(os.path.join(path, "summary.json")) as f:
-            meta = json.load(f).get("meta", {})
-    except (OSError, ValueError, AttributeError):
-        meta = {}  # no summary (or an unreadable one): no yardstick, the directory's name for the seed
-    if not isinstance(meta, dict):
-        meta = {}
-    values = [number(meta.get(k)) for k in ("yardstick_extract_ms_before", "yardstick_extract_ms_after")]
-    values = [v for v in values if v and v > 0]
-    yardstick = sum(values) / len(values) if values else None
+    meta = read_meta(path)  # {} without a summary: no yardstick, the directory's name for the seed
     # runs.csv's seed column is each scenario's own seed: the set seed is in the summary.
     robots = "/".join(sorted({r["robot"] for r in rows})) or "?"
     seed = meta.get("seed")
     label = "%s seed %s" % (robots, seed) if seed else "%s (%s)" % (robots, os.path.basename(os.path.normpath(path)))
-    return {"label": label, "rows": rows, "yardstick": yardstick}
+    return {"label": label, "rows": rows, "yardstick": yardstick(meta)}
 
 
 def ordered_sets(dirs):

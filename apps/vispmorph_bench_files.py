@@ -4,6 +4,7 @@ table needs none.
 """
 
 import csv
+import json
 import math
 import os
 
@@ -56,3 +57,20 @@ def ordered(present, canonical):
         if name not in seen:
             seen.append(name)
     return [n for n in canonical if n in seen] + [n for n in seen if n not in canonical]
+
+
+def read_meta(path):
+    """The "meta" object of OUTDIR/summary.json, or {} when the summary is missing or unreadable (an older run)."""
+    try:
+        with open(os.path.join(path, "summary.json")) as f:
+            meta = json.load(f).get("meta", {})
+    except (OSError, ValueError, AttributeError):
+        return {}
+    return meta if isinstance(meta, dict) else {}
+
+
+def yardstick(meta):
+    """The run's machine yardstick (ms): the mean of its readings before and after the runs, or None."""
+    values = [number(meta.get(k)) for k in ("yardstick_extract_ms_before", "yardstick_extract_ms_after")]
+    values = [v for v in values if v and v > 0]
+    return sum(values) / len(values) if values else None
