@@ -307,6 +307,7 @@ private:
     case vpServoMorph::LOST_TOO_LONG:
     case vpServoMorph::TOO_MANY_REPLANS:
     case vpServoMorph::TARGET_MISMATCH:
+    case vpServoMorph::DEFORMATION_UNRESOLVED:
     case vpServoMorph::DEGENERATE_CONTOUR:
     case vpServoMorph::UNRELIABLE_CORRESPONDENCE: {
       cmd.stop = true;

@@ -187,10 +187,17 @@
     against 1.44 between the tee and the bracket of the tests), unless the view shows more of the target's outline
     than of that template's (vpMorphDatabase::support(): a bent view may be nearer another template by the
     distance). Then the status is TARGET_MISMATCH (a stop: the
-    servo would otherwise align the best-fitting similarity of two different shapes and report CONVERGED); the
+    servo would otherwise align the best-fitting similarity of two different shapes and report CONVERGED, or, for
+    one that lies far off the target, move until its first fit to the target and stop there, see below); the
     caller recognises anew or gives up.
-  LOST_TOO_LONG, TOO_MANY_REPLANS and TARGET_MISMATCH are stops: every later call returns zero velocity with the
-  same status until restart() or setTarget().
+  - <em>Deformed beyond one rigid placement</em>: a view found deformed at its first fit to the target (see the
+    law above) that, laid on the target by its largest overlap at the scale taken for its depth, still leaves over
+    a fifth of its area outside is not the target bent: a bent tool leaves its limb out (3-11 % measured), pliers
+    opened by 32 deg leave a whole arm out (28 % and more). No single pose lays both arms, and nothing gives their
+    depth: the outline grows with the opening, and given the pliers' template the servo converged 286 mm off.
+    Then the status is DEFORMATION_UNRESOLVED, a stop.
+  LOST_TOO_LONG, TOO_MANY_REPLANS, TARGET_MISMATCH and DEFORMATION_UNRESOLVED are stops: every later call returns
+  zero velocity with the same status until restart() or setTarget().
 
   Not copyable (it owns a vpServo that points to its own features).
 */
@@ -199,17 +206,19 @@ class vpServoMorph
 public:
   //! Outcome of the last computeControlLaw().
   enum Status {
-    NOT_STARTED,              //!< No iteration yet.
-    MOVING,                   //!< Moving towards the current sub-goal.
-    SUBGOAL_REACHED,          //!< A sub-goal was reached at this iteration; moving towards the next one.
-    CONVERGED,                //!< The final goal is reached within finalThresholds(); zero velocity.
-    TARGET_LOST,              //!< Empty contour given; zero velocity.
-    DEGENERATE_CONTOUR,       //!< Contour too small, non-finite, or unusable by the morph; zero velocity.
+    NOT_STARTED,               //!< No iteration yet.
+    MOVING,                    //!< Moving towards the current sub-goal.
+    SUBGOAL_REACHED,           //!< A sub-goal was reached at this iteration; moving towards the next one.
+    CONVERGED,                 //!< The final goal is reached within finalThresholds(); zero velocity.
+    TARGET_LOST,               //!< Empty contour given; zero velocity.
+    DEGENERATE_CONTOUR,        //!< Contour too small, non-finite, or unusable by the morph; zero velocity.
     UNRELIABLE_CORRESPONDENCE, //!< Distance jump or low margin; zero velocity.
     REPLANNED,                 //!< The view jumped (same shape, new place): new sequence from it; zero velocity.
-    LOST_TOO_LONG,    //!< Stop: no contour for more than maxLostIterations() successive calls; zero velocity.
-    TOO_MANY_REPLANS, //!< Stop: one view jump more than maxReplans(); zero velocity.
-    TARGET_MISMATCH   //!< Stop: the contour is not the target's shape (setTargetCheck()); zero velocity.
+    LOST_TOO_LONG,             //!< Stop: no contour for more than maxLostIterations() successive calls; zero velocity.
+    TOO_MANY_REPLANS,          //!< Stop: one view jump more than maxReplans(); zero velocity.
+    TARGET_MISMATCH,           //!< Stop: the contour is not the target's shape (setTargetCheck()); zero velocity.
+    //! Stop: a deformed view that no rigid placement lays on the target (an opened pliers); zero velocity.
+    DEFORMATION_UNRESOLVED
   };
   //! How the sub-goal error becomes a velocity.
   enum ControlLaw {
@@ -391,7 +400,8 @@ public:
   double targetDistance() const { return m_targetDistance; }
   //! Re-plans done since the last restart().
   unsigned int replanCount() const { return m_replans; }
-  //! True after a stop status (LOST_TOO_LONG, TOO_MANY_REPLANS, TARGET_MISMATCH) until restart().
+  //! True after a stop status (LOST_TOO_LONG, TOO_MANY_REPLANS, TARGET_MISMATCH, DEFORMATION_UNRESOLVED) until
+  //! restart().
   bool halted() const { return m_halted; }
   //! Forgets the sequence and the history: the next call morphs the then current contour anew.
   void restart();
@@ -523,7 +533,8 @@ private:
   double m_rotRes = 0, m_transRes = 0, m_scaleRes = 0, m_scaleRel = 0, m_work = 0;
   bool m_fullMatch = false, m_areaBased = false, m_overlapBased = false;
   bool m_overlapWarm = false; // m_overlapOffset holds the last deformed view's offset
-  enum { SHAPE_UNDECIDED, DEFORMED, UNDEFORMED } m_deformed = SHAPE_UNDECIDED; // decided at the first fit to the target
+  // Decided at the first fit to the target; UNEXPLAINED (a stop) at any fit that leaves too much of it outside.
+  enum { SHAPE_UNDECIDED, DEFORMED, UNDEFORMED, UNEXPLAINED } m_deformed = SHAPE_UNDECIDED;
   vpMorphRigidTransform m_overlapOffset; // largest-overlap fit o (outline or area fit)^-1, to warm-start the next
   vpMorphRigidTransform m_overlapLast;   // the last period's placement of largest overlap
   double m_overlapFitTheta = 0.0;        // and the rotation of the outline (or area) fit it was found from
