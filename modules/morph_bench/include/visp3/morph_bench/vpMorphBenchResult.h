@@ -21,8 +21,8 @@
   event that applies in this order: unreachable (start out of the robot's reach), out-of-view, diverged (the
   camera left 0.15-1.5 m from the plane), feature-lost (features not measured in 10 successive images),
   recognition (the object was rejected or taken for another), a controller's own stop (its status, e.g.
-  unreliable-correspondence, lost-too-long, too-many-replans, target-mismatch), joint-limit (a joint limit was hit), budget (still moving at the last
-  iteration), final-error (stopped away from the goal).
+  unreliable-correspondence, lost-too-long, too-many-replans, target-mismatch, deformation-unresolved), joint-limit
+  (a joint limit was hit), budget (still moving at the last iteration), final-error (stopped away from the goal).
 */
 class vpMorphBenchResult
 {
