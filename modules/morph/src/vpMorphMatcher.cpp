@@ -453,7 +453,7 @@ double placedIoU(const vpMorphContour &A, const vpMorphContour &B, const vpMorph
 } // namespace
 
 vpMorphCorrespondence vpMorphMatcher::matchOnRegions(const vpMorphContour &A, const vpMorphContour &B, double minGain,
-                                                     double *gain)
+                                                     double *gain, const vpMorphCorrespondence *leastWork)
 {
   if (!(minGain > 0.0 && minGain <= 1.0)) {
     std::ostringstream os;
@@ -462,7 +462,7 @@ vpMorphCorrespondence vpMorphMatcher::matchOnRegions(const vpMorphContour &A, co
   }
   if (gain)
     *gain = 0.0;
-  vpMorphCorrespondence best = match(A, B);
+  vpMorphCorrespondence best = leastWork ? *leastWork : match(A, B);
   // Past match(), the contours are valid: a failure of the check is a placement that degenerates in floating
   // point (huge coordinates whose moved vertices merge) or self-intersecting contours (their overlap is no region's),
   // where the regions cannot be compared and the work decides.

@@ -113,12 +113,13 @@ const vpMorphCorrespondence &vpMorphCorrespondenceTracker::update(const vpMorphC
   if (!done) {
     double gain = 0.0;
     bool confirmed = false;
+    vpMorphCorrespondence all; // the least work over all starts, when it was solved to confirm a jump
     if (jumpOnly && m_regionCheck) {
       // A real contour that gains or loses a vertex changes its work by far more than the jump factor while the
       // window still holds the best start (measured: 508 of the 558 rejected windows of the deformable set, camera,
       // seed 2). The least work over all starts, no lower than the window's, confirms it, and the region check is not
       // repeated: it was passed by the correspondence tracked here (see m_lastOverride), which it confirms.
-      vpMorphCorrespondence all = m_matcher.match(current, target);
+      all = m_matcher.match(current, target);
       confirmed = !(all.work() < windowWork * (1.0 - 1e-12));
       if (confirmed) {
         m_corr = std::move(all);
@@ -126,7 +127,8 @@ const vpMorphCorrespondence &vpMorphCorrespondenceTracker::update(const vpMorphC
       }
     }
     if (!confirmed)
-      m_corr = m_regionCheck ? m_matcher.matchOnRegions(current, target, 0.1, &gain) : m_matcher.match(current, target);
+      m_corr = m_regionCheck ? m_matcher.matchOnRegions(current, target, 0.1, &gain, all.empty() ? nullptr : &all)
+                             : m_matcher.match(current, target);
     m_lastOverride = gain > 0.0;
     m_source = FULL;
     ++m_fullCount;

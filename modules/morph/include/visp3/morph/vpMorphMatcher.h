@@ -103,10 +103,12 @@ public:
     \param minGain the intersection over union, or the share of B's outline, the other placement must win by, in
     (0, 1].
     \param gain if not null, receives that win when the correspondence was replaced, else 0.
+    \param leastWork if not null, match(A, B) already computed by the caller (a tracker that has just compared it
+    with a window's), which is then not solved again.
     \throw vpMorphException as match(), and on a bad \e minGain.
   */
   vpMorphCorrespondence matchOnRegions(const vpMorphContour &A, const vpMorphContour &B, double minGain = 0.1,
-                                       double *gain = nullptr);
+                                       double *gain = nullptr, const vpMorphCorrespondence *leastWork = nullptr);
 
 private:
   //! The columns a path of the grid spans in each row (leftmost, rightmost): the bounds of Maes' bands.
