@@ -101,6 +101,17 @@ def save(fig, outdir, name, written):
     written.append(path)
 
 
+def layered(k, n, marker=False):
+    """Line style of the k-th of n controllers: controllers that behave alike draw the same line (morph and
+    morph-planar on a planar start, every successful controller at 100 %), so the first listed is drawn on top and
+    thinnest, the later ones under it and wider, and each stays visible."""
+    share = k / max(1, n - 1)
+    style = dict(zorder=2 + n - k, lw=1.2 + 1.6 * share)
+    if marker:
+        style["ms"] = 5 + 5 * share
+    return style
+
+
 def no_data(ax, text="no data"):
     ax.text(0.5, 0.5, text, ha="center", va="center", transform=ax.transAxes, color="0.4", fontsize=11)
 
@@ -146,7 +157,7 @@ def plot_success_vs_rotation(runs, controllers, colours, outdir, written):
     centres = [0.5 * (a + b) for a, b in zip(edges[:-1], edges[1:])]
     fig, ax = plt.subplots(figsize=(8, 5))
     drawn = False
-    for c in controllers:
+    for i, c in enumerate(controllers):
         ys, ns = [], []
         for k, (a, b) in enumerate(zip(edges[:-1], edges[1:])):
             rows = []
@@ -162,7 +173,8 @@ def plot_success_vs_rotation(runs, controllers, colours, outdir, written):
             ys.append(100.0 * sum(success(r) for r in rows) / len(rows) if rows else np.nan)
         if all(n == 0 for n in ns):
             continue
-        ax.plot(centres, ys, "o-", color=colours[c], label=c)  # an empty bin is a gap in the line
+        # An empty bin is a gap in the line.
+        ax.plot(centres, ys, "o-", color=colours[c], label=c, **layered(i, len(controllers), marker=True))
         drawn = True
     if not drawn:
         no_data(ax, "no run with a start rotation")
@@ -278,12 +290,13 @@ def plot_error_curves(curves, sets, controllers, colours, outdir, written):
     for i, s in enumerate(curve_sets):
         axt, axr = axes[i]
         any_line = False
-        for c in controllers:
+        for k, c in enumerate(controllers):
             if (s, c) not in med:
                 continue
             its, T, R, count = med[(s, c)]
-            axt.plot(its, np.maximum(T, LOG_FLOOR), color=colours[c], label="%s (%d)" % (c, count))
-            axr.plot(its, np.maximum(R, LOG_FLOOR), color=colours[c], label="%s (%d)" % (c, count))
+            style = dict(layered(k, len(controllers)), color=colours[c], label="%s (%d)" % (c, count))
+            axt.plot(its, np.maximum(T, LOG_FLOOR), **style)
+            axr.plot(its, np.maximum(R, LOG_FLOOR), **style)
             any_line = True
         for ax, thr, unit in ((axt, T_SUCCESS_MM, "mm"), (axr, R_SUCCESS_DEG, "deg")):
             ax.axhline(thr, color="black", ls="--", lw=0.9, label="success %g %s" % (thr, unit))
