@@ -38,7 +38,8 @@ CURVE_COLUMNS = ["set", "robot", "controller", "scenario", "iteration", "t_mm", 
 
 # Canonical orders (DESIGN.md, benchmark protocol; the sets' in vispmorph_bench_files); names not listed here are
 # appended in order of appearance.
-CONTROLLERS = ["morph", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments"]
+CONTROLLERS = ["morph", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments",
+               "moments-planar"]
 FAILURES = ["out-of-view", "feature-lost", "joint-limit", "budget", "final-error", "diverged", "recognition",
             "unreachable", "lost-too-long", "too-many-replans", "target-mismatch"]
 
@@ -51,6 +52,7 @@ CONTROLLER_COLOURS = {
     "ibvs-mean": "#f4b41a",
     "pbvs": "#2e8b57",
     "moments": "#8e44ad",
+    "moments-planar": "#c39bd3",
 }
 EXTRA_COLOURS = ["#7f7f7f", "#17becf", "#bcbd22", "#8c564b", "#e377c2"]
 FAILURE_COLOURS = {

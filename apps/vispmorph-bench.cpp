@@ -4,7 +4,8 @@
 
   \code
   vispmorph-bench --set planar|planar-hard|6dof|calib|calib-no-tilt|noise|occlusion|deformable|faults|all[,...]
-                  [--controllers morph,morph-planar,morph-vpservo,ibvs-current,ibvs-desired,ibvs-mean,pbvs,moments]
+                  [--controllers morph,morph-planar,morph-vpservo,ibvs-current,ibvs-desired,ibvs-mean,pbvs,moments,
+                                 moments-planar]
                   [--robot camera|viper850|afma6] [--count N] [--seed S] --out DIR
                   [--threads T] [--max-iterations N] [--lambda L] [--no-curves] [--no-plots] [--recognition]
   \endcode
@@ -53,7 +54,7 @@ void usage(std::ostream &os)
         "                     rotation error about the optical axis only), all\n"
         "  --controllers L    comma-separated (default all): morph, morph-planar, morph-vpservo, ibvs-current, "
         "ibvs-desired,\n"
-        "                     ibvs-mean, pbvs, moments\n"
+        "                     ibvs-mean, pbvs, moments, moments-planar\n"
         "  --robot R          camera (default), viper850 or afma6\n"
         "  --count N          scenarios per set (default 10)\n"
         "  --only LIST        replay only these scenario indices of each set (comma-separated, each < N)\n"

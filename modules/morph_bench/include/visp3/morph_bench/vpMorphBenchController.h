@@ -33,11 +33,14 @@
   Names (create()): "morph" (vpServoMorph: the paper's Eq. 5-11 through 10 sub-goals, online hand-eye
   estimation, and the out-of-plane correction on the final approach from the homography refined on the edge
   outlines), "morph-planar" (the same without the out-of-plane correction: the paper's planar law),
-  "morph-vpservo" (vpFeatureMorph to the final goal in a stock vpServo, EYEINHAND_L_cVe_eJe, current L), "ibvs-current", "ibvs-desired", "ibvs-mean" (4 tag corners, vpFeaturePoint, depth from the tag
-  pose), "pbvs" (vpFeatureTranslation(cdMc) + vpFeatureThetaU(cdRc) from the tag pose), "moments"
-  (vpFeatureMomentCommon on the silhouette polygon: normalised centre of gravity, area, c-invariants and alpha,
-  as ViSP's servoMomentPolygon example, plane from the tag pose). Every stock one runs
-  EYEINHAND_L_cVe_eJe with cVe from the estimated eMc and eJe from the robot, and the same constant gain.
+  "morph-vpservo" (vpFeatureMorph to the final goal in a stock vpServo, EYEINHAND_CAMERA with the tilts disabled,
+  current L, the camera velocity mapped by the estimated eMc), "ibvs-current", "ibvs-desired", "ibvs-mean" (4 tag
+  corners, vpFeaturePoint, depth from the tag pose), "pbvs" (vpFeatureTranslation(cdMc) + vpFeatureThetaU(cdRc) from
+  the tag pose), "moments" (vpFeatureMomentCommon on the silhouette's measured outline: normalised centre of gravity,
+  area, c-invariants sx and sy, and alpha, as ViSP's servoMomentPolygon example, plane from the tag pose),
+  "moments-planar" (the same without the c-invariants, on the camera's planar motions, as "morph-vpservo"). The
+  other stock ones run EYEINHAND_L_cVe_eJe with cVe from the estimated eMc and eJe from the robot; all share the same
+  constant gain.
 
   <b>Faults</b> (vpMorphBenchEvent). Every controller holds (zero velocity, Command::measured false) on a
   missing frame or when its features are not in the image; the loop gives up after 10 such iterations in a row
