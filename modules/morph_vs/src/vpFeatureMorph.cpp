@@ -125,10 +125,20 @@ void vpFeatureMorph::setContour(const vpMorphContour &normalized, double A, doub
   m_A = A;
   m_B = B;
   m_C = C;
+  m_polyS[0] = xg;
+  m_polyS[1] = yg;
+  m_polyS[2] = 0.5 * std::log(a);
+  if (normalized.hasRegion()) {
+    // The region measured on the image (see vpMorphContour::hasRegion()): the polygon's area and centroid move by a
+    // percent when a vertex appears or shifts from one image to the next.
+    a = normalized.regionArea();
+    normalized.regionCentroid(xg, yg);
+    normalized.regionMoments(n20, n11, n02);
+  }
   m_n20 = n20;
   m_n02 = n02;
   m_n11 = n11;
-  m_Z = Z;
+  m_Z = 1.0 / (A * xg + B * yg + C);
   s[0] = xg;
   s[1] = yg;
   s[3] = 0.5 * std::log(a);
@@ -240,9 +250,25 @@ vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int sel
   const vpMorphCorrespondence &corr = m_tracker.update(m_contour, sd->m_contour);
   m_fit =
       vpMorphRigidTransform::fitLeastSquares(m_contour, sd->m_contour, corr, true, vpMorphRigidTransform::NO_ROBUST);
+  // Both outlines measured: the angle from them (the fit refined point to edge, robust scale floored at a tenth of a
+  // pixel), which does not move with the polygons' vertices as the corresponded vertices' fit does.
+  if (m_contour.hasOutline() && sd->m_contour.hasOutline()) {
+    const double tenthPixel = m_cam.get_px() > 0.0 ? 0.1 / m_cam.get_px() : 0.0;
+    try {
+      m_fit =
+          vpMorphRigidTransform::refineOnOutline(m_contour.outline(), sd->m_contour.outline(), m_fit, true, tenthPixel);
+    } catch (const vpException &) {
+      // the corresponded vertices' fit stands (an outline fit that degenerates)
+    }
+  }
   s[2] = -m_fit.theta();
+  // The regions measured on both images, or the polygons' for both (one measured region against a polygon's area
+  // would be a bias of the depth).
+  const bool regions = m_contour.hasRegion() && sd->m_contour.hasRegion();
+  const double *cur = regions ? &s[0] : m_polyS, *des = regions ? &sd->s[0] : sd->m_polyS;
+  const double cs = regions ? s[3] : m_polyS[2], ds = regions ? sd->s[3] : sd->m_polyS[2];
   vpColVector e(0);
-  const double full[4] = {s[0] - sd->s[0], s[1] - sd->s[1], s[2], s[3] - sd->s[3]};
+  const double full[4] = {cur[0] - des[0], cur[1] - des[1], s[2], cs - ds};
   for (unsigned int k = 0; k < 4; ++k)
     if (select & FEATURE_LINE[k])
       e.stack(full[k]);

@@ -226,6 +226,51 @@ StockResult runStock(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix 
 }
 } // namespace
 
+TEST_CASE("vpFeatureMorph takes the measured region and outline when both contours carry them", "[feature]")
+{
+  const vpHomogeneousMatrix cdMo = planarPose(0, 0.0, 0.0), cMo = planarPose(30, 0.02, -0.01, 0.6);
+  const vpMorphContour exactD = projectPixels(cdMo), exact = projectPixels(cMo);
+  // The current polygon as a polygonisation may leave it: one vertex 1.5 px off the edge it approximates.
+  vpMorphContour poly = exact;
+  std::vector<vpImagePoint> pts = poly.points();
+  pts[2].set_u(pts[2].get_u() + 1.5);
+  poly = vpMorphContour(pts, vpMorphContour::PIXEL);
+  auto error = [&](const vpMorphContour &c, const vpMorphContour &cd, double Z) {
+    vpFeatureMorph s, sd;
+    sd.buildFrom(cd, camera(), 0.5);
+    s.buildFrom(c, camera(), Z);
+    return s.error(sd);
+  };
+  const double thetaPoly = error(poly, exactD, 0.6)[2];
+  // Both outlines measured (here the exact polygons, densely): the rotation from them.
+  vpMorphContour withOutline = poly, desiredWithOutline = exactD;
+  withOutline.setOutline(exact.resampled(400));
+  desiredWithOutline.setOutline(exactD.resampled(400));
+  const double thetaOutline = error(withOutline, desiredWithOutline, 0.6)[2];
+  INFO("theta error: polygons " << vpMath::deg(thetaPoly - vpMath::rad(30)) << " deg, outlines "
+                                << vpMath::deg(thetaOutline - vpMath::rad(30)) << " deg");
+  CHECK(std::fabs(thetaOutline - vpMath::rad(30)) < 0.1 * std::fabs(thetaPoly - vpMath::rad(30)));
+  CHECK(std::fabs(thetaOutline - vpMath::rad(30)) < vpMath::rad(0.01));
+  // Only one outline: the polygons' fit.
+  CHECK(error(withOutline, exactD, 0.6)[2] == Approx(thetaPoly).margin(1e-12));
+
+  // A measured region 10 % larger and 2 px to the right of the polygon's: centroid and scale from the regions when
+  // both have one, from the polygons when only one does (a region against a polygon would bias the depth).
+  double cx, cy, cxd, cyd;
+  exact.centroid(cx, cy);
+  exactD.centroid(cxd, cyd);
+  vpMorphContour region = exact, desiredRegion = exactD;
+  region.setRegion(1.1 * exact.area(), cx + 2.0, cy, 100.0, 0.0, 100.0);
+  desiredRegion.setRegion(exactD.area(), cxd, cyd, 100.0, 0.0, 100.0);
+  const vpColVector ePoly = error(exact, exactD, 0.6), eBoth = error(region, desiredRegion, 0.6);
+  CHECK(eBoth[0] == Approx(ePoly[0] + 2.0 / camera().get_px()).margin(1e-9));
+  CHECK(eBoth[1] == Approx(ePoly[1]).margin(1e-9));
+  CHECK(eBoth[3] == Approx(ePoly[3] + 0.5 * std::log(1.1)).margin(1e-9));
+  const vpColVector eOne = error(region, exactD, 0.6);
+  CHECK(eOne[0] == Approx(ePoly[0]).margin(1e-12));
+  CHECK(eOne[3] == Approx(ePoly[3]).margin(1e-12));
+}
+
 TEST_CASE("vpFeatureMorph converges in a stock vpServo with current, desired and mean L, camera and cVe eJe laws",
           "[feature][servo]")
 {

@@ -32,6 +32,14 @@
   - \f$\sigma = \ln \sqrt{a}\f$ with \e a the region area: \f$\sigma - \sigma^* = \ln(Z^{*} / Z)\f$ for a plane
     parallel to the image, so it drives depth.
 
+  <b>Measured contours.</b> A contour from vpMorphContourExtractor carries the region and the edge outline measured
+  on the image (vpMorphContour::hasRegion(), hasOutline()). When the current and the desired contours both carry a
+  region, \f$x_g, y_g, \sigma\f$ and the moments below are the regions' (else both polygons'); when both carry an
+  outline, the fit that gives \f$\theta\f$ is refined on the two outlines (vpMorphRigidTransform::refineOnOutline(),
+  robust scale floored at a tenth of a pixel). Why: a polygon's area, centroid and corresponded vertices move from
+  one image to the next as its vertices do, and a stock vpServo then wanders a millimetre about its goal without
+  settling (rendered planar starts: 0.3-2.2 mm off at the budget, 0.006-0.046 mm with the measurements).
+
   <b>Interaction matrices</b> (6 columns, camera velocity \f$(v, \omega)\f$), for a planar object whose plane is
   \f$1/Z = A x + B y + C\f$ in the camera frame (buildFrom() with a depth Z assumes the plane parallel to the
   image, A = B = 0, C = 1/Z: the paper's task; pass A, B, C when the tilt is known). With \f$n_{ij} = \mu_{ij}/a\f$
@@ -127,6 +135,7 @@ private:
   vpCameraParameters m_cam;
   double m_Z = 1.0, m_A = 0.0, m_B = 0.0, m_C = 1.0;
   double m_n20 = 0.0, m_n02 = 0.0, m_n11 = 0.0;
+  double m_polyS[3] = {0.0, 0.0, 0.0}; // the polygon's own xg, yg and sigma (s holds the region's when measured)
   vpMorphCorrespondenceTracker m_tracker;
   vpMorphRigidTransform m_fit;
 };
