@@ -25,7 +25,7 @@ if not os.environ.get("MPLBACKEND"):
     matplotlib.use("Agg")  # files only: no window is ever opened
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from vispmorph_bench_files import SETS, BenchFileError, number, ordered, success  # noqa: E402
+from vispmorph_bench_files import CONTROLLERS, SETS, BenchFileError, number, ordered, success  # noqa: E402
 from vispmorph_bench_files import read_csv as read_bench_csv  # noqa: E402
 
 RUN_COLUMNS = [
@@ -36,10 +36,8 @@ RUN_COLUMNS = [
 ]
 CURVE_COLUMNS = ["set", "robot", "controller", "scenario", "iteration", "t_mm", "r_deg"]
 
-# Canonical orders (DESIGN.md, benchmark protocol; the sets' in vispmorph_bench_files); names not listed here are
-# appended in order of appearance.
-CONTROLLERS = ["morph", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments",
-               "moments-planar"]
+# Canonical order of the failure reasons (the sets' and the controllers' are in vispmorph_bench_files); names not
+# listed here are appended in order of appearance.
 FAILURES = ["out-of-view", "feature-lost", "joint-limit", "budget", "final-error", "diverged", "recognition",
             "unreachable", "lost-too-long", "too-many-replans", "target-mismatch"]
 

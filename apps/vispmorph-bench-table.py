@@ -1,20 +1,26 @@
 #!/usr/bin/python3
-"""One controller's results over several vispmorph-bench runs (robots, seeds) as one markdown table.
+"""One controller's results over several vispmorph-bench runs (robots, seeds) as one markdown table, or every
+controller's side by side.
 
 Usage: vispmorph-bench-table.py [--controller NAME] OUTDIR [OUTDIR ...]
+       vispmorph-bench-table.py --by-controller OUTDIR [OUTDIR ...]
 
 Reads each OUTDIR/runs.csv (and OUTDIR/summary.json when present, for the machine yardstick) and prints, per set:
 the successes of each OUTDIR (a column each, headed by its robot and seed), all of them together, the median path
 ratio of the successful runs, the mean compute time per iteration (measure + control, CPU ms, over the runs that
 measured) and its ratio to each run's machine yardstick, and issue 5's target for the set, met or not over all the
-OUTDIRs given. The table is computed from the files only: what it says is what the runs did.
+OUTDIRs given. With --by-controller: a row per set and a column per controller (all the runs of the OUTDIRs given,
+which may hold different controllers: one run of the stock ones, another of VISPMorph's), each cell the successes
+over the runs and, in brackets, the median final error of the successful ones (mm / deg, simulator truth). The table
+is computed from the files only: what it says is what the runs did.
 """
 
 import os
 import statistics
 import sys
 
-from vispmorph_bench_files import SETS, BenchFileError, number, ordered, read_csv, read_meta, success, yardstick
+from vispmorph_bench_files import (CONTROLLERS, SETS, BenchFileError, number, ordered, read_csv, read_meta, success,
+                                   yardstick)
 
 # Issue 5's targets for morph: (least success rate, largest median path ratio or None).
 TARGETS = {
@@ -86,6 +92,35 @@ def table(dirs, controller):
     return "\n".join(out)
 
 
+def by_controller(paths):
+    """Successes per set and controller over all the runs of \a paths, with the successes' median final error."""
+    columns = ("set", "controller", "success", "final_t_mm", "final_r_deg")
+    rows = []
+    for p in paths:
+        try:
+            rows += read_csv(os.path.join(p, "runs.csv"), columns)
+        except BenchFileError as e:
+            fail(str(e))
+    if not rows:
+        fail("no run in " + ", ".join(paths))
+    controllers = ordered([r["controller"] for r in rows], CONTROLLERS)
+    out = ["| set | " + " | ".join(controllers) + " |", "|" + "---|" * (len(controllers) + 1)]
+    for s in ordered([r["set"] for r in rows], SETS):
+        cells = [s]
+        for c in controllers:
+            runs = [r for r in rows if r["set"] == s and r["controller"] == c]
+            ok = [r for r in runs if success(r)]
+            if not runs:
+                cells.append("-")
+                continue
+            t = [v for v in (number(r["final_t_mm"]) for r in ok) if v is not None]
+            d = [v for v in (number(r["final_r_deg"]) for r in ok) if v is not None]
+            error = " (%.3g / %.3g)" % (statistics.median(t), statistics.median(d)) if t and d else ""
+            cells.append("%d/%d%s" % (len(ok), len(runs), error))
+        out.append("| " + " | ".join(cells) + " |")
+    return "\n".join(out)
+
+
 def target(set_name, controller, rate, median_ratio, mean_compute):
     if controller != "morph":
         return "(for morph)"
@@ -103,10 +138,13 @@ def target(set_name, controller, rate, median_ratio, mean_compute):
 
 
 def main(argv):
-    controller, dirs = "morph", []
+    controller, dirs, side_by_side = "morph", [], False
     i = 1
     while i < len(argv):
-        if argv[i] == "--controller":
+        if argv[i] == "--by-controller":
+            side_by_side = True
+            i += 1
+        elif argv[i] == "--controller":
             if i + 1 >= len(argv):
                 fail("--controller needs a value")
             controller = argv[i + 1]
@@ -118,7 +156,10 @@ def main(argv):
             dirs.append(argv[i])
             i += 1
     if not dirs:
-        fail("no OUTDIR given (usage: vispmorph-bench-table.py [--controller NAME] OUTDIR [OUTDIR ...])")
+        fail("no OUTDIR given (usage: vispmorph-bench-table.py [--controller NAME | --by-controller] OUTDIR ...)")
+    if side_by_side:
+        print(by_controller(dirs))
+        return 0
     data = [read_dir(d, controller) for d in dirs]
     if not any(d["rows"] for d in data):
         fail("no run of controller '%s' in %s" % (controller, ", ".join(dirs)))

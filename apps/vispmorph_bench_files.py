@@ -8,8 +8,11 @@ import json
 import math
 import os
 
-# Canonical order of the sets (DESIGN.md, benchmark protocol); names not listed are appended in order of appearance.
+# Canonical orders of the sets (DESIGN.md, benchmark protocol) and of the controllers (VISPMorph's, then the stock
+# ones); names not listed are appended in order of appearance.
 SETS = ["planar", "planar-hard", "6dof", "calib", "calib-no-tilt", "noise", "occlusion", "deformable", "faults"]
+CONTROLLERS = ["morph", "morph-planar", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments",
+               "moments-planar"]
 
 
 class BenchFileError(Exception):
