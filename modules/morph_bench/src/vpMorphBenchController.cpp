@@ -86,6 +86,19 @@ protected:
     task.setLambda(m_ctx.lambda);
   }
   /*!
+    A stock vpServo on the camera's planar motions (vx, vy, vz, wz): EYEINHAND_CAMERA, current L, the tilts disabled
+    (setCameraDoF), the same gain; the adapter maps its camera velocity with the estimated eMc.
+  */
+  void setupPlanarTask(vpServo &task) const
+  {
+    task.setServo(vpServo::EYEINHAND_CAMERA);
+    task.setInteractionMatrixType(vpServo::CURRENT, vpServo::PSEUDO_INVERSE);
+    task.setLambda(m_ctx.lambda);
+    vpColVector dof(6, 1.0);
+    dof[3] = dof[4] = 0; // no tilt
+    task.setCameraDoF(dof);
+  }
+  /*!
     The stock task's joint velocity for the features just measured (in \e measureMs), with the time of the law;
     a stop instead of a non-finite command.
   */
@@ -387,12 +400,7 @@ public:
       m_s.buildFrom(c, m_ctx.cam, Zd * std::sqrt(m_areaD / a));
       if (!m_built) {
         m_task.reset(new vpServo);
-        m_task->setServo(vpServo::EYEINHAND_CAMERA);
-        m_task->setInteractionMatrixType(vpServo::CURRENT, vpServo::PSEUDO_INVERSE);
-        m_task->setLambda(m_ctx.lambda);
-        vpColVector dof(6, 1.0);
-        dof[3] = dof[4] = 0;
-        m_task->setCameraDoF(dof);
+        setupPlanarTask(*m_task);
         m_task->addFeature(m_s, m_sd);
         m_built = true;
       }
@@ -602,12 +610,10 @@ private:
   {
     const vpMorphContour c = normalized.outline().resampled(kMomentPoints);
     const std::size_t n = c.size();
-    double twiceArea = 0.0;
-    for (std::size_t i = 0; i < n; ++i)
-      twiceArea += c.x(i) * c.y((i + 1) % n) - c.x((i + 1) % n) * c.y(i);
+    const bool ccw = c.signedArea() >= 0.0; // m00's sign: the same shoelace sum
     std::vector<vpPoint> pts(n + 1);
     for (std::size_t i = 0; i <= n; ++i) {
-      const std::size_t k = twiceArea >= 0.0 ? i % n : (n - i) % n;
+      const std::size_t k = ccw ? i % n : (n - i) % n;
       pts[i].set_x(c.x(k));
       pts[i].set_y(c.y(k));
     }
@@ -641,16 +647,10 @@ private:
     m_features->updateAll(0, 0, 1.0 / Zd);
     m_featuresD->updateAll(0, 0, 1.0 / Zd);
     m_task.reset(new vpServo);
-    if (m_planar) {
-      m_task->setServo(vpServo::EYEINHAND_CAMERA);
-      m_task->setInteractionMatrixType(vpServo::CURRENT, vpServo::PSEUDO_INVERSE);
-      m_task->setLambda(m_ctx.lambda);
-      vpColVector dof(6, 1.0);
-      dof[3] = dof[4] = 0; // no tilt
-      m_task->setCameraDoF(dof);
-    } else {
+    if (m_planar)
+      setupPlanarTask(*m_task);
+    else
       setupStockTask(*m_task, vpServo::CURRENT);
-    }
     m_task->addFeature(m_features->getFeatureGravityNormalized(), m_featuresD->getFeatureGravityNormalized());
     m_task->addFeature(m_features->getFeatureAn(), m_featuresD->getFeatureAn());
     if (!m_planar)
