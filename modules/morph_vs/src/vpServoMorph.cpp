@@ -13,6 +13,8 @@
 #include <visp3/morph/vpMorph.h>
 #include <visp3/morph/vpMorphException.h>
 
+#include "vpMorphRegionCheck.h"
+
 namespace
 {
 // Multiples of the tilt's standard deviation (from the outlines' homography) within which it is not commanded.
@@ -150,36 +152,6 @@ double areaRatio(const vpMorphContour &goal, const vpMorphContour &current)
   return goal.area() / current.area();
 }
 
-// Whether two contours show one region seen twice (up to a similarity), so that the areas and centroids of their
-// regions can stand for the pose: not so when part of the object is hidden or it is deformed. With measured
-// regions, compared by two similarity invariants of their second-order moments (spread over area, and
-// eccentricity): noise and blur move them by under 1 %, a card hiding 5-20 % of a tool by 5-33 % (measured on
-// the bench sets). A polygon-fitted scale is not used there: on a thin-handled tool it strays 2-3 % from the
-// region's (a noisy first frame was judged occluded and the servo stopped 1.5 mm deep). A region on one side only
-// is not alike: an extracted contour without its region is an outline joined across an occluder's cut, whose
-// polygon area and centroid carry the bridge (measured: an occluded screwdriver settling 8.2 mm off, a key
-// re-planning until the limit). Without regions on either side, the polygons' area ratio against the fitted
-// scale \e fittedScale.
-bool regionsAlike(const vpMorphContour &goal, const vpMorphContour &current, double fittedScale, double tolerance)
-{
-  if (goal.hasRegion() && current.hasRegion()) {
-    auto invariants = [](const vpMorphContour &c, double &spread, double &eccentricity) {
-      double mu20, mu11, mu02;
-      c.regionMoments(mu20, mu11, mu02);
-      const double tr = mu20 + mu02;
-      spread = tr / c.regionArea();
-      eccentricity = tr > 0.0 ? std::hypot(mu20 - mu02, 2.0 * mu11) / tr : 0.0;
-    };
-    double sg, eg, sc, ec;
-    invariants(goal, sg, eg);
-    invariants(current, sc, ec);
-    return sg > 0.0 && std::fabs(sc / sg - 1.0) <= tolerance && std::fabs(ec - eg) <= tolerance;
-  }
-  if (goal.hasRegion() != current.hasRegion())
-    return false;
-  return std::fabs(std::sqrt(goal.area() / current.area()) / fittedScale - 1.0) <= tolerance;
-}
-
 void centroids(const vpMorphContour &goal, const vpMorphContour &current, double &gx, double &gy, double &cx,
                double &cy)
 {
@@ -224,13 +196,7 @@ double refinedRotation(const vpMorphContour &goal, const vpMorphContour &current
 }
 
 // Share of the view's area that lies outside the goal's region once F lays it on the goal.
-double outsideShare(const vpMorphRigidTransform &F, const vpMorphContour &view, const vpMorphContour &goal)
-{
-  const vpMorphContour laid = F.apply(view);
-  const double a = laid.area();
-  // A fit run to a point lays nothing on the goal (0 / 0 would make it win every comparison).
-  return a > 0.0 && std::isfinite(a) ? 1.0 - laid.overlapArea(goal) / a : 1.0;
-}
+const auto outsideShare = &vpMorphRegionCheck::outsideShare;
 
 // The largest distance between the points of \e c moved by \e A and by \e B.
 double largestShift(const vpMorphRigidTransform &A, const vpMorphRigidTransform &B, const vpMorphContour &c)
@@ -526,8 +492,9 @@ void vpServoMorph::start(const vpMorphContour &current)
     vpMorph morph(current, m_target, corr);
     // Whether the two regions are one shape seen twice is a property of the current object against the target
     // (the sub-goals before the deformation frames are views of the current contour itself): see fitToSubGoal().
-    m_regionsAlike =
-        regionsAlike(m_target, current, morph.rigidTransform().scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
+    m_regionsAlike = vpMorphRegionCheck::alike(m_target, current, morph.rigidTransform().scale(), m_regionMismatch)
+                         ? ALIKE
+                         : NOT_ALIKE;
     bool occludedPlan = false;
     if (m_regionsAlike == NOT_ALIKE) {
       // Part of the object hidden: the least-squares fit crowds the pairs of the hidden stretch onto the occluder's
@@ -641,13 +608,13 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
     // noisy) from one frame to the next made the loop chatter (measured: a Viper850 run oscillating by 1-6 mm and
     // stopping 1.02 mm off).
     if (m_regionsAlike == UNDECIDED)
-      m_regionsAlike = regionsAlike(goalN, currentN, Tfit.scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
+      m_regionsAlike = vpMorphRegionCheck::alike(goalN, currentN, Tfit.scale(), m_regionMismatch) ? ALIKE : NOT_ALIKE;
     // An occluder that comes during the sequence hides part of a region that was alike: from then on, to the end of
     // the sequence, it is not (one way only: no chatter). Checked against the target, whose region the current one
     // is a view of whatever the sub-goal (measured: a key that a card covered at iteration 30 converged 18 mm off,
     // its lost area taken for depth).
     else if (m_regionsAlike == ALIKE && m_target.hasRegion() &&
-             !regionsAlike(m_target, currentPx, 1.0, m_regionMismatch))
+             !vpMorphRegionCheck::alike(m_target, currentPx, 1.0, m_regionMismatch))
       m_regionsAlike = NOT_ALIKE;
     m_areaBased = m_regionsAlike == ALIKE;
     if (!m_areaBased) {
@@ -1322,7 +1289,7 @@ bool vpServoMorph::fitTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &
     // measured regions to compare alike again, the verdicts made on the tilted view are withdrawn (once per sequence:
     // no chatter): areas and centroids stand for the pose again, and the view is not taken for a bent one.
     if (m_regionsAlike == NOT_ALIKE && !m_regionsRejudged && targetN.hasRegion() && currentN.hasRegion() &&
-        regionsAlike(targetN, currentN, 1.0, m_regionMismatch)) {
+        vpMorphRegionCheck::alike(targetN, currentN, 1.0, m_regionMismatch)) {
       m_regionsRejudged = true;
       m_regionsAlike = ALIKE;
       forgetDeformation();
