@@ -7,8 +7,19 @@
 #include <visp3/core/vpDisplay.h>
 #include <visp3/morph/vpMorphException.h>
 
+#include "vpMorphRegionCheck.h"
+
 namespace
 {
+// Change of the regions' similarity invariants above which they are not alike (as vpServoMorph's default).
+const double kRegionMismatch = 0.02;
+// Share of the view laid outside the desired region above which it is bent, not hidden (as vpServoMorph's), measured
+// on the outlines resampled at this many points.
+const double kDeformedOutside = 0.02;
+const std::size_t kOutsidePoints = 128;
+// Rotation of the fit to the goal under which a view not alike is judged hidden or bent.
+const double kDecideTurn = 5.0 * M_PI / 180.0;
+
 // Region moments of a polygon (Green's theorem): area a, centroid, normalised centred moments mu_ij / a.
 void regionMoments(const vpMorphContour &c, double &a, double &xg, double &yg, double &n20, double &n02, double &n11)
 {
@@ -59,6 +70,7 @@ void vpFeatureMorph::init()
   m_n20 = m_n02 = m_n11 = 0.0;
   m_tracker.reset();
   m_fit = vpMorphRigidTransform();
+  m_regions = REGIONS_UNDECIDED;
 }
 
 void vpFeatureMorph::buildFrom(const vpMorphContour &contour, const vpCameraParameters &cam, double Z)
@@ -248,27 +260,78 @@ vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int sel
                            "vpFeatureMorph::error: the desired feature has no contour; call its buildFrom() "
                            "(vpServo::addFeature(s) alone gives an empty desired feature)");
   const vpMorphCorrespondence &corr = m_tracker.update(m_contour, sd->m_contour);
+  const bool outlines = m_contour.hasOutline() && sd->m_contour.hasOutline();
+  const double tenthPixel = m_cam.get_px() > 0.0 ? 0.1 / m_cam.get_px() : 0.0;
+  // Both outlines measured: the fit refined on them, point to edge, robust scale floored at a tenth of a pixel. It does
+  // not move with the polygons' vertices as the corresponded vertices' fit does.
+  auto onOutlines = [&](const vpMorphRigidTransform &T) {
+    try {
+      return vpMorphRigidTransform::refineOnOutline(m_contour.outline(), sd->m_contour.outline(), T, true, tenthPixel);
+    } catch (const vpException &) {
+      return T; // an outline fit that degenerates: the corresponded vertices' fit stands
+    }
+  };
+  auto robustFit = [&]() {
+    // A part hidden: the corresponded vertices crowd it onto the cut, and the plain least squares follow them; the
+    // robust ones weigh them out.
+    const vpMorphRigidTransform T =
+        vpMorphRigidTransform::fitLeastSquares(m_contour, sd->m_contour, corr, true, vpMorphRigidTransform::TUKEY);
+    return outlines ? onOutlines(T) : T;
+  };
   m_fit =
       vpMorphRigidTransform::fitLeastSquares(m_contour, sd->m_contour, corr, true, vpMorphRigidTransform::NO_ROBUST);
-  // Both outlines measured: the angle from them (the fit refined point to edge, robust scale floored at a tenth of a
-  // pixel), which does not move with the polygons' vertices as the corresponded vertices' fit does.
-  if (m_contour.hasOutline() && sd->m_contour.hasOutline()) {
-    const double tenthPixel = m_cam.get_px() > 0.0 ? 0.1 / m_cam.get_px() : 0.0;
-    try {
-      m_fit =
-          vpMorphRigidTransform::refineOnOutline(m_contour.outline(), sd->m_contour.outline(), m_fit, true, tenthPixel);
-    } catch (const vpException &) {
-      // the corresponded vertices' fit stands (an outline fit that degenerates)
-    }
+  // Decided at the first error() after init(), then only from alike to not alike (an occluder that comes): switching
+  // between the regions' and the fit's estimates from one image to the next makes a loop chatter (see vpServoMorph).
+  // Only against a desired contour with its measured region (a template): a polygon goal (a morph's frame, a drawn
+  // contour) has no region to compare with, and polygons' areas are no test (a thin tool's strays by 2-3 %).
+  const bool alike =
+      !sd->m_contour.hasRegion() || vpMorphRegionCheck::alike(sd->m_contour, m_contour, m_fit.scale(), kRegionMismatch);
+  if (m_regions == REGIONS_UNDECIDED || (m_regions == REGIONS_ALIKE && !alike))
+    m_regions = alike ? REGIONS_ALIKE : REGIONS_NOT_ALIKE;
+  if (m_regions == REGIONS_NOT_ALIKE || m_regions == REGIONS_HIDDEN)
+    m_fit = robustFit();
+  else if (outlines)
+    m_fit = onOutlines(m_fit);
+  // Hidden or bent, decided once the view is near the goal (the fit is then at its most accurate): an occluder only
+  // hides, so the view laid by the fit lies inside the desired region; a bend sticks out. A bent view's outline fit
+  // has two basins or more (a bent hammer's, 0.25 % apart in scale), and the tracked correspondence started it in one
+  // or the other from one image to the next: a loop chattering about a goal 3-14 mm off until its budget ran out.
+  // The regions' centroid and area then stand, as for a view alike.
+  // A current contour without its region against a desired one with it is an outline joined across an occluder's cut
+  // (vpMorphContourExtractor): it sticks out along its bridge, and is hidden, not bent.
+  if (m_regions == REGIONS_NOT_ALIKE && !m_contour.hasRegion())
+    m_regions = REGIONS_HIDDEN;
+  if (m_regions == REGIONS_NOT_ALIKE && std::fabs(m_fit.theta()) < kDecideTurn) {
+    const vpMorphContour view = outlines ? m_contour.outline().resampled(kOutsidePoints) : m_contour;
+    const vpMorphContour goal = outlines ? sd->m_contour.outline().resampled(kOutsidePoints) : sd->m_contour;
+    m_regions = vpMorphRegionCheck::outsideShare(m_fit, view, goal) > kDeformedOutside ? REGIONS_BENT : REGIONS_HIDDEN;
+    if (m_regions == REGIONS_BENT && outlines)
+      m_fit = onOutlines(vpMorphRigidTransform::fitLeastSquares(m_contour, sd->m_contour, corr, true,
+                                                                vpMorphRigidTransform::NO_ROBUST));
   }
   s[2] = -m_fit.theta();
-  // The regions measured on both images, or the polygons' for both (one measured region against a polygon's area
-  // would be a bias of the depth).
-  const bool regions = m_contour.hasRegion() && sd->m_contour.hasRegion();
-  const double *cur = regions ? &s[0] : m_polyS, *des = regions ? &sd->s[0] : sd->m_polyS;
-  const double cs = regions ? s[3] : m_polyS[2], ds = regions ? sd->s[3] : sd->m_polyS[2];
+  double full[4] = {0.0, 0.0, s[2], 0.0};
+  if (m_regions == REGIONS_ALIKE || m_regions == REGIONS_BENT) {
+    // The regions measured on both images, or the polygons' for both (one measured region against a polygon's area
+    // would be a bias of the depth).
+    const bool regions = m_contour.hasRegion() && sd->m_contour.hasRegion();
+    const double *cur = regions ? &s[0] : m_polyS, *des = regions ? &sd->s[0] : sd->m_polyS;
+    const double cs = regions ? s[3] : m_polyS[2], ds = regions ? sd->s[3] : sd->m_polyS[2];
+    full[0] = cur[0] - des[0];
+    full[1] = cur[1] - des[1];
+    full[3] = cs - ds;
+  } else {
+    // Part of the object hidden: the desired values are where the fit lays the current centroid and at what size.
+    // The visible part is a fixed part of the object (an occluder lies on the plane), so at the goal its centroid is
+    // seen where the fit puts it, and its area grows by the fit's scale squared; the desired region's own centroid
+    // and area (a whole object against a part of it) would be a bias of centimetres.
+    double gx, gy;
+    m_fit.apply(s[0], s[1], gx, gy);
+    full[0] = s[0] - gx;
+    full[1] = s[1] - gy;
+    full[3] = -std::log(m_fit.scale());
+  }
   vpColVector e(0);
-  const double full[4] = {cur[0] - des[0], cur[1] - des[1], s[2], cs - ds};
   for (unsigned int k = 0; k < 4; ++k)
     if (select & FEATURE_LINE[k])
       e.stack(full[k]);

@@ -3,10 +3,14 @@
 // eye-in-hand control laws).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
 #include <visp3/core/vpExponentialMap.h>
+#include <visp3/core/vpMomentObject.h>
+#include <visp3/core/vpPoint.h>
 #include <visp3/core/vpVelocityTwistMatrix.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_vs/vpFeatureMorph.h>
@@ -254,13 +258,15 @@ TEST_CASE("vpFeatureMorph takes the measured region and outline when both contou
   // Only one outline: the polygons' fit.
   CHECK(error(withOutline, exactD, 0.6)[2] == Approx(thetaPoly).margin(1e-12));
 
-  // A measured region 10 % larger and 2 px to the right of the polygon's: centroid and scale from the regions when
-  // both have one, from the polygons when only one does (a region against a polygon would bias the depth).
+  // A measured region 10 % larger and 2 px to the right of the polygon's (the same shape: its moments over area grow
+  // with the area): centroid and scale from the regions when both have one, from the polygons when only one does (a
+  // region against a polygon would bias the depth).
   double cx, cy, cxd, cyd;
   exact.centroid(cx, cy);
   exactD.centroid(cxd, cyd);
   vpMorphContour region = exact, desiredRegion = exactD;
-  region.setRegion(1.1 * exact.area(), cx + 2.0, cy, 100.0, 0.0, 100.0);
+  region.setRegion(1.1 * exact.area(), cx + 2.0, cy, 110.0 * exact.area() / exactD.area(), 0.0,
+                   110.0 * exact.area() / exactD.area());
   desiredRegion.setRegion(exactD.area(), cxd, cyd, 100.0, 0.0, 100.0);
   const vpColVector ePoly = error(exact, exactD, 0.6), eBoth = error(region, desiredRegion, 0.6);
   CHECK(eBoth[0] == Approx(ePoly[0] + 2.0 / camera().get_px()).margin(1e-9));
@@ -269,6 +275,66 @@ TEST_CASE("vpFeatureMorph takes the measured region and outline when both contou
   const vpColVector eOne = error(region, exactD, 0.6);
   CHECK(eOne[0] == Approx(ePoly[0]).margin(1e-12));
   CHECK(eOne[3] == Approx(ePoly[3]).margin(1e-12));
+}
+
+namespace
+{
+// The bracket seen from cMo, in pixels, with the region and the edges a measurement gives (here the polygon's own),
+// optionally with the end of its long arm hidden beyond x = cutX (metres, the object frame): a card on the plane.
+vpMorphContour measuredBracket(const vpHomogeneousMatrix &cMo, double cutX = 1.0)
+{
+  std::vector<vpImagePoint> pts;
+  for (vpColVector P : objectPoints()) {
+    P[0] = std::min(P[0], cutX);
+    const vpColVector X = cMo * P;
+    const double x = X[0] / X[2], y = X[1] / X[2];
+    pts.emplace_back(camera().get_v0() + camera().get_py() * y, camera().get_u0() + camera().get_px() * x);
+  }
+  vpMorphContour c(pts, vpMorphContour::PIXEL);
+  // The region's moments from ViSP's own dense-polygon moments (an oracle independent of the feature's).
+  std::vector<vpPoint> vertices(c.size());
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    vertices[i].set_x(c.x(i));
+    vertices[i].set_y(c.y(i));
+  }
+  vpMomentObject m(2);
+  m.setType(vpMomentObject::DENSE_POLYGON);
+  m.fromVector(vertices);
+  const double a = m.get(0, 0), xg = m.get(1, 0) / a, yg = m.get(0, 1) / a;
+  c.setRegion(std::fabs(a), xg, yg, m.get(2, 0) / a - xg * xg, m.get(1, 1) / a - xg * yg, m.get(0, 2) / a - yg * yg);
+  c.setOutline(c.resampled(400));
+  return c;
+}
+} // namespace
+
+TEST_CASE("vpFeatureMorph lays a view with part of the object hidden by the part it shows", "[feature]")
+{
+  // A card hides the end of the bracket's long arm (a fifth of its area). The regions' centroid and area would carry
+  // the hidden part into the error, centimetres off at the goal; the visible outline's robust fit does not. Its
+  // desired values are where that fit lays the visible part: the error is the whole view's similarity applied to it.
+  const vpHomogeneousMatrix cdMo = planarPose(10, 0.01, 0.0);
+  const double px = camera().get_px();
+  for (const auto &st : {std::array<double, 4>{{0, 0.0, 0.0, 0.5}}, std::array<double, 4>{{40, 0.03, -0.02, 0.55}},
+                         std::array<double, 4>{{-150, -0.02, 0.03, 0.45}}}) {
+    const vpHomogeneousMatrix cMo = planarPose(10 + st[0], 0.01 + st[1], st[2], st[3]);
+    vpFeatureMorph sd, whole, hidden;
+    sd.buildFrom(measuredBracket(cdMo), camera(), 0.5);
+    whole.buildFrom(measuredBracket(cMo), camera(), st[3]);
+    hidden.buildFrom(measuredBracket(cMo, 0.04), camera(), st[3]);
+    const vpColVector eWhole = whole.error(sd), eHidden = hidden.error(sd);
+    double gx, gy; // where the whole view's similarity lays the visible part's centroid
+    whole.lastFit().apply(hidden.get_xg(), hidden.get_yg(), gx, gy);
+    INFO("start " << st[0] << " deg: error whole (" << eWhole.t() << "), hidden (" << eHidden.t() << "), the hidden "
+                  << "region's sigma " << hidden.get_sigma() - sd.get_sigma() << " from the desired's");
+    CHECK(px * std::fabs(eHidden[0] - (hidden.get_xg() - gx)) < 0.02);
+    CHECK(px * std::fabs(eHidden[1] - (hidden.get_yg() - gy)) < 0.02);
+    CHECK(std::fabs(eHidden[2] - eWhole[2]) < vpMath::rad(0.005));
+    CHECK(std::fabs(eHidden[3] - eWhole[3]) < 1e-4);
+    // The test's premise: the hidden region is far from the whole one's (its area a fifth smaller).
+    CHECK(std::fabs(hidden.get_sigma() - sd.get_sigma() - eWhole[3]) > 0.05);
+    if (st[0] == 0.0) // at the goal: no error
+      CHECK(px * eHidden.frobeniusNorm() < 0.02);
+  }
 }
 
 TEST_CASE("vpFeatureMorph converges in a stock vpServo with current, desired and mean L, camera and cVe eJe laws",
