@@ -385,8 +385,6 @@ public:
       m_built = false; // a new goal
       m_havePrev = false;
     }
-    if (featureJump(c))
-      return stopCommand("feature-jump");
     const Clock::time_point t0 = Clock::now();
     const double Zd = m_template->cdMo()[2][3];
     try {
@@ -405,6 +403,8 @@ public:
         m_built = true;
       }
       const vpColVector vc = m_task->computeControlLaw();
+      if (fitJumped(m_s.lastFit()))
+        return stopCommand("feature-jump");
       cmd.v = vpVelocityTwistMatrix(m_ctx.eMc) * vc;
     } catch (const vpException &e) {
       return stopCommand("feature-error");
@@ -418,28 +418,26 @@ public:
 
 private:
   /*!
-    A stock vpServo has no plan to re-make and no test of its own input: a view that jumps (a bump, an occluder
-    covering part of the object) would drag it anywhere. The contour's centroid and area may move per period by
-    about lambda dt of their errors to the goal (the centroid also by the rotation error about the principal
-    point); twice that plus 15 px or 5 % of the area is a jump, and the adapter stops ("feature-jump").
+    A stock vpServo has no plan to re-make and no test of its own input: a view that jumps (a bump, the camera
+    displaced, another shape taken for the object) would drag it anywhere. The feature's fit to the goal (rotation,
+    translation, scale) changes per period by about lambda dt of itself; twice that plus 2 deg, 15 px or 5 % in scale
+    is a jump, and the adapter stops ("feature-jump") before sending the command. On the fit, not on the contour's
+    centroid and area: an outline joined across an occluder's cut changes its bridge, and its area by 6-41 %, from one
+    image to the next while the fit (robust, see vpFeatureMorph) does not move.
   */
-  bool featureJump(const vpMorphContour &c)
+  bool fitJumped(const vpMorphRigidTransform &T)
   {
-    double cx, cy, gx, gy;
-    c.centroid(cx, cy);
-    m_template->contour().centroid(gx, gy);
-    const double a = c.area(), ga = m_template->contour().area(), g = m_ctx.lambda * m_ctx.samplingTime;
+    const double g = m_ctx.lambda * m_ctx.samplingTime, px = m_ctx.cam.get_px(), py = m_ctx.cam.get_py();
     bool jump = false;
-    if (m_havePrev && a > 0 && m_prevArea > 0) {
-      const double theta = m_built ? std::fabs(m_s.lastFit().theta()) : M_PI;
-      const double r = std::hypot(m_prevCx - m_ctx.cam.get_u0(), m_prevCy - m_ctx.cam.get_v0());
-      const double allowedPx = 2.0 * g * (std::hypot(m_prevCx - gx, m_prevCy - gy) + theta * r) + 15.0;
-      const double allowedArea = 2.0 * g * std::fabs(std::log(m_prevArea / ga)) + 0.05;
-      jump = std::hypot(cx - m_prevCx, cy - m_prevCy) > allowedPx || std::fabs(std::log(a / m_prevArea)) > allowedArea;
+    if (m_havePrev) {
+      const double dth = std::fabs(std::remainder(T.theta() - m_prevFit.theta(), 2.0 * M_PI));
+      const double dt = std::hypot((T.tx() - m_prevFit.tx()) * px, (T.ty() - m_prevFit.ty()) * py);
+      const double ds = std::fabs(std::log(T.scale() / m_prevFit.scale()));
+      jump = dth > 2.0 * g * std::fabs(m_prevFit.theta()) + vpMath::rad(2.0) ||
+             dt > 2.0 * g * std::hypot(m_prevFit.tx() * px, m_prevFit.ty() * py) + 15.0 ||
+             ds > 2.0 * g * std::fabs(std::log(m_prevFit.scale())) + 0.05;
     }
-    m_prevCx = cx;
-    m_prevCy = cy;
-    m_prevArea = a;
+    m_prevFit = T;
     m_havePrev = true;
     return jump;
   }
@@ -459,7 +457,7 @@ private:
   bool m_built = false;
   unsigned int m_measured = 0;
   bool m_havePrev = false;
-  double m_prevCx = 0, m_prevCy = 0, m_prevArea = 0;
+  vpMorphRigidTransform m_prevFit; // the feature's fit at the last period
 };
 
 //! IBVS on the 4 tag corners (ViSP's tutorial-ibvs-4pts set-up), depth of each corner from the tag pose.

@@ -155,9 +155,11 @@ TEST_CASE("bench: vpFeatureMorph in a stock vpServo settles on the measured regi
 TEST_CASE("bench: vpFeatureMorph in a stock vpServo lays an occluded view by the part it shows", "[bench]")
 {
   // Seed 1's occlusion set: a pliers that a card cuts in two (its outline joined across the cut, no region) and a
-  // wedge whose end a card hides. With the regions' centroid and area the loop converged 17.6 and 20.6 mm off.
+  // wedge whose end a card hides: with the regions' centroid and area the loop converged 17.6 and 20.6 mm off. A key
+  // and a screwdriver joined across a card whose bridge changes from one image to the next (their areas by 6-7 %):
+  // the adapter took that for a jump of the view and stopped, where the robust fit does not move.
   const std::vector<vpMorphBenchScenario> scs = vpMorphBenchScenario::generate("occlusion", 10, 1, kData);
-  for (std::size_t k : {0, 1}) {
+  for (std::size_t k : {0, 1, 2, 4}) {
     const vpMorphBenchResult r = bench().run(scs[k], "morph-vpservo");
     INFO(scs[k].describe() << ": " << r.failure << ", " << 1000 * r.finalTranslation << " mm, "
                            << vpMath::deg(r.finalRotation) << " deg, " << r.iterations << " it");

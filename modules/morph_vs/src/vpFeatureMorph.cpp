@@ -260,6 +260,8 @@ vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int sel
                            "vpFeatureMorph::error: the desired feature has no contour; call its buildFrom() "
                            "(vpServo::addFeature(s) alone gives an empty desired feature)");
   const vpMorphCorrespondence &corr = m_tracker.update(m_contour, sd->m_contour);
+  const vpMorphRigidTransform previous = m_fit;
+  const bool wasHidden = m_regions == REGIONS_HIDDEN;
   const bool outlines = m_contour.hasOutline() && sd->m_contour.hasOutline();
   const double tenthPixel = m_cam.get_px() > 0.0 ? 0.1 / m_cam.get_px() : 0.0;
   // Both outlines measured: the fit refined on them, point to edge, robust scale floored at a tenth of a pixel. It does
@@ -288,10 +290,29 @@ vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int sel
       !sd->m_contour.hasRegion() || vpMorphRegionCheck::alike(sd->m_contour, m_contour, m_fit.scale(), kRegionMismatch);
   if (m_regions == REGIONS_UNDECIDED || (m_regions == REGIONS_ALIKE && !alike))
     m_regions = alike ? REGIONS_ALIKE : REGIONS_NOT_ALIKE;
-  if (m_regions == REGIONS_NOT_ALIKE || m_regions == REGIONS_HIDDEN)
+  // Share of the view that T lays outside the desired region (on the outlines when both have them, resampled once).
+  vpMorphContour view, goal;
+  auto outside = [&](const vpMorphRigidTransform &T) {
+    if (view.empty()) {
+      view = outlines ? m_contour.outline().resampled(kOutsidePoints) : m_contour;
+      goal = outlines ? sd->m_contour.outline().resampled(kOutsidePoints) : sd->m_contour;
+    }
+    return vpMorphRegionCheck::outsideShare(T, view, goal);
+  };
+  if (m_regions == REGIONS_NOT_ALIKE || m_regions == REGIONS_HIDDEN) {
     m_fit = robustFit();
-  else if (outlines)
+    // A hidden view's fit can have two basins (an outline joined across a card, whose bridge changes from one image
+    // to the next: a key's scales 4 % apart), and the correspondence started it in one or the other: a loop
+    // chattering until its budget ran out. Also refined from the last period's fit; kept, the one that lays the view
+    // more inside the desired region, as an occluder only hides.
+    if (wasHidden && outlines) {
+      const vpMorphRigidTransform Tp = onOutlines(previous);
+      if (outside(Tp) < outside(m_fit))
+        m_fit = Tp;
+    }
+  } else if (outlines) {
     m_fit = onOutlines(m_fit);
+  }
   // Hidden or bent, decided once the view is near the goal (the fit is then at its most accurate): an occluder only
   // hides, so the view laid by the fit lies inside the desired region; a bend sticks out. A bent view's outline fit
   // has two basins or more (a bent hammer's, 0.25 % apart in scale), and the tracked correspondence started it in one
@@ -302,9 +323,7 @@ vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int sel
   if (m_regions == REGIONS_NOT_ALIKE && !m_contour.hasRegion())
     m_regions = REGIONS_HIDDEN;
   if (m_regions == REGIONS_NOT_ALIKE && std::fabs(m_fit.theta()) < kDecideTurn) {
-    const vpMorphContour view = outlines ? m_contour.outline().resampled(kOutsidePoints) : m_contour;
-    const vpMorphContour goal = outlines ? sd->m_contour.outline().resampled(kOutsidePoints) : sd->m_contour;
-    m_regions = vpMorphRegionCheck::outsideShare(m_fit, view, goal) > kDeformedOutside ? REGIONS_BENT : REGIONS_HIDDEN;
+    m_regions = outside(m_fit) > kDeformedOutside ? REGIONS_BENT : REGIONS_HIDDEN;
     if (m_regions == REGIONS_BENT && outlines)
       m_fit = onOutlines(vpMorphRigidTransform::fitLeastSquares(m_contour, sd->m_contour, corr, true,
                                                                 vpMorphRigidTransform::NO_ROBUST));
