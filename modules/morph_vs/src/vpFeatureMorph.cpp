@@ -248,6 +248,74 @@ vpMatrix vpFeatureMorph::interaction(unsigned int select)
   return L;
 }
 
+vpMorphRigidTransform vpFeatureMorph::fitToDesired(const vpFeatureMorph &sd, const vpMorphCorrespondence &corr)
+{
+  const vpMorphContour &des = sd.m_contour;
+  const bool outlines = m_contour.hasOutline() && des.hasOutline();
+  const double tenthPixel = m_cam.get_px() > 0.0 ? 0.1 / m_cam.get_px() : 0.0;
+  // Both outlines measured: the fit refined on them, point to edge, robust scale floored at a tenth of a pixel. It does
+  // not move with the polygons' vertices as the corresponded vertices' fit does.
+  auto onOutlines = [&](const vpMorphRigidTransform &T) {
+    try {
+      return vpMorphRigidTransform::refineOnOutline(m_contour.outline(), des.outline(), T, true, tenthPixel);
+    } catch (const vpException &) {
+      return T; // an outline fit that degenerates: the corresponded vertices' fit stands
+    }
+  };
+  const vpMorphRigidTransform plain =
+      vpMorphRigidTransform::fitLeastSquares(m_contour, des, corr, true, vpMorphRigidTransform::NO_ROBUST);
+  // Decided at the first error() after init(), then only from alike to not alike (an occluder that comes): switching
+  // between the regions' and the fit's estimates from one image to the next makes a loop chatter (see vpServoMorph).
+  // Only against a desired contour with its measured region (a template): a polygon goal (a morph's frame, a drawn
+  // contour) has no region to compare with, and polygons' areas are no test (a thin tool's strays by 2-3 %).
+  const bool alike = !des.hasRegion() || vpMorphRegionCheck::alike(des, m_contour, plain.scale(), kRegionMismatch);
+  const bool wasHidden = m_regions == REGIONS_HIDDEN;
+  if (m_regions == REGIONS_UNDECIDED || (m_regions == REGIONS_ALIKE && !alike))
+    m_regions = alike ? REGIONS_ALIKE : REGIONS_NOT_ALIKE;
+  // A current contour without its region against a desired one with it is an outline joined across an occluder's cut
+  // (vpMorphContourExtractor): it sticks out along its bridge, and is hidden, not bent.
+  if (m_regions == REGIONS_NOT_ALIKE && !m_contour.hasRegion())
+    m_regions = REGIONS_HIDDEN;
+  if (m_regions == REGIONS_ALIKE || m_regions == REGIONS_BENT)
+    return outlines ? onOutlines(plain) : plain;
+
+  // Part of the object hidden (or not yet decided): the corresponded vertices crowd the hidden part onto the cut, and
+  // the plain least squares follow them; the robust ones weigh them out.
+  vpMorphRigidTransform T =
+      vpMorphRigidTransform::fitLeastSquares(m_contour, des, corr, true, vpMorphRigidTransform::TUKEY);
+  if (outlines)
+    T = onOutlines(T);
+  // Share of the view that F lays outside the desired region (on the outlines when both have them, resampled once).
+  vpMorphContour view, goal;
+  auto outside = [&](const vpMorphRigidTransform &F) {
+    if (view.empty()) {
+      view = outlines ? m_contour.outline().resampled(kOutsidePoints) : m_contour;
+      goal = outlines ? des.outline().resampled(kOutsidePoints) : des;
+    }
+    return vpMorphRegionCheck::outsideShare(F, view, goal);
+  };
+  // A hidden view's fit can have two basins (an outline joined across a card, whose bridge changes from one image to
+  // the next: a key's scales 4 % apart), and the correspondence started it in one or the other: a loop chattering
+  // until its budget ran out. Also refined from the last period's fit; kept, the one that lays the view more inside
+  // the desired region, as an occluder only hides.
+  if (wasHidden && outlines) {
+    const vpMorphRigidTransform Tp = onOutlines(m_fit);
+    if (outside(Tp) < outside(T))
+      T = Tp;
+  }
+  // Hidden or bent, decided once the view is near the goal (the fit is then at its most accurate): an occluder only
+  // hides, so the view laid by the fit lies inside the desired region; a bend sticks out. A bent view's outline fit
+  // has two basins or more (a bent hammer's, 0.25 % apart in scale), and the tracked correspondence started it in one
+  // or the other from one image to the next: a loop chattering about a goal 3-14 mm off until its budget ran out.
+  // The regions' centroid and area then stand, as for a view alike.
+  if (m_regions == REGIONS_NOT_ALIKE && std::fabs(T.theta()) < kDecideTurn) {
+    m_regions = outside(T) > kDeformedOutside ? REGIONS_BENT : REGIONS_HIDDEN;
+    if (m_regions == REGIONS_BENT)
+      return outlines ? onOutlines(plain) : plain;
+  }
+  return T;
+}
+
 vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int select)
 {
   const vpFeatureMorph *sd = dynamic_cast<const vpFeatureMorph *>(&s_star);
@@ -259,75 +327,7 @@ vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int sel
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpFeatureMorph::error: the desired feature has no contour; call its buildFrom() "
                            "(vpServo::addFeature(s) alone gives an empty desired feature)");
-  const vpMorphCorrespondence &corr = m_tracker.update(m_contour, sd->m_contour);
-  const vpMorphRigidTransform previous = m_fit;
-  const bool wasHidden = m_regions == REGIONS_HIDDEN;
-  const bool outlines = m_contour.hasOutline() && sd->m_contour.hasOutline();
-  const double tenthPixel = m_cam.get_px() > 0.0 ? 0.1 / m_cam.get_px() : 0.0;
-  // Both outlines measured: the fit refined on them, point to edge, robust scale floored at a tenth of a pixel. It does
-  // not move with the polygons' vertices as the corresponded vertices' fit does.
-  auto onOutlines = [&](const vpMorphRigidTransform &T) {
-    try {
-      return vpMorphRigidTransform::refineOnOutline(m_contour.outline(), sd->m_contour.outline(), T, true, tenthPixel);
-    } catch (const vpException &) {
-      return T; // an outline fit that degenerates: the corresponded vertices' fit stands
-    }
-  };
-  auto robustFit = [&]() {
-    // A part hidden: the corresponded vertices crowd it onto the cut, and the plain least squares follow them; the
-    // robust ones weigh them out.
-    const vpMorphRigidTransform T =
-        vpMorphRigidTransform::fitLeastSquares(m_contour, sd->m_contour, corr, true, vpMorphRigidTransform::TUKEY);
-    return outlines ? onOutlines(T) : T;
-  };
-  m_fit =
-      vpMorphRigidTransform::fitLeastSquares(m_contour, sd->m_contour, corr, true, vpMorphRigidTransform::NO_ROBUST);
-  // Decided at the first error() after init(), then only from alike to not alike (an occluder that comes): switching
-  // between the regions' and the fit's estimates from one image to the next makes a loop chatter (see vpServoMorph).
-  // Only against a desired contour with its measured region (a template): a polygon goal (a morph's frame, a drawn
-  // contour) has no region to compare with, and polygons' areas are no test (a thin tool's strays by 2-3 %).
-  const bool alike =
-      !sd->m_contour.hasRegion() || vpMorphRegionCheck::alike(sd->m_contour, m_contour, m_fit.scale(), kRegionMismatch);
-  if (m_regions == REGIONS_UNDECIDED || (m_regions == REGIONS_ALIKE && !alike))
-    m_regions = alike ? REGIONS_ALIKE : REGIONS_NOT_ALIKE;
-  // Share of the view that T lays outside the desired region (on the outlines when both have them, resampled once).
-  vpMorphContour view, goal;
-  auto outside = [&](const vpMorphRigidTransform &T) {
-    if (view.empty()) {
-      view = outlines ? m_contour.outline().resampled(kOutsidePoints) : m_contour;
-      goal = outlines ? sd->m_contour.outline().resampled(kOutsidePoints) : sd->m_contour;
-    }
-    return vpMorphRegionCheck::outsideShare(T, view, goal);
-  };
-  if (m_regions == REGIONS_NOT_ALIKE || m_regions == REGIONS_HIDDEN) {
-    m_fit = robustFit();
-    // A hidden view's fit can have two basins (an outline joined across a card, whose bridge changes from one image
-    // to the next: a key's scales 4 % apart), and the correspondence started it in one or the other: a loop
-    // chattering until its budget ran out. Also refined from the last period's fit; kept, the one that lays the view
-    // more inside the desired region, as an occluder only hides.
-    if (wasHidden && outlines) {
-      const vpMorphRigidTransform Tp = onOutlines(previous);
-      if (outside(Tp) < outside(m_fit))
-        m_fit = Tp;
-    }
-  } else if (outlines) {
-    m_fit = onOutlines(m_fit);
-  }
-  // Hidden or bent, decided once the view is near the goal (the fit is then at its most accurate): an occluder only
-  // hides, so the view laid by the fit lies inside the desired region; a bend sticks out. A bent view's outline fit
-  // has two basins or more (a bent hammer's, 0.25 % apart in scale), and the tracked correspondence started it in one
-  // or the other from one image to the next: a loop chattering about a goal 3-14 mm off until its budget ran out.
-  // The regions' centroid and area then stand, as for a view alike.
-  // A current contour without its region against a desired one with it is an outline joined across an occluder's cut
-  // (vpMorphContourExtractor): it sticks out along its bridge, and is hidden, not bent.
-  if (m_regions == REGIONS_NOT_ALIKE && !m_contour.hasRegion())
-    m_regions = REGIONS_HIDDEN;
-  if (m_regions == REGIONS_NOT_ALIKE && std::fabs(m_fit.theta()) < kDecideTurn) {
-    m_regions = outside(m_fit) > kDeformedOutside ? REGIONS_BENT : REGIONS_HIDDEN;
-    if (m_regions == REGIONS_BENT && outlines)
-      m_fit = onOutlines(vpMorphRigidTransform::fitLeastSquares(m_contour, sd->m_contour, corr, true,
-                                                                vpMorphRigidTransform::NO_ROBUST));
-  }
+  m_fit = fitToDesired(*sd, m_tracker.update(m_contour, sd->m_contour));
   s[2] = -m_fit.theta();
   double full[4] = {0.0, 0.0, s[2], 0.0};
   if (m_regions == REGIONS_ALIKE || m_regions == REGIONS_BENT) {

@@ -141,6 +141,8 @@ public:
 
 private:
   void checkBuilt(const char *caller) const;
+  //! The similarity from this contour to sd's over \e corr, and whether a part of it is hidden (see the class).
+  vpMorphRigidTransform fitToDesired(const vpFeatureMorph &sd, const vpMorphCorrespondence &corr);
   void setContour(const vpMorphContour &normalized, double A, double B, double C);
 
   vpMorphContour m_contour; // normalised
