@@ -322,12 +322,13 @@ vpMorphRigidTransform vpFeatureMorph::fitToDesired(const vpFeatureMorph &sd, con
   // Part of the object hidden (or not yet decided).
   vpMorphRigidTransform T = robustFit();
   // A hidden view's fit can have two basins (an outline joined across a card, whose bridge changes from one image to
-  // the next: a key's scales 4 % apart), and the correspondence started it in one or the other: a loop chattering
-  // until its budget ran out. Also refined from the last period's fit; kept, the one that lays the view more inside
-  // the desired region, as an occluder only hides.
+  // the next: a key's scales 4 % apart, a screwdriver's 7 %), and the correspondence started it in one or the other: a
+  // loop chattering until its budget ran out, or a jump. Also refined from the last period's fit; kept, the one whose
+  // scale moved less since, as the depth changes little in a period. (The one laying the view more inside the desired
+  // region was kept first: shrinking a view always does that, and a screwdriver's scale jumped by 7 %.)
   if (wasHidden && outlines) {
     const vpMorphRigidTransform Tp = onOutlines(m_fit);
-    if (outside(Tp) < outside(T))
+    if (std::fabs(std::log(Tp.scale() / m_fit.scale())) < std::fabs(std::log(T.scale() / m_fit.scale())))
       T = Tp;
   }
   // Hidden or bent, decided once the view is near the goal (the fit is then at its most accurate): an occluder only

@@ -48,9 +48,9 @@
   desired values the fit gives its own region: \f$x_g^*, y_g^*\f$ where the fit lays its centroid, \f$\sigma^* =
   \sigma + \ln s\f$ with \e s the fit's scale. The visible part is a fixed part of the object (the occluder lies on the
   plane), so these are its values at the goal; the desired region's own centroid and area (the whole object against a
-  part of it) put the loop 13-49 mm off. Its fit is also refined from the last error()'s, and the one laying the view
-  more inside the desired region is kept: the fit of an outline joined across a card, whose bridge changes from one
-  image to the next, has two basins (a key's 4 % apart in scale), between which the loop chattered. A bent view
+  part of it) put the loop 13-49 mm off. Its fit is also refined from the last error()'s, and the one whose scale moved
+  less is kept: the fit of an outline joined across a card, whose bridge changes from one image to the next, has two
+  basins (a key's 4 % apart in scale), between which the loop chattered or jumped. A bent view
   keeps the regions, as a view alike. Regions alike are checked once too, near the goal: a small occluder barely
   changes their invariants, and a view that the regions lay out of the desired region (by 2 %) and the robust fit
   inside it is hidden from then on. The decisions are reset by init().
