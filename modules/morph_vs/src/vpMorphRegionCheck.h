@@ -10,20 +10,21 @@
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 
-/*
-  Whether two contours show one region seen twice (up to a similarity), so that the areas and centroids of their
-  regions can stand for the pose: not so when part of the object is hidden or it is deformed. With measured regions,
-  compared by two similarity invariants of their second-order moments (spread over area, and eccentricity): noise and
-  blur move them by under 1 %, a card hiding 5-20 % of a tool by 5-33 % (measured on the bench sets). A polygon-fitted
-  scale is not used there: on a thin-handled tool it strays 2-3 % from the region's (a noisy first frame was judged
-  occluded and vpServoMorph stopped 1.5 mm deep). A region on one side only is not alike: an extracted contour without
-  its region is an outline joined across an occluder's cut, whose polygon area and centroid carry the bridge
-  (measured: an occluded screwdriver settling 8.2 mm off, a key re-planning until the limit). Without regions on either
-  side, the polygons' area ratio against the fitted scale \e fittedScale. Used by vpServoMorph and vpFeatureMorph.
-*/
+//! The tests that vpServoMorph and vpFeatureMorph make of the current region against the goal's.
 class vpMorphRegionCheck
 {
 public:
+  /*
+    Whether two contours show one region seen twice (up to a similarity), so that the areas and centroids of their
+    regions can stand for the pose: not so when part of the object is hidden or it is deformed. With measured
+    regions, compared by two similarity invariants of their second-order moments (spread over area, and
+    eccentricity): noise and blur move them by under 1 %, a card hiding 5-20 % of a tool by 5-33 % (measured on the
+    bench sets). A polygon-fitted scale is not used there: on a thin-handled tool it strays 2-3 % from the region's (a
+    noisy first frame was judged occluded and vpServoMorph stopped 1.5 mm deep). A region on one side only is not
+    alike: an extracted contour without its region is an outline joined across an occluder's cut, whose polygon area
+    and centroid carry the bridge (measured: an occluded screwdriver settling 8.2 mm off, a key re-planning until the
+    limit). Without regions on either side, the polygons' area ratio against the fitted scale \e fittedScale.
+  */
   static bool alike(const vpMorphContour &goal, const vpMorphContour &current, double fittedScale, double tolerance)
   {
     if (goal.hasRegion() && current.hasRegion()) {

@@ -50,10 +50,11 @@
   plane), so these are its values at the goal; the desired region's own centroid and area (the whole object against a
   part of it) put the loop 13-49 mm off. Its fit is also refined from the last error()'s, and the one whose scale moved
   less is kept: the fit of an outline joined across a card, whose bridge changes from one image to the next, has two
-  basins (a key's 4 % apart in scale), between which the loop chattered or jumped. A bent view
-  keeps the regions, as a view alike. Regions alike are checked once too, near the goal: a small occluder barely
-  changes their invariants, and a view that the regions lay out of the desired region (by 2 %) and the robust fit
-  inside it is hidden from then on. The decisions are reset by init().
+  basins (a key's 4 % apart in scale), between which the loop chattered or jumped. A bent view keeps the regions, as a
+  view alike. Regions alike are checked once too, near the goal: a small occluder barely changes their invariants, and
+  a view that the regions lay out of the desired region (by 2 %) and the robust fit inside it is hidden from then on.
+  The decisions are reset by init().
+
   <b>Interaction matrices</b> (6 columns, camera velocity \f$(v, \omega)\f$), for a planar object whose plane is
   \f$1/Z = A x + B y + C\f$ in the camera frame (buildFrom() with a depth Z assumes the plane parallel to the
   image, A = B = 0, C = 1/Z: the paper's task; pass A, B, C when the tilt is known). With \f$n_{ij} = \mu_{ij}/a\f$
@@ -155,7 +156,7 @@ private:
   vpMorphCorrespondenceTracker m_tracker;
   vpMorphRigidTransform m_fit;
   // Whether the current region is the desired one seen again, or not (then, near the goal, found a part of it hidden
-  // or bent: see error()); reset by init().
+  // or bent: see the class); reset by init().
   enum {
     REGIONS_UNDECIDED,
     REGIONS_ALIKE,
@@ -163,7 +164,7 @@ private:
     REGIONS_HIDDEN,
     REGIONS_BENT
   } m_regions = REGIONS_UNDECIDED;
-  bool m_regionsChecked = false; // regions alike, checked once near the goal against the robust fit (see error())
+  bool m_regionsChecked = false; // regions alike, checked once near the goal against the robust fit
 };
 
 #endif
