@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include <visp3/core/vpDisplay.h>
+#include <visp3/core/vpMath.h>
 #include <visp3/morph/vpMorphException.h>
 
 #include "vpMorphRegionCheck.h"
@@ -19,6 +20,12 @@ const double kDeformedOutside = 0.02;
 const std::size_t kOutsidePoints = 128;
 // Rotation of the fit to the goal under which a view not alike is judged hidden or bent.
 const double kDecideTurn = 5.0 * M_PI / 180.0;
+// The largest undeformed part of a bent view (as vpServoMorph's): edges within this distance (pixels) of the
+// template's, over at least this share of the outline sampled at kPartSamples points; searched every kPartPeriod
+// periods.
+const double kPartTolerancePx = 0.25, kPartMinShare = 0.1;
+const std::size_t kPartSamples = 256;
+const unsigned int kPartPeriod = 8;
 
 // Region moments of a polygon (Green's theorem): area a, centroid, normalised centred moments mu_ij / a.
 void regionMoments(const vpMorphContour &c, double &a, double &xg, double &yg, double &n20, double &n02, double &n11)
@@ -72,6 +79,10 @@ void vpFeatureMorph::init()
   m_fit = vpMorphRigidTransform();
   m_regions = REGIONS_UNDECIDED;
   m_regionsChecked = false;
+  m_bentCount = 0;
+  m_partKnown = false;
+  m_partOffset = vpMorphRigidTransform();
+  m_scaleBias = 1.0;
 }
 
 void vpFeatureMorph::buildFrom(const vpMorphContour &contour, const vpCameraParameters &cam, double Z)
@@ -294,7 +305,7 @@ vpMorphRigidTransform vpFeatureMorph::fitToDesired(const vpFeatureMorph &sd, con
     return outlines ? onOutlines(T) : T;
   };
   if (m_regions == REGIONS_BENT)
-    return outlines ? onOutlines(plain) : plain;
+    return outlines ? bentFit(sd, onOutlines(m_fit), true) : plain;
   if (m_regions == REGIONS_ALIKE) {
     const vpMorphRigidTransform T = outlines ? onOutlines(plain) : plain;
     // A small occluder barely changes the regions' invariants, and their centroids and areas then carry the part it
@@ -339,9 +350,44 @@ vpMorphRigidTransform vpFeatureMorph::fitToDesired(const vpFeatureMorph &sd, con
   if (m_regions == REGIONS_NOT_ALIKE && std::fabs(T.theta()) < kDecideTurn) {
     m_regions = outside(T) > kDeformedOutside ? REGIONS_BENT : REGIONS_HIDDEN;
     if (m_regions == REGIONS_BENT)
-      return outlines ? onOutlines(plain) : plain;
+      return outlines ? bentFit(sd, T, false) : plain;
   }
   return T;
+}
+
+vpMorphRigidTransform vpFeatureMorph::bentFit(const vpFeatureMorph &sd, const vpMorphRigidTransform &base, bool warm)
+{
+  const vpMorphContour &des = sd.m_contour;
+  const double tolerance = kPartTolerancePx / m_cam.get_px();
+  // The scale of the largest part that lies on the template (vpMorphRigidTransform::fitRigidPart: a bent key's bow):
+  // a bend drags the outline fit and changes the area by percents. Searched every kPartPeriod periods (milliseconds),
+  // followed from its offset to the base fit in between; when none is found, the outlines' length ratio (which a bend
+  // nearly keeps) times the last part's ratio to it.
+  const vpMorphContour dense = m_contour.outline().resampled(kPartSamples);
+  const double lengthScale = des.outline().resampled(kPartSamples).perimeter() / dense.perimeter();
+  double share = 0.0;
+  const vpMorphRigidTransform R =
+      !warm || !m_partKnown || m_bentCount % kPartPeriod == 0
+          ? vpMorphRigidTransform::fitRigidPart(dense, des.outline(), base, tolerance, &share)
+          : vpMorphRigidTransform::refineRigidPart(dense, des.outline(), m_partOffset * base, tolerance, &share);
+  ++m_bentCount;
+  m_partKnown = share >= kPartMinShare;
+  if (m_partKnown) {
+    m_partOffset = R * base.inverse();
+    m_scaleBias = R.scale() / lengthScale;
+  }
+  const double scale = m_scaleBias * lengthScale;
+  // Rotation and translation: the placement of largest overlap with the template at that scale (as vpServoMorph's), the
+  // pose the bench's truth holds a bent tool to. Searched over +-10 deg at the decision, then refined from the last
+  // period's placement.
+  const vpMorphContour view = m_contour.outline().resampled(kOutsidePoints);
+  const vpMorphContour goal = des.outline().resampled(kOutsidePoints);
+  if (!warm) {
+    const vpMorphRigidTransform Ts(base.theta(), base.tx(), base.ty(), scale, base.cx(), base.cy());
+    return vpMorphRigidTransform::fitOnOverlap(view, goal, Ts, vpMath::rad(10.0), 5, 25);
+  }
+  const vpMorphRigidTransform last(m_fit.theta(), m_fit.tx(), m_fit.ty(), scale, m_fit.cx(), m_fit.cy());
+  return vpMorphRigidTransform::refineOnOverlap(view, goal, last, 6, 0.002);
 }
 
 vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int select)
@@ -358,7 +404,9 @@ vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int sel
   m_fit = fitToDesired(*sd, m_tracker.update(m_contour, sd->m_contour));
   s[2] = -m_fit.theta();
   double full[4] = {0.0, 0.0, s[2], 0.0};
-  if (m_regions == REGIONS_ALIKE || m_regions == REGIONS_BENT) {
+  // A bent view without outlines has no fit of its own (see bentFit()): the regions, as for a view alike.
+  const bool hasOutlines = m_contour.hasOutline() && sd->m_contour.hasOutline();
+  if (m_regions == REGIONS_ALIKE || (m_regions == REGIONS_BENT && !hasOutlines)) {
     // The regions measured on both images, or the polygons' for both (one measured region against a polygon's area
     // would be a bias of the depth).
     const bool regions = m_contour.hasRegion() && sd->m_contour.hasRegion();
