@@ -51,15 +51,15 @@
   part of it) put the loop 13-49 mm off. Its fit is also refined from the last error()'s, and the one whose scale moved
   less is kept: the fit of an outline joined across a card, whose bridge changes from one image to the next, has two
   basins (a key's 4 % apart in scale), between which the loop chattered or jumped. Regions alike are checked once too,
-  near the goal: a small occluder barely changes their invariants, and a view that the regions lay out of the desired
-  region (by 2 %) and the robust fit inside it is hidden from then on.
+  near the goal: a small occluder or bend barely changes their invariants. A view that the regions lay out of the
+  desired region (by 2 %) is hidden from then on if the robust fit lays it inside, bent if that one does not either.
 
   <b>A bent view</b> (with both outlines; else the regions) is laid as vpServoMorph lays it: rotation and translation
   of the largest overlap with the desired region (vpMorphRigidTransform::fitOnOverlap at the decision, then refined
   from the last period's), at the scale of its largest undeformed part (vpMorphRigidTransform::fitRigidPart, searched
   every 8 periods and followed in between; the outlines' length ratio times the last part's ratio to it when none is
   found). The desired values then come from that fit, as for a part hidden. On the regions' centroid and area (which a
-  bend moves) the loop converged 2-25 mm off (bench deformable set, free camera: 2/10 -> 7/10). The decisions are reset
+  bend moves) the loop converged 2-25 mm off (bench deformable set, free camera: 2/10 -> 8/10). The decisions are reset
   by init().
 
   <b>Interaction matrices</b> (6 columns, camera velocity \f$(v, \omega)\f$), for a planar object whose plane is
