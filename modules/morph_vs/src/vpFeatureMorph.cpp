@@ -12,20 +12,16 @@
 
 namespace
 {
-// Change of the regions' similarity invariants above which they are not alike (as vpServoMorph's default).
-const double kRegionMismatch = 0.02;
-// Share of the view laid outside the desired region above which it is bent, not hidden (as vpServoMorph's), measured
-// on the outlines resampled at this many points.
-const double kDeformedOutside = 0.02;
-const std::size_t kOutsidePoints = 128;
+// Regions, deformed view, overlap and undeformed part: the constants shared with vpServoMorph (see
+// vpMorphRegionCheck); the part's outline sampled as vpServoMorph samples it (twice the overlap's points).
+constexpr double kRegionMismatch = vpMorphRegionCheck::kRegionMismatch;
+constexpr double kDeformedOutside = vpMorphRegionCheck::kDeformedOutside;
+constexpr std::size_t kOutsidePoints = vpMorphRegionCheck::kOverlapPoints, kPartSamples = 2 * kOutsidePoints;
+constexpr double kPartTolerancePx = vpMorphRegionCheck::kRigidPartTolerancePx;
+constexpr double kPartMinShare = vpMorphRegionCheck::kRigidPartMinShare;
+constexpr unsigned int kPartPeriod = vpMorphRegionCheck::kRigidPartPeriod;
 // Rotation of the fit to the goal under which a view not alike is judged hidden or bent.
 const double kDecideTurn = 5.0 * M_PI / 180.0;
-// The largest undeformed part of a bent view (as vpServoMorph's): edges within this distance (pixels) of the
-// template's, over at least this share of the outline sampled at kPartSamples points; searched every kPartPeriod
-// periods.
-const double kPartTolerancePx = 0.25, kPartMinShare = 0.1;
-const std::size_t kPartSamples = 256;
-const unsigned int kPartPeriod = 8;
 
 // Region moments of a polygon (Green's theorem): area a, centroid, normalised centred moments mu_ij / a.
 void regionMoments(const vpMorphContour &c, double &a, double &xg, double &yg, double &n20, double &n02, double &n11)
@@ -351,8 +347,8 @@ vpMorphRigidTransform vpFeatureMorph::fitToDesired(const vpFeatureMorph &sd, con
   // Hidden or bent, decided once the view is near the goal (the fit is then at its most accurate): an occluder only
   // hides, so the view laid by the fit lies inside the desired region; a bend sticks out. A bent view's outline fit
   // has two basins or more (a bent hammer's, 0.25 % apart in scale), and the tracked correspondence started it in one
-  // or the other from one image to the next: a loop chattering about a goal 3-14 mm off until its budget ran out.
-  // The regions' centroid and area then stand, as for a view alike.
+  // or the other from one image to the next: a loop chattering about a goal 3-14 mm off until its budget ran out. It
+  // is laid by its largest overlap instead (bentFit()), or by the regions without outlines.
   if (m_regions == REGIONS_NOT_ALIKE && std::fabs(T.theta()) < kDecideTurn) {
     m_regions = outside(T) > kDeformedOutside ? REGIONS_BENT : REGIONS_HIDDEN;
     if (m_regions == REGIONS_BENT)
@@ -422,10 +418,10 @@ vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int sel
     full[1] = cur[1] - des[1];
     full[3] = cs - ds;
   } else {
-    // Part of the object hidden: the desired values are where the fit lays the current centroid and at what size.
-    // The visible part is a fixed part of the object (an occluder lies on the plane), so at the goal its centroid is
-    // seen where the fit puts it, and its area grows by the fit's scale squared; the desired region's own centroid
-    // and area (a whole object against a part of it) would be a bias of centimetres.
+    // Part of the object hidden, or bent: the desired values are where the fit lays the current centroid and at what
+    // size. The visible part is a fixed part of the object (an occluder lies on the plane), so at the goal its centroid
+    // is seen where the fit puts it, and its area grows by the fit's scale squared; the desired region's own centroid
+    // and area (a whole object against a part of it, or a bent one) would be a bias of centimetres.
     double gx, gy;
     m_fit.apply(s[0], s[1], gx, gy);
     full[0] = s[0] - gx;

@@ -6,6 +6,7 @@
 #define VP_MORPH_REGION_CHECK_H
 
 #include <cmath>
+#include <cstddef>
 
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
@@ -14,6 +15,22 @@
 class vpMorphRegionCheck
 {
 public:
+  //! Change of the regions' similarity invariants above which they are not alike (vpServoMorph's default too).
+  static constexpr double kRegionMismatch = 0.02;
+  //! Share of the current region outside the goal's, once laid on it, above which the view is deformed (an occluder
+  //! only hides; the edge outlines' noise leaves under 0.6 % out on the noise set, bends of 10-15 deg 3-14 %).
+  static constexpr double kDeformedOutside = 0.02;
+  //! Points of the resampled outlines the overlap is measured on (about 5 pixels apart: 0.025 ms an evaluation).
+  static constexpr std::size_t kOverlapPoints = 128;
+  /*!
+    The largest undeformed part of a deformed view: edges within this distance (pixels) of the goal's, over at least
+    this share of the outline, searched every kRigidPartPeriod periods (milliseconds) and followed in between. The
+    edges of a curved part measured in two images differ by 0.1-0.2 px with the pixel phase (a bow is a polygon of short
+    sides): at 0.15 px, a key's bow fell apart into stretches that a straight edge outran.
+  */
+  static constexpr double kRigidPartTolerancePx = 0.25, kRigidPartMinShare = 0.1;
+  static constexpr unsigned int kRigidPartPeriod = 8;
+
   /*
     Whether two contours show one region seen twice (up to a similarity), so that the areas and centroids of their
     regions can stand for the pose: not so when part of the object is hidden or it is deformed. With measured

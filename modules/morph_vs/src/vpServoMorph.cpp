@@ -63,20 +63,17 @@ const double kOutlineMinInliers = 0.9, kOutlineMaxResidualPx = 0.5;
 // px and noisy ones (noise set) to 0.14 px at most; a thin pliers bitten by a card was fitted to 0.49-0.50 px, 99 % of
 // it, by a 38-41 deg tilt that bent the card's edge onto its outline (Viper850, occlusion seed 3 start 18).
 const double kNotAlikeMinInliers = 0.99, kNotAlikeMaxResidualPx = 0.25;
-// Share of the current region outside the target's, once laid on it, above which the view is deformed (an occluder
-// only hides; the edge outlines' noise leaves under 0.6 % out on the noise set, bends of 10-15 deg 3-14 %).
-const double kDeformedOutside = 0.02;
+// Deformed view, overlap and undeformed part: the constants shared with vpFeatureMorph (see vpMorphRegionCheck).
+constexpr double kDeformedOutside = vpMorphRegionCheck::kDeformedOutside;
+constexpr std::size_t kOverlapPoints = vpMorphRegionCheck::kOverlapPoints;
+constexpr double kRigidPartTolerancePx = vpMorphRegionCheck::kRigidPartTolerancePx;
+constexpr double kRigidPartMinShare = vpMorphRegionCheck::kRigidPartMinShare;
+constexpr unsigned int kRigidPartPeriod = vpMorphRegionCheck::kRigidPartPeriod;
 // Share of a deformed view left outside the target at its largest overlap above which no rigid placement explains
 // it: a tool bent by 10-15 deg leaves its limb out (at most 11.4 % over every period of the held-out deformable,
 // occlusion, noise, planar-hard, 6dof and calib runs on the free camera), pliers opened by 32 deg leave an arm out
 // (27.5-28.2 %, at the outlines' length scale; more at their own), and so would another object.
 const double kUnexplainedOutside = 0.2;
-// The largest undeformed part of a deformed view: edges within this distance (pixels) of the target's, over at
-// least this share of the outline. The edges of a curved part measured in two images differ by 0.1-0.2 px with the
-// pixel phase (a bow is a polygon of short sides): at 0.15 px, a key's bow fell apart into stretches that a
-// straight edge outran.
-const double kRigidPartTolerancePx = 0.25, kRigidPartMinShare = 0.1;
-const unsigned int kRigidPartPeriod = 8;
 // Least share of the outline that the largest part lying on the target's must cover for its fit to replace the
 // edge fit on a view whose region is not the target's (a wedge with a sagging top: 0.69).
 const double kEdgePartMinShare = 0.5;
@@ -91,8 +88,6 @@ const unsigned int kEdgePartRetries = 3;
 const unsigned int kTiltRetryPeriod = 8;
 // Largest change of the outline's length that a bend explains (relative): the drawn bends change it by under 0.5 %.
 const double kBendLengthChange = 0.01;
-// Points of the resampled outlines the overlap is measured on (about 5 pixels apart: 0.025 ms an evaluation).
-const std::size_t kOverlapPoints = 128;
 // Turn of the outline (or area) fit from one period to the next beyond which the overlap's warm start is checked
 // against the last placement (a period's step at the final approach is a tenth of a residual of a few degrees).
 const double kOverlapStartJump = vpMath::rad(1.0);
