@@ -616,10 +616,6 @@ private:
       pts[i].set_y(c.y(k));
     }
     obj.fromVector(pts);
-    if (obj.get(0, 0) < 0) { // not expected: the orientation above is m00's sign
-      std::reverse(pts.begin(), pts.end());
-      obj.fromVector(pts);
-    }
   }
   void reset() override
   {
