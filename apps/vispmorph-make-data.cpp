@@ -6,13 +6,16 @@
 
   Writes OUTDIR/objects/<name>.png and OUTDIR/objects/<name>-deformed.png for the six tool-like objects of the
   paper's experiments (key, pliers, wedge, wrench, screwdriver, hammer), and two demo views
-  OUTDIR/demo/key-view.png and OUTDIR/demo/pliers-view.png. Images are 640x480, white background, black
-  object (about 200-300 px long), binary. Every shape is a union of polygons built here, so the data can be
-  regenerated bit for bit; each image is checked by extracting its contour with vpMorphContourExtractor.
+  OUTDIR/demo/key-view.png and OUTDIR/demo/pliers-view.png; and the pliers' two arms drawn alone with their pin
+  (OUTDIR/joints/pliers-part{0,1}.png and pliers.json: an articulated template, vpMorphArticulation). Images are
+  640x480, white background, black object (about 200-300 px long), binary. Every shape is a union of polygons built
+  here, so the data can be regenerated bit for bit; each image is checked by extracting its contour with
+  vpMorphContourExtractor.
 */
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -92,24 +95,45 @@ Parts key(bool deformed)
   return deformed ? bend(k, -30, 160, 12 * kPi / 180) : k;
 }
 
+// One arm of the pliers (side -1 or +1: jaw + handle) turned by side * half about the pivot, with the pivot's
+// rivet: the rigid part of the articulated template (vpMorphArticulation).
+Parts pliersArm(double side, double half)
+{
+  // Arm in its own frame: jaw towards +x on one side of the axis, handle towards -x on the other side.
+  Poly jaw{{-8, 0}, {10, -14 * side}, {70, -12 * side}, {100, -3 * side}, {100, 1 * side}, {10, 3 * side}};
+  Poly handle{{8, 0}, {-15, 10 * side}, {-150, 26 * side}, {-158, 20 * side}, {-155, 10 * side}, {-20, -3 * side}};
+  Parts out;
+  for (Poly *p : {&jaw, &handle}) {
+    for (P &q : *p)
+      q = rotate(q, side * half);
+    out.push_back({*p, false});
+  }
+  return out;
+}
+
+Parts rivet() { return {{circle(0, 0, 17, 24), false}, {circle(0, 0, 5, 12), true}}; }
+
+const double kPliersClosedHalf = 4.0, kPliersOpenedHalf = 20.0; // deg: half the angle between the jaws
+
 // Pliers: two crossed arms (jaw + handle) about a pivot. Deformed: opened wider (jaws 40 deg apart, not 8).
 Parts pliers(bool deformed)
 {
-  const double half = (deformed ? 20.0 : 4.0) * kPi / 180;
+  const double half = (deformed ? kPliersOpenedHalf : kPliersClosedHalf) * kPi / 180;
   Parts out;
-  for (double side : {-1.0, 1.0}) {
-    // Arm in its own frame: jaw towards +x on one side of the axis, handle towards -x on the other side.
-    Poly jaw{{-8, 0}, {10, -14 * side}, {70, -12 * side}, {100, -3 * side}, {100, 1 * side}, {10, 3 * side}};
-    Poly handle{{8, 0}, {-15, 10 * side}, {-150, 26 * side}, {-158, 20 * side}, {-155, 10 * side},
-                {-20, -3 * side}};
-    for (Poly *p : {&jaw, &handle}) {
-      for (P &q : *p)
-        q = rotate(q, side * half);
-      out.push_back({*p, false});
-    }
-  }
-  out.push_back({circle(0, 0, 17, 24), false});
-  out.push_back({circle(0, 0, 5, 12), true});
+  for (double side : {-1.0, 1.0})
+    for (const Part &p : pliersArm(side, half))
+      out.push_back(p);
+  for (const Part &p : rivet())
+    out.push_back(p);
+  return out;
+}
+
+// The closed pliers' two arms, each with the rivet, drawn alone in the template's frame.
+Parts pliersPart(int k)
+{
+  Parts out = pliersArm(k == 0 ? -1.0 : 1.0, kPliersClosedHalf * kPi / 180);
+  for (const Part &p : rivet())
+    out.push_back(p);
   return out;
 }
 
@@ -247,7 +271,7 @@ int main(int argc, char **argv)
 {
   if (argc != 2 || std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help") {
     std::cerr << "Usage: " << argv[0] << " OUTDIR\n"
-              << "Writes OUTDIR/objects/<name>[-deformed].png and OUTDIR/demo/{key,pliers}-view.png.\n";
+              << "Writes OUTDIR/objects/<name>[-deformed].png, OUTDIR/demo/{key,pliers}-view.png and OUTDIR/joints/.\n";
     return argc == 2 ? EXIT_SUCCESS : EXIT_FAILURE;
   }
   const std::filesystem::path out(argv[1]);
@@ -261,6 +285,19 @@ int main(int argc, char **argv)
     for (const auto &o : objects) {
       ok &= save(render(o.second(false), 320, 240), out / "objects" / (o.first + ".png"));
       ok &= save(render(o.second(true), 320, 240), out / "objects" / (o.first + "-deformed.png"));
+    }
+    // The pliers' joint: part 1 (side +1) turns counter-clockwise in the image axes when the jaws open; from
+    // closed (jaws touching: -2 x 4 deg) to wide open. In the deformed variant each arm turned by 16 deg.
+    std::filesystem::create_directories(out / "joints");
+    for (int k : {0, 1})
+      ok &= save(render(pliersPart(k), 320, 240), out / "joints" / ("pliers-part" + std::to_string(k) + ".png"));
+    {
+      std::ofstream f(out / "joints" / "pliers.json");
+      const double turn = kPliersOpenedHalf - kPliersClosedHalf; // each arm's, in the deformed variant
+      f << "{\n  \"parts\": [\"pliers-part0.png\", \"pliers-part1.png\"],\n  \"pivot\": [320, 240],\n"
+        << "  \"range_deg\": [" << -2 * kPliersClosedHalf << ", 60],\n  \"deformed_turns_deg\": [" << -turn << ", "
+        << turn << "]\n}\n";
+      ok &= static_cast<bool>(f);
     }
     ok &= save(render(key(false), 350, 220, 140 * kPi / 180), out / "demo" / "key-view.png");
     ok &= save(render(pliers(false), 290, 255, -100 * kPi / 180, 0.9), out / "demo" / "pliers-view.png");

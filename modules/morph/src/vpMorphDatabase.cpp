@@ -28,6 +28,7 @@ using nlohmann::json;
 namespace
 {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPoseStep = 3.14159265358979323846 / 45.0; // 4 deg between an articulated template's poses
 const char *kFormat = "vispmorph-template-database";
 constexpr int kVersion = 1;
 
@@ -175,6 +176,67 @@ std::vector<double> numbersOrInf(const json &cal, const char *key)
   return v;
 }
 
+//! A contour's fields of a template object: units, vertices, and the measured region and outline when present.
+void contourToJson(const vpMorphContour &c, json &o)
+{
+  o["units"] = c.units() == vpMorphContour::PIXEL ? "pixel" : "normalized";
+  o["x"] = c.xs();
+  o["y"] = c.ys();
+  if (c.hasRegion()) {
+    double cx, cy, mu20, mu11, mu02;
+    c.regionCentroid(cx, cy);
+    c.regionMoments(mu20, mu11, mu02);
+    o["region"] = {{"area", c.regionArea()}, {"cx", cx}, {"cy", cy}, {"mu20", mu20}, {"mu11", mu11}, {"mu02", mu02}};
+  }
+  if (c.hasOutline()) // the measured edge, for the out-of-plane estimate of vpServoMorph
+    o["outline"] = {{"x", c.outline().xs()}, {"y", c.outline().ys()}};
+}
+
+//! The contour written by contourToJson(); \e where names it in the errors.
+vpMorphContour contourFromJson(const json &o, const std::string &where)
+{
+  const std::string units = field<std::string>(o, "units", where);
+  if (units != "pixel" && units != "normalized")
+    throw ioError("vpMorphDatabase: " + where + ": units must be \"pixel\" or \"normalized\"");
+  const std::vector<double> x = field<std::vector<double>>(o, "x", where);
+  const std::vector<double> y = field<std::vector<double>>(o, "y", where);
+  vpMorphContour c;
+  try {
+    c = vpMorphContour(x, y, units == "pixel" ? vpMorphContour::PIXEL : vpMorphContour::NORMALIZED);
+  } catch (const vpException &e) {
+    throw ioError("vpMorphDatabase: " + where + ": invalid contour: " + e.getStringMessage());
+  }
+  if (o.contains("region")) { // optional: the region measured on the template image
+    const json &r = o["region"];
+    if (!r.is_object())
+      throw ioError("vpMorphDatabase: " + where + ": \"region\" must be an object {area, cx, cy, mu20, mu11, mu02}");
+    const std::string w = where + " \"region\"";
+    try {
+      c.setRegion(field<double>(r, "area", w), field<double>(r, "cx", w), field<double>(r, "cy", w),
+                  field<double>(r, "mu20", w), field<double>(r, "mu11", w), field<double>(r, "mu02", w));
+    } catch (const vpMorphException &e) {
+      if (e.getCode() == vpMorphException::ioError)
+        throw;
+      throw ioError("vpMorphDatabase: " + w + ": " + e.getStringMessage());
+    }
+  }
+  if (o.contains("outline")) { // optional: the edge measured on the template image
+    const json &e = o["outline"];
+    if (!e.is_object())
+      throw ioError("vpMorphDatabase: " + where + ": \"outline\" must be an object {x, y}");
+    const std::string w = where + " \"outline\"";
+    try {
+      c.setOutline(
+          vpMorphContour(field<std::vector<double>>(e, "x", w), field<std::vector<double>>(e, "y", w), c.units()));
+    } catch (const vpMorphException &ex) {
+      if (ex.getCode() == vpMorphException::ioError)
+        throw;
+      throw ioError("vpMorphDatabase: " + w + ": " + ex.getStringMessage());
+    }
+  }
+  return c;
+}
+
 bool isImageFile(const fs::path &p)
 {
   std::string e = p.extension().string();
@@ -216,6 +278,7 @@ void vpMorphDatabase::add(const vpMorphTemplate &t)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphDatabase::add: duplicate template name '" + t.name() + "'");
   m_shapes.push_back(m_distance.prepare(t.contour()));
+  m_poses.push_back(poses(t));
   m_templates.push_back(t);
   invalidate();
 }
@@ -227,6 +290,7 @@ void vpMorphDatabase::remove(const std::string &name)
     throw vpMorphException(vpMorphException::notFoundError, "vpMorphDatabase: no template named '" + name + "'");
   m_templates.erase(m_templates.begin() + static_cast<long>(k));
   m_shapes.erase(m_shapes.begin() + static_cast<long>(k));
+  m_poses.erase(m_poses.begin() + static_cast<long>(k));
   invalidate();
 }
 
@@ -256,12 +320,91 @@ std::size_t vpMorphDatabase::find(const std::string &name) const
   return vpMorphRecognition::npos;
 }
 
+std::vector<vpMorphDatabase::Pose> vpMorphDatabase::poses(const vpMorphTemplate &t) const
+{
+  std::vector<Pose> out;
+  if (!t.isArticulated())
+    return out;
+  const vpMorphArticulation &a = t.articulation();
+  // Every kPoseStep from the taught opening (0) both ways, the range's ends included: a view lies within half a
+  // step of a pose.
+  std::vector<double> angles;
+  for (double x = -kPoseStep; x > a.minAngle(); x -= kPoseStep)
+    angles.push_back(x);
+  angles.push_back(a.minAngle());
+  for (double x = kPoseStep; x < a.maxAngle(); x += kPoseStep)
+    angles.push_back(x);
+  angles.push_back(a.maxAngle());
+  for (double x : angles)
+    if (x != 0.0) {
+      vpMorphContour c = a.pose(x);
+      vpMorphShapeDistance::Shape q = m_distance.prepare(c);
+      out.push_back(Pose{x, std::move(c), std::move(q)});
+    }
+  return out;
+}
+
+double vpMorphDatabase::templateDistance(const vpMorphShapeDistance::Shape &q, std::size_t k, vpMorphMatcher &matcher,
+                                         double abandonAbove, bool *mirrored, std::size_t *pose) const
+{
+  bool mir = false;
+  double best = m_distance.distance(q, m_shapes[k], matcher, abandonAbove, &mir);
+  std::size_t bestPose = vpMorphRecognition::npos;
+  for (std::size_t p = 0; p < m_poses[k].size(); ++p) {
+    const double bound = std::isfinite(best) && (abandonAbove < 0.0 || best < abandonAbove) ? best : abandonAbove;
+    if (bound >= 0.0 && m_distance.lowerBound(q, m_poses[k][p].shape) > bound)
+      continue; // this pose cannot beat the best so far
+    bool m = false;
+    const double d = m_distance.distance(q, m_poses[k][p].shape, matcher, bound, &m);
+    if (d < best) {
+      best = d;
+      mir = m;
+      bestPose = p;
+    }
+  }
+  if (mirrored)
+    *mirrored = mir;
+  if (pose)
+    *pose = bestPose;
+  return best;
+}
+
+double vpMorphDatabase::templateLowerBound(const vpMorphShapeDistance::Shape &q, std::size_t k) const
+{
+  double b = m_distance.lowerBound(q, m_shapes[k]);
+  for (const Pose &p : m_poses[k])
+    b = std::min(b, m_distance.lowerBound(q, p.shape));
+  return b;
+}
+
+std::size_t vpMorphDatabase::overlapPose(const vpMorphContour &c, std::size_t k, vpMorphMatcher &matcher) const
+{
+  double best = vpMorphArticulation::fitOverlap(c, m_templates[k].contour(), matcher);
+  std::size_t bestPose = vpMorphRecognition::npos;
+  for (std::size_t p = 0; p < m_poses[k].size(); ++p) {
+    const double o = vpMorphArticulation::fitOverlap(c, m_poses[k][p].contour, matcher);
+    if (o > best) {
+      best = o;
+      bestPose = p;
+    }
+  }
+  return bestPose;
+}
+
+const vpMorphContour &vpMorphDatabase::templateView(std::size_t k, std::size_t pose) const
+{
+  return pose == vpMorphRecognition::npos ? m_templates[k].contour() : m_poses[k][pose].contour;
+}
+
 void vpMorphDatabase::setDistance(const vpMorphShapeDistance &d)
 {
   m_distance = d;
   m_shapes.clear();
-  for (const vpMorphTemplate &t : m_templates)
+  m_poses.clear();
+  for (const vpMorphTemplate &t : m_templates) {
     m_shapes.push_back(m_distance.prepare(t.contour()));
+    m_poses.push_back(poses(t));
+  }
   invalidate();
 }
 
@@ -300,6 +443,10 @@ double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mir
                            "vpMorphDatabase::support: the contour's units are not those of template '" +
                                m_templates[k].name() + "'");
   vpMorphMatcher matcher = m_distance.matcher();
+  if (!m_poses[k].empty()) { // the pose of an articulated template that the view lies on
+    const vpMorphContour &v = templateView(k, overlapPose(c, k, matcher));
+    return shownEitherWay(c, v, matcher, mirrored, matcher.match(c, v));
+  }
   return shownEitherWay(c, t, matcher, mirrored, matcher.match(c, t));
 }
 
@@ -313,7 +460,7 @@ bool vpMorphDatabase::accepts(const vpMorphContour &c, std::size_t k, double sla
     throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::accepts: empty contour");
   vpMorphMatcher matcher = m_distance.matcher();
   bool mirrored = false;
-  const double d = m_distance.distance(m_distance.prepare(c), m_shapes[k], matcher, -1.0, &mirrored);
+  const double d = templateDistance(m_distance.prepare(c), k, matcher, -1.0, &mirrored, nullptr);
   if (distance)
     *distance = d;
   if (d <= slack * threshold(k))
@@ -373,14 +520,16 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
 {
   const std::size_t T = m_templates.size();
   vpMorphRecognition r;
+  std::size_t bestPose = vpMorphRecognition::npos;
   // Keeps the two best (distance, index) pairs, ordered lexicographically: ties go to the lower index.
-  auto offer = [&r](double d, std::size_t k, bool mirrored) {
+  auto offer = [&r, &bestPose](double d, std::size_t k, bool mirrored, std::size_t pose) {
     if (d < r.distance || (d == r.distance && k < r.index)) {
       r.secondDistance = r.distance;
       r.secondIndex = r.index;
       r.distance = d;
       r.index = k;
       r.mirrored = mirrored;
+      bestPose = pose;
     } else if (d < r.secondDistance || (d == r.secondDistance && k < r.secondIndex)) {
       r.secondDistance = d;
       r.secondIndex = k;
@@ -389,25 +538,27 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   if (!prune) {
     for (std::size_t k = 0; k < T; ++k) {
       bool mir = false;
-      const double d = m_distance.distance(q, m_shapes[k], matcher, -1.0, &mir);
-      offer(d, k, mir);
+      std::size_t pose = vpMorphRecognition::npos;
+      const double d = templateDistance(q, k, matcher, -1.0, &mir, &pose);
+      offer(d, k, mir, pose);
       ++r.evaluated;
     }
   } else {
     std::vector<std::pair<double, std::size_t>> order(T);
     for (std::size_t k = 0; k < T; ++k)
-      order[k] = std::make_pair(m_distance.lowerBound(q, m_shapes[k]), k);
+      order[k] = std::make_pair(templateLowerBound(q, k), k);
     std::sort(order.begin(), order.end());
     for (const auto &o : order) {
       // Every later template has a bound at least as large: none of them can enter the top two.
       if (o.first > r.secondDistance)
         break;
       bool mir = false;
-      const double d = m_distance.distance(q, m_shapes[o.second], matcher,
-                                           std::isfinite(r.secondDistance) ? r.secondDistance : -1.0, &mir);
+      std::size_t pose = vpMorphRecognition::npos;
+      const double d = templateDistance(q, o.second, matcher, std::isfinite(r.secondDistance) ? r.secondDistance : -1.0,
+                                        &mir, &pose);
       ++r.evaluated;
       if (d <= r.secondDistance)
-        offer(d, o.second, mir);
+        offer(d, o.second, mir, pose);
     }
   }
   if (T == 1)
@@ -416,11 +567,14 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
     r.margin = r.secondDistance > 0.0 ? (r.secondDistance - r.distance) / r.secondDistance : 0.0;
   r.threshold = threshold(r.index);
   r.accepted = r.distance <= r.threshold;
-  r.correspondence = matcher.match(c, m_templates[r.index].contour());
+  if (!m_poses[r.index].empty())
+    bestPose = overlapPose(c, r.index, matcher);
+  r.articulation = bestPose == vpMorphRecognition::npos ? 0.0 : m_poses[r.index][bestPose].angle;
+  r.correspondence = matcher.match(c, templateView(r.index, bestPose));
   if (!std::isfinite(m_minSupport))
     return r;
   // Not through support(), which refuses other units: the similarity fit does not need them equal.
-  r.support = shownEitherWay(c, m_templates[r.index].contour(), matcher, r.mirrored, r.correspondence);
+  r.support = shownEitherWay(c, templateView(r.index, bestPose), matcher, r.mirrored, r.correspondence);
   if (r.support >= m_minSupport) {
     r.accepted = true;
     return r;
@@ -440,7 +594,7 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
     if (k != r.index) {
       bool mir = false;
       others.emplace_back(m_distance.distance(q, m_shapes[k], matcher, -1.0, &mir), k);
-      mirroredOther[k] = mir;
+      mirroredOther[k] = mir; // re-ranking is for occluded views: the other templates as taught
     }
   r.evaluated = T;
   std::sort(others.begin(), others.end());
@@ -473,6 +627,7 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   r.margin = 0.0; // not the distance's choice
   r.threshold = threshold(r.index);
   r.reranked = true;
+  r.articulation = 0.0;
   r.correspondence = matcher.match(c, m_templates[r.index].contour());
   return r;
 }
@@ -586,18 +741,18 @@ std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
         image = rel.generic_string();
     }
     o["image"] = image;
-    o["units"] = t.contour().units() == vpMorphContour::PIXEL ? "pixel" : "normalized";
-    o["x"] = t.contour().xs();
-    o["y"] = t.contour().ys();
-    if (t.contour().hasRegion()) {
-      double cx, cy, mu20, mu11, mu02;
-      t.contour().regionCentroid(cx, cy);
-      t.contour().regionMoments(mu20, mu11, mu02);
-      o["region"] = {{"area", t.contour().regionArea()}, {"cx", cx}, {"cy", cy},
-                     {"mu20", mu20},                   {"mu11", mu11}, {"mu02", mu02}};
+    contourToJson(t.contour(), o);
+    if (t.isArticulated()) {
+      const vpMorphArticulation &a = t.articulation();
+      json parts = json::array();
+      for (unsigned int k = 0; k < 2; ++k) {
+        json pj;
+        contourToJson(a.part(k), pj);
+        parts.push_back(pj);
+      }
+      o["articulation"] = {
+          {"parts", parts}, {"pivot", {a.pivot().get_u(), a.pivot().get_v()}}, {"range", {a.minAngle(), a.maxAngle()}}};
     }
-    if (t.contour().hasOutline()) // the measured edge, for the out-of-plane estimate of vpServoMorph
-      o["outline"] = {{"x", t.contour().outline().xs()}, {"y", t.contour().outline().ys()}};
     o["cdMo"] = poseToJson(t.cdMo());
     o["metadata"] = t.metadata();
     ts.push_back(o);
@@ -693,45 +848,7 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
     where << "template " << k++;
     const std::string name = field<std::string>(o, "name", where.str());
     where << " ('" << name << "')";
-    const std::string units = field<std::string>(o, "units", where.str());
-    if (units != "pixel" && units != "normalized")
-      throw ioError("vpMorphDatabase: " + where.str() + ": units must be \"pixel\" or \"normalized\"");
-    const std::vector<double> x = field<std::vector<double>>(o, "x", where.str());
-    const std::vector<double> y = field<std::vector<double>>(o, "y", where.str());
-    vpMorphContour c;
-    try {
-      c = vpMorphContour(x, y, units == "pixel" ? vpMorphContour::PIXEL : vpMorphContour::NORMALIZED);
-    } catch (const vpException &e) {
-      throw ioError("vpMorphDatabase: " + where.str() + ": invalid contour: " + e.getStringMessage());
-    }
-    if (o.contains("region")) { // optional: the region measured on the template image
-      const json &r = o["region"];
-      if (!r.is_object())
-        throw ioError("vpMorphDatabase: " + where.str() + ": \"region\" must be an object {area, cx, cy, mu20, mu11, mu02}");
-      const std::string w = where.str() + " \"region\"";
-      try {
-        c.setRegion(field<double>(r, "area", w), field<double>(r, "cx", w), field<double>(r, "cy", w),
-                    field<double>(r, "mu20", w), field<double>(r, "mu11", w), field<double>(r, "mu02", w));
-      } catch (const vpMorphException &e) {
-        if (e.getCode() == vpMorphException::ioError)
-          throw;
-        throw ioError("vpMorphDatabase: " + w + ": " + e.getStringMessage());
-      }
-    }
-    if (o.contains("outline")) { // optional: the edge measured on the template image
-      const json &e = o["outline"];
-      if (!e.is_object())
-        throw ioError("vpMorphDatabase: " + where.str() + ": \"outline\" must be an object {x, y}");
-      const std::string w = where.str() + " \"outline\"";
-      try {
-        c.setOutline(vpMorphContour(field<std::vector<double>>(e, "x", w), field<std::vector<double>>(e, "y", w),
-                                    c.units()));
-      } catch (const vpMorphException &ex) {
-        if (ex.getCode() == vpMorphException::ioError)
-          throw;
-        throw ioError("vpMorphDatabase: " + w + ": " + ex.getStringMessage());
-      }
-    }
+    const vpMorphContour c = contourFromJson(o, where.str());
     const std::vector<double> m = field<std::vector<double>>(o, "cdMo", where.str());
     if (m.size() != 16)
       throw ioError("vpMorphDatabase: " + where.str() + ": \"cdMo\" needs 16 numbers (row-major 4x4)");
@@ -750,6 +867,25 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
         throw ioError("vpMorphDatabase: " + where.str() + ": image '" + image + "' not found");
     }
     vpMorphTemplate t(name, c, image, M);
+    if (o.contains("articulation")) { // optional: two parts about a pin
+      const json &a = o["articulation"];
+      const std::string w = where.str() + " \"articulation\"";
+      if (!a.is_object() || !a.contains("parts") || !a["parts"].is_array() || a["parts"].size() != 2)
+        throw ioError("vpMorphDatabase: " + w + " must be an object {parts: [2 contours], pivot, range}");
+      const std::vector<double> pivot = field<std::vector<double>>(a, "pivot", w);
+      const std::vector<double> range = field<std::vector<double>>(a, "range", w);
+      if (pivot.size() != 2 || range.size() != 2)
+        throw ioError("vpMorphDatabase: " + w + ": \"pivot\" is (u, v) and \"range\" (min, max) radians");
+      try {
+        t.setArticulation(vpMorphArticulation(contourFromJson(a["parts"][0], w + " part 0"),
+                                              contourFromJson(a["parts"][1], w + " part 1"),
+                                              vpImagePoint(pivot[1], pivot[0]), range[0], range[1]));
+      } catch (const vpMorphException &e) {
+        if (e.getCode() == vpMorphException::ioError)
+          throw;
+        throw ioError("vpMorphDatabase: " + w + ": " + e.getStringMessage());
+      }
+    }
     if (o.contains("metadata"))
       t.setMetadata(field<std::map<std::string, std::string>>(o, "metadata", where.str()));
     if (db.find(name) != vpMorphRecognition::npos)

@@ -31,3 +31,24 @@ void vpMorphTemplate::setPlanarPose(double tx, double ty, double Z, double theta
                            "vpMorphTemplate::setPlanarPose: finite values and a positive depth are needed");
   m_cdMo = vpHomogeneousMatrix(vpTranslationVector(tx, ty, Z), vpRotationMatrix(vpRzyxVector(theta, 0.0, 0.0)));
 }
+
+void vpMorphTemplate::setArticulation(const vpMorphArticulation &a)
+{
+  if (!a.empty() && a.part(0).units() != m_contour.units())
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphTemplate::setArticulation: the parts of template '" + m_name +
+                               "' are not in its contour's units");
+  m_articulation = a;
+}
+
+vpMorphContour vpMorphTemplate::viewFor(const vpMorphContour &view, double *opening, unsigned int *fixedPart) const
+{
+  double a = 0.0;
+  unsigned int k = 0;
+  vpMorphContour v = isArticulated() ? m_articulation.poseFor(view, &a, &k) : m_contour;
+  if (opening)
+    *opening = a;
+  if (fixedPart)
+    *fixedPart = k;
+  return a == 0.0 ? m_contour : v; // the taught view itself, not its parts redrawn
+}

@@ -194,7 +194,8 @@ public:
     aligns \e c's mirror image (a part turned over, vpMorphRecognition::mirrored; a nearly symmetric part may be matched
     either way), and the better counts. 0 when \e c cannot be aligned (a degenerate fit).
     \throw vpMorphException::notFoundError if \e k is out of range, badContourError on an empty contour or
-    badParameterError on units that differ from the template's.
+    badParameterError on units that differ from the template's. For an articulated template, of its pose that \e c
+    lies on best (its opening).
   */
   double support(const vpMorphContour &c, std::size_t k, bool mirrored = false) const;
   //! Least support() that accepts a view its distance rejects (an occluded view); +inf: the distance alone decides.
@@ -239,12 +240,37 @@ public:
 private:
   vpMorphRecognition search(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q, bool prune,
                             vpMorphMatcher &matcher) const;
+  //! One view of an articulated template at an opening other than the taught one (the taught one is m_shapes).
+  struct Pose
+  {
+    double angle;
+    vpMorphContour contour;
+    vpMorphShapeDistance::Shape shape;
+  };
+  //! The views of template k besides the taught one: its articulation every kPoseStep over its range.
+  std::vector<Pose> poses(const vpMorphTemplate &t) const;
+  /*!
+    Distance of \e q to template k: to its taught view, or the least over its poses too. \e pose receives the
+    index of the pose (npos: the taught view).
+  */
+  double templateDistance(const vpMorphShapeDistance::Shape &q, std::size_t k, vpMorphMatcher &matcher,
+                          double abandonAbove, bool *mirrored, std::size_t *pose) const;
+  double templateLowerBound(const vpMorphShapeDistance::Shape &q, std::size_t k) const;
+  /*!
+    The pose of articulated template k that \e c lies on best (vpMorphArticulation::fitOverlap(); npos: the taught
+    view). Why not the distance's: it picks an articulated template well but its opening poorly (on 21-vertex views
+    of a 32 deg opening it was least at 38-40 deg, and the view showed half of that pose's outline).
+  */
+  std::size_t overlapPose(const vpMorphContour &c, std::size_t k, vpMorphMatcher &matcher) const;
+  //! The contour of template k's view \e pose (npos: the taught one).
+  const vpMorphContour &templateView(std::size_t k, std::size_t pose) const;
   void invalidate();
   std::string toJson(const std::string &relativeTo) const;
 
   vpMorphShapeDistance m_distance;
   std::vector<vpMorphTemplate> m_templates;
   std::vector<vpMorphShapeDistance::Shape> m_shapes;
+  std::vector<std::vector<Pose>> m_poses; // per template: its articulated poses (none for a rigid one)
   double m_threshold;
   double m_minSupport = 0.75;
   double m_supportFloor = 0.5;

@@ -42,9 +42,12 @@ public:
   //! (vpMorphDatabase, re-ranking); then secondIndex is the distance's choice and margin is 0.
   bool reranked = false;
   bool mirrored = false;                                      //!< the template's mirror image matched best
+  //! An articulated template's opening that matched best (radians, vpMorphArticulation; 0: the taught view).
+  double articulation = 0.0;
   /*!
     Minimal-work correspondence from the query contour to the best template's contour (as stored, not
-    resampled), ready for vpMorph(query, db[index].contour(), correspondence).
+    resampled), ready for vpMorph(query, db[index].contour(), correspondence); for an articulated template seen at
+    another opening, to db[index].articulation().pose(articulation).
   */
   vpMorphCorrespondence correspondence;
   std::size_t evaluated = 0; //!< templates whose distance was computed (the others were pruned by the bound)

@@ -9,6 +9,7 @@
 #include <string>
 
 #include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/morph/vpMorphArticulation.h>
 #include <visp3/morph/vpMorphContour.h>
 
 /*!
@@ -49,6 +50,22 @@ public:
     depth \e Z (metres), object frame rotated by \e theta (radians) about it and offset by (tx, ty) metres.
   */
   void setPlanarPose(double tx, double ty, double Z, double theta);
+  /*!
+    Makes the template articulated (two parts about a pin, in the view of contour()): recognition then also tries
+    its view at other openings (vpMorphDatabase), and vpServoMorph aims at the opening it sees. An empty one makes
+    it rigid again.
+    \throw vpMorphException::badParameterError when the parts are not in the contour's units.
+  */
+  void setArticulation(const vpMorphArticulation &a);
+  const vpMorphArticulation &articulation() const { return m_articulation; }
+  /*!
+    The view of this template to align \e view with: contour() for a rigid template, or for an articulated one seen
+    at its taught opening; else its pose at the opening \e view shows (vpMorphArticulation::poseFor()). \e opening
+    and \e fixedPart, if given, receive the opening (0 for contour()) and the part kept in place.
+  */
+  vpMorphContour viewFor(const vpMorphContour &view, double *opening = nullptr,
+                         unsigned int *fixedPart = nullptr) const;
+  bool isArticulated() const { return !m_articulation.empty(); }
   void setMetadata(const std::string &key, const std::string &value) { m_meta[key] = value; }
   void setMetadata(const std::map<std::string, std::string> &meta) { m_meta = meta; }
 
@@ -58,6 +75,7 @@ private:
   std::string m_image;
   vpHomogeneousMatrix m_cdMo;
   std::map<std::string, std::string> m_meta;
+  vpMorphArticulation m_articulation;
 };
 
 #endif
