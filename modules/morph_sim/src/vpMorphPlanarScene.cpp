@@ -190,6 +190,7 @@ void vpMorphPlanarScene::setReferenceImage(const std::string &referenceImage, Re
   const vpMorphContour refContour = vpMorphContourExtractor().extract(ref);
   textureFrame(refContour, m_objectSize, m_texCx, m_texCy, m_metresPerTexel);
   m_texAlign = vpMorphRigidTransform();
+  m_texAlternatives.clear();
   if (placement == BEST_OVERLAP) {
     // Starts every 2.5 deg over +-20 deg on the polygons (a local maximum wherever a part lies on the template's),
     // then the best refined on the edge outlines, to a thousandth of a texel.
@@ -197,6 +198,14 @@ void vpMorphPlanarScene::setReferenceImage(const std::string &referenceImage, Re
         vpMorphRigidTransform::fitOnOverlap(m_texContour, refContour, vpMorphRigidTransform(), vpMath::rad(20.0), 17);
     m_texAlign = vpMorphRigidTransform::refineOnOverlap(m_texContour.outline(), refContour.outline(), coarse, 400);
   }
+  updateLayout();
+}
+
+void vpMorphPlanarScene::setReferenceAlignment(const vpMorphRigidTransform &align,
+                                               const std::vector<vpMorphRigidTransform> &alternatives)
+{
+  m_texAlign = align;
+  m_texAlternatives = alternatives;
   updateLayout();
 }
 
@@ -260,13 +269,46 @@ std::vector<vpPoint> vpMorphPlanarScene::objectContour3D() const
   return P;
 }
 
-vpPoint vpMorphPlanarScene::texelOnPlane(double tx, double ty) const
+std::vector<vpHomogeneousMatrix> vpMorphPlanarScene::alternativePlacements() const
+{
+  // W maps the object laid by m_texAlign onto the object laid by the alternative, in the object frame: two texels
+  // fix the in-plane rotation and translation.
+  std::vector<vpHomogeneousMatrix> out;
+  const double ax = m_texCx, ay = m_texCy, bx = m_texCx + 100.0, by = m_texCy;
+  const vpPoint p1a = texelOnPlane(ax, ay), p1b = texelOnPlane(bx, by);
+  for (const vpMorphRigidTransform &A : m_texAlternatives) {
+    const vpPoint p2a = texelOnPlane(ax, ay, A), p2b = texelOnPlane(bx, by, A);
+    const double angle = std::atan2(p2b.get_oY() - p2a.get_oY(), p2b.get_oX() - p2a.get_oX()) -
+                         std::atan2(p1b.get_oY() - p1a.get_oY(), p1b.get_oX() - p1a.get_oX());
+    const double c = std::cos(angle), s = std::sin(angle);
+    out.emplace_back(p2a.get_oX() - (c * p1a.get_oX() - s * p1a.get_oY()),
+                     p2a.get_oY() - (s * p1a.get_oX() + c * p1a.get_oY()), 0.0, 0.0, 0.0, angle);
+  }
+  return out;
+}
+
+vpPoint vpMorphPlanarScene::texelOnPlane(double tx, double ty) const { return texelOnPlane(tx, ty, m_texAlign); }
+
+vpPoint vpMorphPlanarScene::texelOnPlane(double tx, double ty, const vpMorphRigidTransform &align) const
 {
   double ax, ay;
-  m_texAlign.apply(tx, ty, ax, ay);
+  align.apply(tx, ty, ax, ay);
   const double c = std::cos(m_objTheta), s = std::sin(m_objTheta), p = m_metresPerTexel;
   const double lx = (ax - m_texCx) * p, ly = (ay - m_texCy) * p;
   return planePoint(m_objX + c * lx - s * ly, m_objY + s * lx + c * ly);
+}
+
+vpImagePoint vpMorphPlanarScene::projectedTexel(double tx, double ty, const vpHomogeneousMatrix &cMo) const
+{
+  if (!finitePose(cMo) || !isFinite(tx) || !isFinite(ty))
+    badParameter("vpMorphPlanarScene::projectedTexel: NaN or infinite texel or pose");
+  vpPoint P = texelOnPlane(tx, ty);
+  P.track(cMo);
+  if (P.get_Z() <= 0.0)
+    badParameter("vpMorphPlanarScene::projectedTexel: the texel is behind the camera");
+  double u = 0.0, v = 0.0;
+  vpMeterPixelConversion::convertPoint(m_cam, P.get_x(), P.get_y(), u, v);
+  return vpImagePoint(v, u);
 }
 
 vpMorphContour vpMorphPlanarScene::projectedContour(const vpHomogeneousMatrix &cMo) const

@@ -93,13 +93,27 @@ public:
       of the reference's (referenceAlignment(); exact overlap of the two measured edge outlines, best of starts
       +-20 deg apart by 2.5 deg): the pose that lays the deformed object on its template as well as a rigid
       placement can, which depends on the shapes only. A shape with two equally good placements (pliers opened
-      symmetrically: either arm) gets the first one found.
+      symmetrically: either arm) gets the first one found; give such a shape its placements with
+      setReferenceAlignment().
     \throw vpMorphException notFoundError or ioError for a missing or unreadable image, badImageError for an image
     without object, badParameterError for an image of another size.
   */
   void setReferenceImage(const std::string &referenceImage, ReferencePlacement placement = SHARED_FRAME);
   //! The motion of the object's texture (template pixels) set by setReferenceImage(): identity unless BEST_OVERLAP.
   const vpMorphRigidTransform &referenceAlignment() const { return m_texAlign; }
+  /*!
+    Places the object's texture by \e align (template pixels, after setReferenceImage(), whose frame it keeps), and
+    records \e alternatives, equally good placements. Why: an articulated object has no best rigid placement on its
+    template, but one per part: an opened pliers laid by either arm on the closed one's (the turns its drawing
+    gave them). Its largest overlap lies tenths of a degree off either, where no part is where it was taught.
+  */
+  void setReferenceAlignment(const vpMorphRigidTransform &align,
+                             const std::vector<vpMorphRigidTransform> &alternatives = {});
+  /*!
+    The alternatives of setReferenceAlignment(), each as the in-plane motion W of the object frame that takes the
+    object as placed to it: for a desired pose cdMo, cdMo * W is an equally good one. Empty by default.
+  */
+  std::vector<vpHomogeneousMatrix> alternativePlacements() const;
   //! Places the object frame origin (the outline centroid, of the reference image if set) at (x, y), turned by theta (rad) about z.
   void setObjectPlacement(double x, double y, double theta);
   /*!
@@ -136,6 +150,8 @@ public:
   bool tagInView(const vpHomogeneousMatrix &cMo, double margin = 0.0) const;
   //! The four corners of the tag's black border in the object frame, in vpDetectorAprilTag's 3-D point order.
   std::vector<vpPoint> tagCorners3D() const;
+  //! A point of the object's texture (template pixels, as in the object image) projected in the image for cMo.
+  vpImagePoint projectedTexel(double tx, double ty, const vpHomogeneousMatrix &cMo) const;
   //! The four tag corners projected in the image for cMo (pixels).
   std::vector<vpImagePoint> projectedTagCorners(const vpHomogeneousMatrix &cMo) const;
   //! Pose of the tag frame in the object frame (a pure translation).
@@ -170,6 +186,7 @@ private:
   std::vector<Patch> patches() const;
   // A texture point (template pixels) on the plane: referenceAlignment(), the texture frame, the placement.
   vpPoint texelOnPlane(double tx, double ty) const;
+  vpPoint texelOnPlane(double tx, double ty, const vpMorphRigidTransform &align) const;
   template <typename T> void renderT(const vpHomogeneousMatrix &cMo, vpImage<T> &I, unsigned int frame) const;
 
   std::string m_path;
@@ -180,6 +197,7 @@ private:
   double m_texCx = 0, m_texCy = 0;    // outline centroid in template pixels
   double m_metresPerTexel = 0;
   vpMorphRigidTransform m_texAlign; // texture motion of setReferenceImage(BEST_OVERLAP)
+  std::vector<vpMorphRigidTransform> m_texAlternatives; // equally good others (setReferenceAlignment())
   double m_objX = 0, m_objY = 0, m_objTheta = 0;
   bool m_tagAuto = true;
   double m_tagX = 0, m_tagY = 0;
