@@ -293,6 +293,9 @@ void vpServoMorph::setTarget(const vpMorphContour &target, double Zd)
   checkPositive(Zd, "the desired depth Zd");
   m_target = target;
   m_Zd = Zd;
+  m_template = vpMorphTemplate();
+  m_opening = 0.0;
+  m_fixedPart = 0;
   restart();
 }
 
@@ -304,6 +307,13 @@ void vpServoMorph::setTarget(const vpMorphTemplate &t)
                            "vpServoMorph::setTarget: the template has no desired pose (cdMo depth <= 0); set it "
                            "with vpMorphTemplate::setPlanarPose() or use setTarget(contour, Zd)");
   setTarget(t.contour(), Zd);
+  if (t.isArticulated())
+    m_template = t;
+}
+
+void vpServoMorph::poseArticulatedTarget(const vpMorphContour &current)
+{
+  m_target = m_template.viewFor(current, &m_opening, &m_fixedPart);
 }
 
 void vpServoMorph::setSubGoalCount(std::size_t n)
@@ -423,10 +433,18 @@ bool vpServoMorph::targetMismatch(const vpMorphContour &current)
   if (m_checkDb.empty())
     return false;
   const vpMorphRecognition r = m_checkDb.recognize(current);
-  m_targetDistance = m_checkDb.distance().distance(current, m_target);
-  if (!(m_targetDistance <= m_checkSlack * m_checkDb.threshold(m_checkIndex)) &&
-      !(m_checkDb.support(current, m_checkIndex, r.index == m_checkIndex && r.mirrored) >= m_checkDb.minimumSupport()))
-    return true; // NaN too; an occluded view of the target (it shows enough of its outline) is not a mismatch
+  if (m_template.isArticulated()) {
+    // Its distance to the target posed at one opening varies by half its threshold from one view to the next: the
+    // database's, over its poses.
+    if (!m_checkDb.accepts(current, m_checkIndex, m_checkSlack, &m_targetDistance))
+      return true;
+  } else {
+    m_targetDistance = m_checkDb.distance().distance(current, m_target);
+    if (!(m_targetDistance <= m_checkSlack * m_checkDb.threshold(m_checkIndex)) &&
+        !(m_checkDb.support(current, m_checkIndex, r.index == m_checkIndex && r.mirrored) >=
+          m_checkDb.minimumSupport()))
+      return true; // NaN too; an occluded view of the target (it shows enough of its outline) is not a mismatch
+  }
   if (!(r.index != vpMorphRecognition::npos && r.index != m_checkIndex && r.accepted &&
         m_targetDistance >= mismatchRatio() * r.distance))
     return false;
@@ -982,6 +1000,8 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     return stop(DEGENERATE_CONTOUR);
   try {
     if (!m_started) {
+      if (m_template.isArticulated())
+        poseArticulatedTarget(current);
       start(current);
       if (targetMismatch(current)) {
         m_halted = true;

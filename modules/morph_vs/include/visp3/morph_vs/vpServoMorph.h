@@ -292,8 +292,17 @@ public:
     \throw vpMorphException::badParameterError on an empty or normalised contour, or Zd not finite and > 0.
   */
   void setTarget(const vpMorphContour &target, double Zd);
-  //! The goal from a template (its contour, and the depth of its cdMo).
+  /*!
+    The goal from a template (its contour, and the depth of its cdMo). An articulated template
+    (vpMorphTemplate::articulation()) is posed, at the start of each sequence, at the opening its current view shows
+    (vpMorphArticulation::estimate()), with the part that needs the smaller turn where the taught view has it: the
+    view is then a rigid placement of the target, and its depth follows from it.
+  */
   void setTarget(const vpMorphTemplate &t);
+  //! The opening the articulated target was posed at (radians; 0 for a rigid target or before the first period).
+  double targetOpening() const { return m_opening; }
+  //! The part of the articulated target that stays where the taught view has it (0 or 1).
+  unsigned int targetFixedPart() const { return m_fixedPart; }
   //! Number of sub-goals (0: the target only). Restarts the sequence.
   void setSubGoalCount(std::size_t n);
   //! The parameter of setSubGoalCount() (subGoals().size() is max(1, it) once started).
@@ -448,6 +457,8 @@ public:
 
 private:
   void start(const vpMorphContour &current);
+  //! An articulated target posed at the opening \e current shows (setTarget(const vpMorphTemplate &)).
+  void poseArticulatedTarget(const vpMorphContour &current);
   vpColVector stop(Status s);
   // \e switching: the sub-goal was just reached (no fit to it yet; the last period's fit was to the one before).
   vpMorphRigidTransform fitToSubGoal(const vpMorphContour &currentN, const vpMorphContour &currentPx, double Z,
@@ -486,6 +497,9 @@ private:
 
   vpCameraParameters m_cam;
   vpMorphContour m_target;
+  vpMorphTemplate m_template; // the target's articulated template (none for a rigid target)
+  double m_opening = 0.0;     // the opening m_target was posed at
+  unsigned int m_fixedPart = 0;
   vpMorphContour m_current; // last contour given (pixels), for display()
   double m_Zd = 0.5;
   std::size_t m_nSub = 10;
