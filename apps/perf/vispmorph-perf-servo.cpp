@@ -29,6 +29,9 @@
   - BM_planOccluded: the plan's correspondence of an occluded wedge to its taught view
   (vpMorphMatcher::matchOnRegions(): the minimal work checked on the regions, then on the outlines half a turn round),
   and BM_matchOccluded the minimal work alone (vpMorphMatcher::match()), to give the checks' cost;
+  - BM_articulationEstimate: the opening of the opened pliers seen from the run's first pose, against the pliers'
+    articulated template taught there (vpMorphArticulation::estimate(), once per plan), and BM_articulationPose the
+    template drawn at that opening (vpMorphArticulation::pose());
   - BM_ibvs4Points: the baseline, a stock vpServo on 4 points (IBVS, current L), one computeControlLaw().
   CPU time of the fastest repetition; the table at the end gives the ratios to the IBVS baseline.
 
@@ -48,6 +51,7 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpVelocityTwistMatrix.h>
+#include <visp3/morph/vpMorphArticulation.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphMatcher.h>
 #include <visp3/morph/vpMorphPolygonApproximation.h>
@@ -347,6 +351,45 @@ void plan(benchmark::State &state, bool checked)
 void BM_planOccluded(benchmark::State &state) { plan(state, true); }
 void BM_matchOccluded(benchmark::State &state) { plan(state, false); }
 
+// The pliers' silhouette (or one arm's, drawn alone in the pliers' frame) seen from the recording's first pose.
+vpMorphContour pliersView(const std::string &image)
+{
+  vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + image);
+  scene.setReferenceImage(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
+  vpImage<unsigned char> I;
+  scene.render(recording().firstcMo, I);
+  vpMorphTagPoseEstimator::maskTag(I, scene.projectedTagCorners(recording().firstcMo));
+  return vpMorphContourExtractor().extract(I);
+}
+
+// The pliers' articulated template, taught from the first pose, and the opened pliers seen from there.
+const vpMorphArticulation &pliersArticulation()
+{
+  static const vpMorphArticulation a(
+      pliersView("/joints/pliers-part0.png"), pliersView("/joints/pliers-part1.png"),
+      vpMorphPlanarScene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png")
+          .projectedTexel(320, 240, recording().firstcMo),
+      vpMath::rad(-8.0), vpMath::rad(60.0));
+  return a;
+}
+
+void BM_articulationEstimate(benchmark::State &state)
+{
+  const vpMorphArticulation &a = pliersArticulation();
+  const vpMorphContour opened = pliersView("/objects/pliers-deformed.png");
+  double opening = 0.0;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(opening = a.estimate(opened));
+  state.counters["opening_deg"] = vpMath::deg(opening);
+}
+
+void BM_articulationPose(benchmark::State &state)
+{
+  const vpMorphArticulation &a = pliersArticulation();
+  for (auto _ : state)
+    benchmark::DoNotOptimize(a.pose(vpMath::rad(32.0)).size());
+}
+
 void BM_ibvs4Points(benchmark::State &state)
 {
   vpServo task;
@@ -396,6 +439,8 @@ BENCHMARK(BM_edgeBand)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_edgeFit)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_planOccluded)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_matchOccluded)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_articulationEstimate)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_articulationPose)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ibvs4Points)->Unit(benchmark::kMicrosecond);
 
 int main(int argc, char **argv)

@@ -13,6 +13,8 @@
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 
+#include "vpMorphBenchJoint.h"
+
 namespace
 {
 const unsigned int kLostFrames = 10;            // successive images without features before giving up
@@ -23,23 +25,60 @@ const double kMinDepth = 0.15, kMaxDepth = 1.5; // m: outside, the camera has di
 
 void badParameter(const std::string &msg) { throw vpMorphException(vpMorphException::badParameterError, msg); }
 
-//! The taught view of an object: rendered at its desired pose, tag masked, silhouette extracted.
-vpMorphTemplate teach(const std::string &name, const std::string &image)
+//! The silhouette of \e scene rendered at \e cdMo, the tag masked.
+vpMorphContour taughtSilhouette(const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cdMo,
+                                const std::string &what)
 {
-  vpMorphPlanarScene scene(image);
-  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose(name);
   vpImage<unsigned char> I;
   scene.render(cdMo, I);
   vpHomogeneousMatrix cMo;
   std::vector<vpImagePoint> corners;
   if (!scene.tagPoseEstimator().estimate(I, cMo, &corners))
     throw vpMorphException(vpMorphException::badImageError,
-                           "vpMorphBench: tag not found in the taught view of " + name);
+                           "vpMorphBench: tag not found in the taught view of " + what);
   const vpMorphContour c = vpMorphTagPoseEstimator::silhouette(I, corners);
   if (c.empty())
     throw vpMorphException(vpMorphException::badImageError,
-                           "vpMorphBench: no object silhouette in the taught view of " + name);
-  vpMorphTemplate t(name, c, image, cdMo);
+                           "vpMorphBench: no object silhouette in the taught view of " + what);
+  return c;
+}
+
+/*!
+  The articulation of an object whose joint vispmorph-make-data describes (DATA/joints/NAME.json: the two parts'
+  images, drawn alone in the object image's frame, the pin and the opening's range in that frame): each part taught
+  as the object is, the pin projected. Empty for a rigid object.
+*/
+vpMorphArticulation taughtArticulation(const std::string &dataDir, const std::string &name, const std::string &image,
+                                       const vpHomogeneousMatrix &cdMo)
+{
+  const std::string file = vpMorphBenchJoint::file(dataDir, name);
+  if (file.empty())
+    return vpMorphArticulation();
+  const vpMorphBenchJoint joint = vpMorphBenchJoint::read(file);
+  vpMorphContour c[2];
+  for (unsigned int k = 0; k < 2; ++k) {
+    vpMorphPlanarScene scene(joint.parts[k]);
+    scene.setReferenceImage(image, vpMorphPlanarScene::SHARED_FRAME); // the object's frame, not the part's own
+    c[k] = taughtSilhouette(scene, cdMo, name + " (part " + std::to_string(k) + ")");
+  }
+  // The range is drawn in the texture's axes; the camera may see them mirrored.
+  const vpMorphPlanarScene scene(image);
+  const vpImagePoint o = scene.projectedTexel(joint.pivotU, joint.pivotV, cdMo);
+  const vpImagePoint ex = scene.projectedTexel(joint.pivotU + 1.0, joint.pivotV, cdMo);
+  const vpImagePoint ey = scene.projectedTexel(joint.pivotU, joint.pivotV + 1.0, cdMo);
+  const double cross =
+      (ex.get_u() - o.get_u()) * (ey.get_v() - o.get_v()) - (ex.get_v() - o.get_v()) * (ey.get_u() - o.get_u());
+  const double lo = vpMath::rad(joint.minDeg), hi = vpMath::rad(joint.maxDeg);
+  return cross > 0.0 ? vpMorphArticulation(c[0], c[1], o, lo, hi) : vpMorphArticulation(c[0], c[1], o, -hi, -lo);
+}
+
+//! The taught view of an object: rendered at its desired pose, tag masked, silhouette extracted; its articulation.
+vpMorphTemplate teach(const std::string &dataDir, const std::string &name)
+{
+  const std::string image = dataDir + "/objects/" + name + ".png";
+  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose(name);
+  vpMorphTemplate t(name, taughtSilhouette(vpMorphPlanarScene(image), cdMo, name), image, cdMo);
+  t.setArticulation(taughtArticulation(dataDir, name, image, cdMo));
   t.setMetadata("source", "rendered at the desired pose, tag masked");
   return t;
 }
@@ -68,7 +107,7 @@ vpMorphBench::vpMorphBench(const std::string &dataDir, const Settings &settings)
   if (!(settings.successTranslation > 0) || !(settings.successRotationDeg > 0))
     badParameter("vpMorphBench: success thresholds must be > 0");
   for (const std::string &name : vpMorphBenchScenario::objectNames())
-    m_db.add(teach(name, dataDir + "/objects/" + name + ".png"));
+    m_db.add(teach(dataDir, name));
   m_db.calibrate(1);
 }
 
@@ -252,13 +291,27 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   last.objectHidden = false;
   scene.setFaults(last);
   const vpHomogeneousMatrix cMo = robot.get_cMo();
-  vpMorphTagPoseEstimator::poseDifference(sc.cdMo, cMo, res.finalTranslation, res.finalRotation);
+  // The nearest of the equally good desired poses (one unless the object has several best placements).
+  vpHomogeneousMatrix cdMo = sc.cdMo;
+  vpMorphTagPoseEstimator::poseDifference(cdMo, cMo, res.finalTranslation, res.finalRotation);
+  const std::vector<vpHomogeneousMatrix> alternatives = scene.alternativePlacements();
+  for (std::size_t k = 0; k < alternatives.size(); ++k) {
+    double et = 0.0, er = 0.0;
+    vpMorphTagPoseEstimator::poseDifference(sc.cdMo * alternatives[k], cMo, et, er);
+    if (std::max(et / m_settings.successTranslation, er / rotThr) <
+        std::max(res.finalTranslation / m_settings.successTranslation, res.finalRotation / rotThr)) {
+      cdMo = sc.cdMo * alternatives[k];
+      res.finalTranslation = et;
+      res.finalRotation = er;
+      res.goal = static_cast<unsigned int>(k + 1);
+    }
+  }
   if (scene.tagInView(cMo)) {
     scene.render(cMo, I, res.iterations);
     vpHomogeneousMatrix cMo_tag;
     if (truthTag.estimate(I, cMo_tag)) {
       res.tagMeasured = true;
-      vpMorphTagPoseEstimator::poseDifference(sc.cdMo, cMo_tag, res.finalTagTranslation, res.finalTagRotation);
+      vpMorphTagPoseEstimator::poseDifference(cdMo, cMo_tag, res.finalTagTranslation, res.finalTagRotation);
     }
   }
   res.pathLength = robot.cameraPathLength();

@@ -389,8 +389,10 @@ public:
     const double Zd = m_template->cdMo()[2][3];
     try {
       if (!m_built) {
-        m_sd.buildFrom(m_template->contour(), m_ctx.cam, Zd);
-        m_areaD = m_template->contour().area();
+        // An articulated template: posed at the opening the view shows (as vpServoMorph does).
+        const vpMorphContour goal = m_template->viewFor(c);
+        m_sd.buildFrom(goal, m_ctx.cam, Zd);
+        m_areaD = goal.area();
       }
       const double a = c.area();
       if (!(a > 25.0))

@@ -132,7 +132,7 @@ std::string vpMorphBenchReport::runsHeader()
   return "set,robot,controller,scenario,seed,object,start_rotation_deg,start_translation_mm,start_tilt_deg,"
          "start_depth_change,success,failure,iterations,converged_iteration,path_length_m,straight_line_m,path_ratio,"
          "final_t_mm,final_r_deg,final_tag_t_mm,final_tag_r_deg,recognized,recognition_correct,measure_ms,"
-         "control_ms,faults,holds,replans,rerecognitions,max_speed_mps,max_rotation_speed_degps";
+         "control_ms,faults,holds,replans,rerecognitions,max_speed_mps,max_rotation_speed_degps,goal";
 }
 
 std::string vpMorphBenchReport::runsRow(const vpMorphBenchResult &r)
@@ -147,9 +147,9 @@ std::string vpMorphBenchReport::runsRow(const vpMorphBenchResult &r)
      << num(1000 * r.finalTranslation) << ',' << num(vpMath::deg(r.finalRotation)) << ','
      << (r.tagMeasured ? num(1000 * r.finalTagTranslation) : std::string()) << ','
      << (r.tagMeasured ? num(vpMath::deg(r.finalTagRotation)) : std::string()) << ',' << r.recognized << ','
-     << (r.recognitionCorrect() ? 1 : 0) << ',' << num(r.measureMs) << ',' << num(r.controlMs) << ','
-     << faultKinds(s) << ',' << r.holds << ',' << r.replans << ',' << r.rerecognitions << ',' << num(r.maxSpeed) << ','
-     << num(vpMath::deg(r.maxRotationSpeed));
+     << (r.recognitionCorrect() ? 1 : 0) << ',' << num(r.measureMs) << ',' << num(r.controlMs) << ',' << faultKinds(s)
+     << ',' << r.holds << ',' << r.replans << ',' << r.rerecognitions << ',' << num(r.maxSpeed) << ','
+     << num(vpMath::deg(r.maxRotationSpeed)) << ',' << r.goal;
   return os.str();
 }
 

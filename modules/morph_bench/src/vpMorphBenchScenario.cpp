@@ -10,6 +10,9 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
+
+#include "vpMorphBenchJoint.h"
 
 namespace
 {
@@ -48,7 +51,16 @@ vpHomogeneousMatrix startPose(double rotDeg, double tx, double ty, double tiltDe
 vpMorphPlanarScene vpMorphBenchScenario::scene() const
 {
   vpMorphPlanarScene scene(objectImage);
-  if (objectImage != templateImage)
+  if (objectImage != templateImage && !jointFile.empty()) {
+    // An articulated object: laid by either part on the template's, undoing the turn its drawing gave that part.
+    const vpMorphBenchJoint joint = vpMorphBenchJoint::read(jointFile);
+    scene.setReferenceImage(templateImage, vpMorphPlanarScene::SHARED_FRAME);
+    const vpMorphRigidTransform part0(-vpMath::rad(joint.deformedTurnDeg[0]), 0.0, 0.0, 1.0, joint.pivotU,
+                                      joint.pivotV);
+    const vpMorphRigidTransform part1(-vpMath::rad(joint.deformedTurnDeg[1]), 0.0, 0.0, 1.0, joint.pivotU,
+                                      joint.pivotV);
+    scene.setReferenceAlignment(part0, {part1});
+  } else if (objectImage != templateImage)
     scene.setReferenceImage(templateImage, vpMorphPlanarScene::BEST_OVERLAP);
   scene.setFaults(faults);
   return scene;
@@ -127,6 +139,7 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
       vpMorphBenchScenario plain; // the geometry only: faults do not move the object or the tag
       plain.objectImage = sc.objectImage;
       plain.templateImage = sc.templateImage;
+      plain.jointFile = sc.jointFile;
       s.reset(new vpMorphPlanarScene(plain.scene()));
     }
     return *s;
@@ -154,6 +167,7 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
     sc.object = objects[(set == "faults" ? i / 5 + i % 5 : i) % objects.size()];
     sc.templateImage = dataDir + "/objects/" + sc.object + ".png";
     sc.objectImage = set == "deformable" ? dataDir + "/objects/" + sc.object + "-deformed.png" : sc.templateImage;
+    sc.jointFile = vpMorphBenchJoint::file(dataDir, sc.object);
     sc.cdMo = desiredPose(sc.object);
     sc.faults.seed = sc.seed;
 

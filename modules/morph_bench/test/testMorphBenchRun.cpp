@@ -291,7 +291,7 @@ TEST_CASE("bench report: CSV rows match the header, summaries count and aggregat
   rep.add(u);
 
   const std::size_t n = fields(vpMorphBenchReport::runsHeader());
-  CHECK(n == 31);
+  CHECK(n == 32);
   CHECK(fields(vpMorphBenchReport::runsRow(a)) == n);
   CHECK(fields(vpMorphBenchReport::runsRow(b)) == n);
   std::istringstream curves(vpMorphBenchReport::curvesRows(a));

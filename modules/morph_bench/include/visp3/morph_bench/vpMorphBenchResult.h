@@ -38,6 +38,9 @@ public:
   double straightLine = 0;        //!< distance between start and desired camera centres, m
   double finalTranslation = 0;    //!< final error (simulator truth), m, measured at the object
   double finalRotation = 0;       //!< final error (simulator truth), rad
+  //! The desired pose the final errors are measured against: 0 the scenario's, k its k-th equally good placement
+  //! (vpMorphPlanarScene::alternativePlacements(): an opened pliers laid by its other arm), the nearest.
+  unsigned int goal = 0;
   bool tagMeasured = false;       //!< the final image showed the tag
   double finalTagTranslation = 0; //!< final error measured through the AprilTag (true intrinsics), m
   double finalTagRotation = 0;    //!< rad

@@ -57,6 +57,8 @@ public:
   std::string object;        //!< object name (its template is data/objects/<object>.png)
   std::string objectImage;   //!< image rendered in the scene (the deformed variant for "deformable")
   std::string templateImage; //!< image of the taught object
+  //! The articulated object's joint (DATA/joints/NAME.json, vispmorph-make-data) when it has one, else empty.
+  std::string jointFile;
   vpHomogeneousMatrix cdMo;  //!< desired pose of the object in the camera frame
   vpHomogeneousMatrix cdMc;  //!< start camera pose in the desired camera frame
 
