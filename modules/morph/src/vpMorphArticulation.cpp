@@ -22,7 +22,7 @@ const double kCoarseStep = 4.0;             // deg: the grid of estimate()
 const unsigned int kPartFitRounds = 3;      // part fits of estimate()
 const unsigned int kPartFitIterations = 20; // ICP rounds of each
 const double kPartFitSigma = 0.05;          // px: their robust scale's floor (measured edges)
-const double kOpeningGain = 0.02; // intersection over union another opening must add to the taught one's
+const double kOpeningGain = 0.02;           // intersection over union another opening must add to the taught one's
 
 void badParameter(const std::string &msg) { throw vpMorphException(vpMorphException::badParameterError, msg); }
 
@@ -63,6 +63,12 @@ void fillCentres(cv::Mat &img, const std::vector<cv::Point2d> &p)
         row[c] = 0;
     }
   }
+}
+//! The robust least-squares similarity that lays \e view on \e pose over their minimal-work correspondence.
+vpMorphRigidTransform layOn(const vpMorphContour &view, const vpMorphContour &pose, vpMorphMatcher &matcher)
+{
+  return vpMorphRigidTransform::fitLeastSquares(view, pose, matcher.match(view, pose), true,
+                                                vpMorphRigidTransform::TUKEY, 30, kFitSigma);
 }
 } // namespace
 
@@ -130,9 +136,9 @@ vpMorphContour vpMorphArticulation::draw(double angle, unsigned int fixedPart, b
   const int x0 = static_cast<int>(std::floor(xmin)) - kMargin, y0 = static_cast<int>(std::floor(ymin)) - kMargin;
   const int W = static_cast<int>(std::ceil(xmax)) + kMargin - x0 + 1,
             H = static_cast<int>(std::ceil(ymax)) + kMargin - y0 + 1;
-  if (W <= 0 || H <= 0 || static_cast<double>(W) * H > 4e7)
-    badParameter("vpMorphArticulation::pose: the parts span no image of a sensible size");
   const int super = measured ? kSuper : 1;
+  if (W <= 0 || H <= 0 || static_cast<double>(W) * H * super * super > 4e7)
+    badParameter("vpMorphArticulation::pose: the parts span no image of a sensible size");
   // Drawn super times finer, then averaged over each pixel: grey levels that are the share of the pixel covered, as
   // a camera integrates them. Not by cv::fillPoly: it takes the pixels on the edge too, which grows a shape by half a
   // fine pixel (0.07 px, 1 % of a thin tool's area, 2 mm of depth at 0.5 m).
@@ -169,9 +175,7 @@ vpMorphContour vpMorphArticulation::draw(double angle, unsigned int fixedPart, b
 
 double vpMorphArticulation::fitOverlap(const vpMorphContour &view, const vpMorphContour &pose, vpMorphMatcher &matcher)
 {
-  const vpMorphRigidTransform T = vpMorphRigidTransform::fitLeastSquares(view, pose, matcher.match(view, pose), true,
-                                                                         vpMorphRigidTransform::TUKEY, 30, kFitSigma);
-  const vpMorphContour v = T.apply(view);
+  const vpMorphContour v = layOn(view, pose, matcher).apply(view);
   const double inter = v.overlapArea(pose);
   return inter / (v.area() + pose.area() - inter);
 }
@@ -203,9 +207,7 @@ double vpMorphArticulation::estimate(const vpMorphContour &view, double *overlap
   // overlap of the whole pose moves by thousandths.
   for (unsigned int it = 0; it < kPartFitRounds; ++it) {
     const vpMorphContour g = draw(angle, 0, false);
-    const vpMorphContour v = vpMorphRigidTransform::fitLeastSquares(view, g, matcher.match(view, g), true,
-                                                                    vpMorphRigidTransform::TUKEY, 30, kFitSigma)
-                                 .apply(view.outline());
+    const vpMorphContour v = layOn(view, g, matcher).apply(view.outline());
     const vpMorphContour p1 =
         vpMorphRigidTransform(angle, 0.0, 0.0, 1.0, m_pivot.get_u(), m_pivot.get_v()).apply(m_parts[1].outline());
     const double t0 = vpMorphRigidTransform::refineOnOutline(m_parts[0].outline(), v, vpMorphRigidTransform(), true,
@@ -241,9 +243,7 @@ vpMorphContour vpMorphArticulation::poseFor(const vpMorphContour &view, double *
   double best = std::numeric_limits<double>::infinity();
   for (unsigned int k = 0; k < 2; ++k) {
     const vpMorphContour g = pose(a, k);
-    const double turn = std::fabs(vpMorphRigidTransform::fitLeastSquares(view, g, matcher.match(view, g), true,
-                                                                         vpMorphRigidTransform::TUKEY, 30, kFitSigma)
-                                      .theta());
+    const double turn = std::fabs(layOn(view, g, matcher).theta());
     if (turn < best) {
       best = turn;
       goal = g;

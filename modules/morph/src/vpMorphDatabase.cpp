@@ -345,12 +345,11 @@ std::vector<vpMorphDatabase::Pose> vpMorphDatabase::poses(const vpMorphTemplate 
 }
 
 double vpMorphDatabase::templateDistance(const vpMorphShapeDistance::Shape &q, std::size_t k, vpMorphMatcher &matcher,
-                                         double abandonAbove, bool *mirrored, std::size_t *pose) const
+                                         double abandonAbove, bool *mirrored, bool poses) const
 {
   bool mir = false;
   double best = m_distance.distance(q, m_shapes[k], matcher, abandonAbove, &mir);
-  std::size_t bestPose = vpMorphRecognition::npos;
-  for (std::size_t p = 0; p < m_poses[k].size(); ++p) {
+  for (std::size_t p = 0; poses && p < m_poses[k].size(); ++p) {
     const double bound = std::isfinite(best) && (abandonAbove < 0.0 || best < abandonAbove) ? best : abandonAbove;
     if (bound >= 0.0 && m_distance.lowerBound(q, m_poses[k][p].shape) > bound)
       continue; // this pose cannot beat the best so far
@@ -359,21 +358,18 @@ double vpMorphDatabase::templateDistance(const vpMorphShapeDistance::Shape &q, s
     if (d < best) {
       best = d;
       mir = m;
-      bestPose = p;
     }
   }
   if (mirrored)
     *mirrored = mir;
-  if (pose)
-    *pose = bestPose;
   return best;
 }
 
-double vpMorphDatabase::templateLowerBound(const vpMorphShapeDistance::Shape &q, std::size_t k) const
+double vpMorphDatabase::templateLowerBound(const vpMorphShapeDistance::Shape &q, std::size_t k, bool poses) const
 {
   double b = m_distance.lowerBound(q, m_shapes[k]);
-  for (const Pose &p : m_poses[k])
-    b = std::min(b, m_distance.lowerBound(q, p.shape));
+  for (std::size_t p = 0; poses && p < m_poses[k].size(); ++p)
+    b = std::min(b, m_distance.lowerBound(q, m_poses[k][p].shape));
   return b;
 }
 
@@ -435,6 +431,11 @@ void vpMorphDatabase::setSupportFloor(double s)
 
 double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mirrored) const
 {
+  return support(c, k, mirrored, true);
+}
+
+double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mirrored, bool poses) const
+{
   const vpMorphContour &t = operator[](k).contour();
   if (c.empty())
     throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::support: empty contour");
@@ -443,11 +444,12 @@ double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mir
                            "vpMorphDatabase::support: the contour's units are not those of template '" +
                                m_templates[k].name() + "'");
   vpMorphMatcher matcher = m_distance.matcher();
-  if (!m_poses[k].empty()) { // the pose of an articulated template that the view lies on
-    const vpMorphContour &v = templateView(k, overlapPose(c, k, matcher));
-    return shownEitherWay(c, v, matcher, mirrored, matcher.match(c, v));
-  }
-  return shownEitherWay(c, t, matcher, mirrored, matcher.match(c, t));
+  const double taught = shownEitherWay(c, t, matcher, mirrored, matcher.match(c, t));
+  if (!poses || m_poses[k].empty())
+    return taught;
+  // An articulated template: also the pose the view lies on best.
+  const vpMorphContour &v = templateView(k, overlapPose(c, k, matcher));
+  return std::max(taught, shownEitherWay(c, v, matcher, mirrored, matcher.match(c, v)));
 }
 
 bool vpMorphDatabase::accepts(const vpMorphContour &c, std::size_t k, double slack, double *distance) const
@@ -460,7 +462,10 @@ bool vpMorphDatabase::accepts(const vpMorphContour &c, std::size_t k, double sla
     throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::accepts: empty contour");
   vpMorphMatcher matcher = m_distance.matcher();
   bool mirrored = false;
-  const double d = templateDistance(m_distance.prepare(c), k, matcher, -1.0, &mirrored, nullptr);
+  const vpMorphShapeDistance::Shape q = m_distance.prepare(c);
+  double d = m_distance.distance(q, m_shapes[k], matcher, -1.0, &mirrored);
+  if (d > slack * threshold(k) && !m_poses[k].empty()) // an articulated template: its other openings too
+    d = templateDistance(q, k, matcher, -1.0, &mirrored, true);
   if (distance)
     *distance = d;
   if (d <= slack * threshold(k))
@@ -518,18 +523,28 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
 vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q, bool prune,
                                            vpMorphMatcher &matcher) const
 {
+  // The taught views first; only a view they leave unaccepted is compared with the articulated templates' other
+  // openings too (an opened pliers), so that every other view costs and gets what it did without them.
+  const vpMorphRecognition r = search(c, q, prune, matcher, false);
+  if (r.accepted || std::all_of(m_poses.begin(), m_poses.end(), [](const std::vector<Pose> &p) { return p.empty(); }))
+    return r;
+  const vpMorphRecognition a = search(c, q, prune, matcher, true);
+  return a.accepted ? a : r;
+}
+
+vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q, bool prune,
+                                           vpMorphMatcher &matcher, bool poses) const
+{
   const std::size_t T = m_templates.size();
   vpMorphRecognition r;
-  std::size_t bestPose = vpMorphRecognition::npos;
   // Keeps the two best (distance, index) pairs, ordered lexicographically: ties go to the lower index.
-  auto offer = [&r, &bestPose](double d, std::size_t k, bool mirrored, std::size_t pose) {
+  auto offer = [&r](double d, std::size_t k, bool mirrored) {
     if (d < r.distance || (d == r.distance && k < r.index)) {
       r.secondDistance = r.distance;
       r.secondIndex = r.index;
       r.distance = d;
       r.index = k;
       r.mirrored = mirrored;
-      bestPose = pose;
     } else if (d < r.secondDistance || (d == r.secondDistance && k < r.secondIndex)) {
       r.secondDistance = d;
       r.secondIndex = k;
@@ -538,27 +553,25 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   if (!prune) {
     for (std::size_t k = 0; k < T; ++k) {
       bool mir = false;
-      std::size_t pose = vpMorphRecognition::npos;
-      const double d = templateDistance(q, k, matcher, -1.0, &mir, &pose);
-      offer(d, k, mir, pose);
+      const double d = templateDistance(q, k, matcher, -1.0, &mir, poses);
+      offer(d, k, mir);
       ++r.evaluated;
     }
   } else {
     std::vector<std::pair<double, std::size_t>> order(T);
     for (std::size_t k = 0; k < T; ++k)
-      order[k] = std::make_pair(templateLowerBound(q, k), k);
+      order[k] = std::make_pair(templateLowerBound(q, k, poses), k);
     std::sort(order.begin(), order.end());
     for (const auto &o : order) {
       // Every later template has a bound at least as large: none of them can enter the top two.
       if (o.first > r.secondDistance)
         break;
       bool mir = false;
-      std::size_t pose = vpMorphRecognition::npos;
       const double d = templateDistance(q, o.second, matcher, std::isfinite(r.secondDistance) ? r.secondDistance : -1.0,
-                                        &mir, &pose);
+                                        &mir, poses);
       ++r.evaluated;
       if (d <= r.secondDistance)
-        offer(d, o.second, mir, pose);
+        offer(d, o.second, mir);
     }
   }
   if (T == 1)
@@ -567,8 +580,9 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
     r.margin = r.secondDistance > 0.0 ? (r.secondDistance - r.distance) / r.secondDistance : 0.0;
   r.threshold = threshold(r.index);
   r.accepted = r.distance <= r.threshold;
-  if (!m_poses[r.index].empty())
-    bestPose = overlapPose(c, r.index, matcher);
+  // An articulated template's pose: the one the view lies on best (overlapPose()), not the distance's.
+  const std::size_t bestPose =
+      !poses || m_poses[r.index].empty() ? vpMorphRecognition::npos : overlapPose(c, r.index, matcher);
   r.articulation = bestPose == vpMorphRecognition::npos ? 0.0 : m_poses[r.index][bestPose].angle;
   r.correspondence = matcher.match(c, templateView(r.index, bestPose));
   if (!std::isfinite(m_minSupport))
@@ -606,7 +620,7 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   for (const auto &o : others) {
     if (m_templates[o.second].contour().units() != c.units())
       continue; // support() refuses them
-    const double s = support(c, o.second, mirroredOther[o.second]);
+    const double s = support(c, o.second, mirroredOther[o.second], poses);
     if (s > bestSupport) {
       bestSupport = s;
       bestIndex = o.second;

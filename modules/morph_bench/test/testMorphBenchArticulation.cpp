@@ -4,12 +4,15 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include <visp3/core/vpMath.h>
 #include <visp3/morph/vpMorphArticulation.h>
 #include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_bench/vpMorphBench.h>
 #include <visp3/morph_bench/vpMorphBenchScenario.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
@@ -76,10 +79,37 @@ TEST_CASE("bench: vpServoMorph and vpFeatureMorph align opened pliers by either 
       {&seed1[0], "morph"}, {&seed1[6], "morph"}, {&seed3[12], "morph"}, {&seed1[0], "morph-vpservo"}};
   for (const auto &run : runs) {
     const vpMorphBenchResult r = bench().run(*run.first, run.second);
-    std::printf("[articulated] opened pliers, seed %u start %u, %s: %s, goal %u (arm), %.3f mm %.3f deg, %u periods\n",
-                run.first->seed, run.first->index, run.second.c_str(), r.success ? "success" : r.failure.c_str(),
+    std::printf("[articulated] opened pliers, start %u (scenario seed %u), %s: %s, goal %u (arm), %.3f mm %.3f deg, %u "
+                "periods\n",
+                run.first->index, run.first->seed, run.second.c_str(), r.success ? "success" : r.failure.c_str(),
                 r.goal, 1000 * r.finalTranslation, vpMath::deg(r.finalRotation), r.iterations);
     CHECK(r.success);
     CHECK(r.recognized == "pliers");
   }
+}
+
+TEST_CASE("bench: a malformed joint file is a clear error", "[bench][articulation]")
+{
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::current_path() / "joint-data";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "joints");
+  fs::create_directory_symlink(fs::path(kData) / "objects", dir / "objects");
+  for (const std::string text : {"{\"parts\": [\"a.png\"]", "{\"parts\": [\"a.png\"], \"pivot\": [1, 2]}",
+                                 "{\"parts\": [\"a.png\", \"b.png\"], \"pivot\": [1, 2], \"range_deg\": [-8, 60], "
+                                 "\"deformed_turns_deg\": [1]}"}) {
+    std::ofstream(dir / "joints" / "pliers.json") << text;
+    try {
+      const vpMorphBench b(dir.string(), vpMorphBench::Settings());
+      FAIL("no error for " << text);
+    } catch (const vpMorphException &e) {
+      CHECK(e.getCode() == vpMorphException::ioError);
+      CHECK(e.getStringMessage().find("malformed joint file") != std::string::npos);
+    }
+  }
+  // Parts that are not there: the scene's own error names the image.
+  std::ofstream(dir / "joints" / "pliers.json") << "{\"parts\": [\"a.png\", \"b.png\"], \"pivot\": [320, 240], "
+                                                   "\"range_deg\": [-8, 60], \"deformed_turns_deg\": [-16, 16]}";
+  CHECK_THROWS_AS(vpMorphBench(dir.string(), vpMorphBench::Settings()), vpMorphException);
+  fs::remove_all(dir);
 }

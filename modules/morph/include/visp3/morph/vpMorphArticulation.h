@@ -51,8 +51,8 @@ public:
   /*!
     The template's view at opening \e angle: part \e fixedPart where the taught view has it, the other turned about
     the pin, their union drawn (each pixel grey by the share of it covered, from 8 x 8 sub-pixels) and extracted by
-    vpMorphContourExtractor, so that
-    the result carries a measured region and edge outline as a camera's view does.
+    vpMorphContourExtractor, so that the result carries a measured region and edge outline as a camera's view does.
+    About 3 ms.
     \throw vpMorphException::badParameterError on an empty articulation, an angle out of the range or fixedPart > 1.
   */
   vpMorphContour pose(double angle, unsigned int fixedPart = 0) const;
@@ -66,7 +66,7 @@ public:
     \e overlap, if given, receives the intersection over union at the result. Why not the morph distance: on the
     starts' views (21 vertices) it varied by 0.4 from one 2 deg step to the next and put a 32 deg opening at 38-40
     deg; the overlap had one clear peak (0.93-0.96) at the true opening, and the part fits put it within 0.1 deg.
-    About 20 polygons and six ICPs: some 15 ms, once per plan.
+    About 20 polygons and six ICPs: some 12 ms (vispmorph-perf-servo), once per plan.
     \throw vpMorphException on an empty articulation or view.
   */
   double estimate(const vpMorphContour &view, double *overlap = nullptr) const;

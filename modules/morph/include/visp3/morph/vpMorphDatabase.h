@@ -93,6 +93,14 @@
   distance found: those templates can be neither the best nor the runner-up, so the result (best, runner-up,
   distances, ties broken by the lower index) is exactly that of the exhaustive search (recognize(c, false)).
 
+  <b>Articulated templates.</b> A template given an articulation (vpMorphTemplate::setArticulation(): two parts
+  about a pin, an opened pliers) is also held at its poses every 4 deg over its range (vpMorphArticulation::pose()).
+  A view that the taught views leave unaccepted is searched again with the poses (the least distance over a
+  template's poses counts, with the same pruning), its support taken on the pose it lies on best by overlap
+  (overlapPose()); vpMorphRecognition::articulation gives that opening. A view that the taught views accept gets
+  what it got without articulations, at the same cost. accepts() and support() try the poses too. The articulation
+  is saved with its template.
+
   <b>Files (save(), load()).</b> JSON with "format": "vispmorph-template-database" and "version": 1; the
   contours are stored, so images are not needed to query, but a template whose image is named and missing
   is reported (the database no longer matches its source). save() writes a temporary file in the same
@@ -194,8 +202,8 @@ public:
     aligns \e c's mirror image (a part turned over, vpMorphRecognition::mirrored; a nearly symmetric part may be matched
     either way), and the better counts. 0 when \e c cannot be aligned (a degenerate fit).
     \throw vpMorphException::notFoundError if \e k is out of range, badContourError on an empty contour or
-    badParameterError on units that differ from the template's. For an articulated template, of its pose that \e c
-    lies on best (its opening).
+    badParameterError on units that differ from the template's. For an articulated template, the better of its
+    taught view's and of its pose that \e c lies on best (its opening).
   */
   double support(const vpMorphContour &c, std::size_t k, bool mirrored = false) const;
   //! Least support() that accepts a view its distance rejects (an occluded view); +inf: the distance alone decides.
@@ -240,6 +248,11 @@ public:
 private:
   vpMorphRecognition search(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q, bool prune,
                             vpMorphMatcher &matcher) const;
+  //! support(), with an articulated template's poses or (\e poses false) its taught view only.
+  double support(const vpMorphContour &c, std::size_t k, bool mirrored, bool poses) const;
+  //! One search over the taught views, or (\e poses) over the articulated templates' poses too.
+  vpMorphRecognition search(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q, bool prune,
+                            vpMorphMatcher &matcher, bool poses) const;
   //! One view of an articulated template at an opening other than the taught one (the taught one is m_shapes).
   struct Pose
   {
@@ -249,13 +262,10 @@ private:
   };
   //! The views of template k besides the taught one: its articulation every kPoseStep over its range.
   std::vector<Pose> poses(const vpMorphTemplate &t) const;
-  /*!
-    Distance of \e q to template k: to its taught view, or the least over its poses too. \e pose receives the
-    index of the pose (npos: the taught view).
-  */
+  //! Distance of \e q to template k: to its taught view, and with \e poses the least over its poses too.
   double templateDistance(const vpMorphShapeDistance::Shape &q, std::size_t k, vpMorphMatcher &matcher,
-                          double abandonAbove, bool *mirrored, std::size_t *pose) const;
-  double templateLowerBound(const vpMorphShapeDistance::Shape &q, std::size_t k) const;
+                          double abandonAbove, bool *mirrored, bool poses) const;
+  double templateLowerBound(const vpMorphShapeDistance::Shape &q, std::size_t k, bool poses) const;
   /*!
     The pose of articulated template k that \e c lies on best (vpMorphArticulation::fitOverlap(); npos: the taught
     view). Why not the distance's: it picks an articulated template well but its opening poorly (on 21-vertex views
