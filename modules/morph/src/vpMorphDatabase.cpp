@@ -192,6 +192,18 @@ void contourToJson(const vpMorphContour &c, json &o)
     o["outline"] = {{"x", c.outline().xs()}, {"y", c.outline().ys()}};
 }
 
+//! Runs \e f, the errors of what it builds reported as a malformed file at \e where.
+template <typename F> void asFileError(const std::string &where, F f)
+{
+  try {
+    f();
+  } catch (const vpMorphException &e) {
+    if (e.getCode() == vpMorphException::ioError)
+      throw;
+    throw ioError("vpMorphDatabase: " + where + ": " + e.getStringMessage());
+  }
+}
+
 //! The contour written by contourToJson(); \e where names it in the errors.
 vpMorphContour contourFromJson(const json &o, const std::string &where)
 {
@@ -211,28 +223,20 @@ vpMorphContour contourFromJson(const json &o, const std::string &where)
     if (!r.is_object())
       throw ioError("vpMorphDatabase: " + where + ": \"region\" must be an object {area, cx, cy, mu20, mu11, mu02}");
     const std::string w = where + " \"region\"";
-    try {
+    asFileError(w, [&] {
       c.setRegion(field<double>(r, "area", w), field<double>(r, "cx", w), field<double>(r, "cy", w),
                   field<double>(r, "mu20", w), field<double>(r, "mu11", w), field<double>(r, "mu02", w));
-    } catch (const vpMorphException &e) {
-      if (e.getCode() == vpMorphException::ioError)
-        throw;
-      throw ioError("vpMorphDatabase: " + w + ": " + e.getStringMessage());
-    }
+    });
   }
   if (o.contains("outline")) { // optional: the edge measured on the template image
     const json &e = o["outline"];
     if (!e.is_object())
       throw ioError("vpMorphDatabase: " + where + ": \"outline\" must be an object {x, y}");
     const std::string w = where + " \"outline\"";
-    try {
+    asFileError(w, [&] {
       c.setOutline(
           vpMorphContour(field<std::vector<double>>(e, "x", w), field<std::vector<double>>(e, "y", w), c.units()));
-    } catch (const vpMorphException &ex) {
-      if (ex.getCode() == vpMorphException::ioError)
-        throw;
-      throw ioError("vpMorphDatabase: " + w + ": " + ex.getStringMessage());
-    }
+    });
   }
   return c;
 }
@@ -890,15 +894,11 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
       const std::vector<double> range = field<std::vector<double>>(a, "range", w);
       if (pivot.size() != 2 || range.size() != 2)
         throw ioError("vpMorphDatabase: " + w + ": \"pivot\" is (u, v) and \"range\" (min, max) radians");
-      try {
+      asFileError(w, [&] {
         t.setArticulation(vpMorphArticulation(contourFromJson(a["parts"][0], w + " part 0"),
                                               contourFromJson(a["parts"][1], w + " part 1"),
                                               vpImagePoint(pivot[1], pivot[0]), range[0], range[1]));
-      } catch (const vpMorphException &e) {
-        if (e.getCode() == vpMorphException::ioError)
-          throw;
-        throw ioError("vpMorphDatabase: " + w + ": " + e.getStringMessage());
-      }
+      });
     }
     if (o.contains("metadata"))
       t.setMetadata(field<std::map<std::string, std::string>>(o, "metadata", where.str()));

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
@@ -184,5 +186,19 @@ TEST_CASE("database: an articulated template recognises its opened views and is 
   const vpMorphContour opened = seen("/objects/pliers-deformed.png", 15.0, 1.0);
   CHECK(back.recognize(opened).articulation == db.recognize(opened).articulation);
   CHECK(back.recognize(opened).distance == db.recognize(opened).distance);
+  // A malformed articulation is a malformed file.
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const std::string key : {"\"pivot\"", "\"range\""}) {
+    std::string bad = text;
+    bad.replace(bad.find(key), key.size(), "\"nothing\"");
+    try {
+      (void)vpMorphDatabase::fromJson(bad);
+      FAIL("no error without " << key);
+    } catch (const vpMorphException &e) {
+      CHECK(e.getCode() == vpMorphException::ioError);
+      CHECK(e.getStringMessage().find("articulation") != std::string::npos);
+    }
+  }
   std::filesystem::remove(file);
 }
