@@ -189,6 +189,11 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   unsigned int lost = 0, stillCount = 0, measuredIterations = 0;
   double sumMeasure = 0, sumControl = 0;
   vpImage<unsigned char> I;
+  // The desired pose, and the equally good others of an object with several best placements (vpMorphBenchResult::goal).
+  std::vector<vpHomogeneousMatrix> goals{sc.cdMo};
+  for (const vpHomogeneousMatrix &W : scene.alternativePlacements())
+    goals.push_back(sc.cdMo * W);
+  std::vector<std::vector<double>> curveT(goals.size()), curveR(goals.size());
 
   for (unsigned int it = 0; it < m_settings.maxIterations; ++it) {
     // Timed faults of this iteration: the scene's (occluder, object absent), the robot's (pose jump), the
@@ -221,11 +226,14 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
       scene.setFaults(faults);
 
     const vpHomogeneousMatrix cMo = robot.get_cMo();
-    double et, er;
-    vpMorphTagPoseEstimator::poseDifference(sc.cdMo, cMo, et, er);
-    // Always kept: the settling iteration is read from it; dropped at the end unless recordCurves.
-    res.curveTranslation.push_back(et);
-    res.curveRotation.push_back(er);
+    // Always kept, against each desired pose (the final error picks one): the settling iteration is read from them;
+    // dropped at the end unless recordCurves.
+    for (std::size_t g = 0; g < goals.size(); ++g) {
+      double et, er;
+      vpMorphTagPoseEstimator::poseDifference(goals[g], cMo, et, er);
+      curveT[g].push_back(et);
+      curveR[g].push_back(er);
+    }
     res.iterations = it + 1;
     const double Z = cMo[2][3];
     if (!(Z > kMinDepth && Z < kMaxDepth)) {
@@ -292,20 +300,20 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   scene.setFaults(last);
   const vpHomogeneousMatrix cMo = robot.get_cMo();
   // The nearest of the equally good desired poses (one unless the object has several best placements).
-  vpHomogeneousMatrix cdMo = sc.cdMo;
-  vpMorphTagPoseEstimator::poseDifference(cdMo, cMo, res.finalTranslation, res.finalRotation);
-  const std::vector<vpHomogeneousMatrix> alternatives = scene.alternativePlacements();
-  for (std::size_t k = 0; k < alternatives.size(); ++k) {
+  vpMorphTagPoseEstimator::poseDifference(goals[0], cMo, res.finalTranslation, res.finalRotation);
+  for (std::size_t g = 1; g < goals.size(); ++g) {
     double et = 0.0, er = 0.0;
-    vpMorphTagPoseEstimator::poseDifference(sc.cdMo * alternatives[k], cMo, et, er);
+    vpMorphTagPoseEstimator::poseDifference(goals[g], cMo, et, er);
     if (std::max(et / m_settings.successTranslation, er / rotThr) <
         std::max(res.finalTranslation / m_settings.successTranslation, res.finalRotation / rotThr)) {
-      cdMo = sc.cdMo * alternatives[k];
       res.finalTranslation = et;
       res.finalRotation = er;
-      res.goal = static_cast<unsigned int>(k + 1);
+      res.goal = static_cast<unsigned int>(g);
     }
   }
+  const vpHomogeneousMatrix &cdMo = goals[res.goal];
+  res.curveTranslation = curveT[res.goal];
+  res.curveRotation = curveR[res.goal];
   if (scene.tagInView(cMo)) {
     scene.render(cMo, I, res.iterations);
     vpHomogeneousMatrix cMo_tag;

@@ -85,6 +85,10 @@ TEST_CASE("bench: vpServoMorph and vpFeatureMorph align opened pliers by either 
                 r.goal, 1000 * r.finalTranslation, vpMath::deg(r.finalRotation), r.iterations);
     CHECK(r.success);
     CHECK(r.recognized == "pliers");
+    // The error curve is against the same goal as the final error.
+    REQUIRE_FALSE(r.curveTranslation.empty());
+    CHECK(r.curveTranslation.back() == Approx(r.finalTranslation));
+    CHECK(r.curveRotation.back() == Approx(r.finalRotation));
   }
 }
 

@@ -54,7 +54,7 @@ public:
   unsigned int holds = 0;          //!< iterations without features (missing frames included): zero velocity
   unsigned int replans = 0;        //!< re-plans after a view jump (VISPMorph)
   unsigned int rerecognitions = 0; //!< re-recognitions after a wrong target (VISPMorph)
-  std::vector<double> curveTranslation; //!< truth error per iteration, m
+  std::vector<double> curveTranslation; //!< truth error per iteration (against the goal), m
   std::vector<double> curveRotation;    //!< rad
 
   //! path length / straight line, or NaN when the straight line is shorter than 1 mm (pure rotation).
