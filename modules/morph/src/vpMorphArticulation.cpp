@@ -228,21 +228,13 @@ double vpMorphArticulation::estimate(const vpMorphContour &view, double *overlap
   return best;
 }
 
-vpMorphContour vpMorphArticulation::poseFor(const vpMorphContour &view, double *opening, unsigned int *fixedPart) const
+vpMorphContour vpMorphArticulation::poseFor(const vpMorphContour &view, double opening, unsigned int *fixedPart) const
 {
-  const double a = estimate(view);
-  if (a == 0.0) { // the taught view: either part stays
-    if (opening)
-      *opening = 0.0;
-    if (fixedPart)
-      *fixedPart = 0;
-    return pose(0.0, 0);
-  }
   vpMorphMatcher matcher;
   vpMorphContour goal;
   double best = std::numeric_limits<double>::infinity();
   for (unsigned int k = 0; k < 2; ++k) {
-    const vpMorphContour g = pose(a, k);
+    const vpMorphContour g = pose(opening, k);
     const double turn = std::fabs(layOn(view, g, matcher).theta());
     if (turn < best) {
       best = turn;
@@ -251,7 +243,5 @@ vpMorphContour vpMorphArticulation::poseFor(const vpMorphContour &view, double *
         *fixedPart = k;
     }
   }
-  if (opening)
-    *opening = a;
   return goal;
 }

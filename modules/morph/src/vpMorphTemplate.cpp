@@ -43,12 +43,13 @@ void vpMorphTemplate::setArticulation(const vpMorphArticulation &a)
 
 vpMorphContour vpMorphTemplate::viewFor(const vpMorphContour &view, double *opening, unsigned int *fixedPart) const
 {
-  double a = 0.0;
+  const double a = isArticulated() ? m_articulation.estimate(view) : 0.0;
   unsigned int k = 0;
-  vpMorphContour v = isArticulated() ? m_articulation.poseFor(view, &a, &k) : m_contour;
+  // At the taught opening, the taught view itself, not its parts redrawn.
+  vpMorphContour v = a == 0.0 ? m_contour : m_articulation.poseFor(view, a, &k);
   if (opening)
     *opening = a;
   if (fixedPart)
     *fixedPart = k;
-  return a == 0.0 ? m_contour : v; // the taught view itself, not its parts redrawn
+  return v;
 }

@@ -93,11 +93,17 @@ TEST_CASE("vpMorphArticulation: the opening of a view, whatever its similarity",
     CHECK(overlap > 0.9); // of polygons
     // The goal lays the view by a similarity of the view's scale (the texels resampled at another scale: within
     // 0.3 %), the part that needs the smaller turn kept.
-    double o2 = 0.0;
     unsigned int fixed = 2;
-    const vpMorphContour goal = a.poseFor(view, &o2, &fixed);
-    CHECK(o2 == opening);
+    const vpMorphContour goal = a.poseFor(view, opening, &fixed);
     REQUIRE(fixed < 2);
+    // The template's view for it: the same goal, at the same opening.
+    vpMorphTemplate t("pliers", seen("/objects/pliers.png", 0.0, 1.0));
+    t.setArticulation(a);
+    double o2 = 0.0;
+    unsigned int fixed2 = 2;
+    CHECK(t.viewFor(view, &o2, &fixed2).xs() == goal.xs());
+    CHECK(o2 == opening);
+    CHECK(fixed2 == fixed);
     const vpMorphRigidTransform T = vpMorphRigidTransform::refineOnOutline(
         view.outline(), goal.outline(),
         vpMorphRigidTransform::fitLeastSquares(view, goal, matcher.match(view, goal), true,
@@ -112,8 +118,14 @@ TEST_CASE("vpMorphArticulation: the opening of a view, whatever its similarity",
     };
     CHECK(turn(goal) <= turn(a.pose(opening, 1 - fixed)));
   }
-  // The closed pliers: no opening.
-  CHECK(std::fabs(vpMath::deg(a.estimate(seen("/objects/pliers.png", 35.0, 0.9)))) < 0.15);
+  // The closed pliers: no opening, and the template's view for them is its taught view itself.
+  const vpMorphContour closed = seen("/objects/pliers.png", 35.0, 0.9);
+  CHECK(std::fabs(vpMath::deg(a.estimate(closed))) < 0.15);
+  vpMorphTemplate t("pliers", seen("/objects/pliers.png", 0.0, 1.0));
+  t.setArticulation(a);
+  double o = 1.0;
+  CHECK(t.viewFor(closed, &o).xs() == t.contour().xs());
+  CHECK(o == 0.0);
 }
 
 TEST_CASE("vpMorphArticulation: bad input", "[articulation]")

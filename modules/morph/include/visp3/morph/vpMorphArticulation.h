@@ -71,13 +71,12 @@ public:
   */
   double estimate(const vpMorphContour &view, double *overlap = nullptr) const;
   /*!
-    The goal for \e view: pose() at the opening it shows (estimate()), with the part that needs the smaller turn
-    (of the view's best similarity onto either pose) where the taught view has it. \e opening and \e fixedPart, if
-    given, receive them.
-    \throw vpMorphException as estimate().
+    The goal for \e view, seen at \e opening (estimate()): pose() there, with the part that needs the smaller turn
+    (of the view's best similarity onto either pose) where the taught view has it; \e fixedPart, if given, receives
+    it. vpMorphTemplate::viewFor() estimates the opening and keeps the taught view itself at the taught opening.
+    \throw vpMorphException as pose().
   */
-  vpMorphContour poseFor(const vpMorphContour &view, double *opening = nullptr,
-                         unsigned int *fixedPart = nullptr) const;
+  vpMorphContour poseFor(const vpMorphContour &view, double opening, unsigned int *fixedPart = nullptr) const;
   /*!
     How well \e view lies on \e pose up to a similarity: their regions' intersection over union once the view is
     laid on the pose by the robust (Tukey) least-squares similarity of their minimal-work correspondence.
