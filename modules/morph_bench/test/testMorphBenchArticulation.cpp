@@ -16,6 +16,7 @@
 #include <visp3/morph_bench/vpMorphBench.h>
 #include <visp3/morph_bench/vpMorphBenchScenario.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
+#include <visp3/morph_vs/vpServoMorph.h>
 
 namespace
 {
@@ -116,4 +117,25 @@ TEST_CASE("bench: a malformed joint file is a clear error", "[bench][articulatio
                                                    "\"range_deg\": [-8, 60], \"deformed_turns_deg\": [-16, 16]}";
   CHECK_THROWS_AS(vpMorphBench(dir.string(), vpMorphBench::Settings()), vpMorphException);
   fs::remove_all(dir);
+}
+
+TEST_CASE("bench: vpServoMorph poses an articulated target at the opening the view shows", "[bench][articulation]")
+{
+  const vpMorphTemplate &t = bench().database()["pliers"];
+  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("deformable", 1, 1, kData)[0];
+  REQUIRE(sc.object == "pliers");
+  vpMorphContour view;
+  bench().recognizeStart(sc, &view);
+  REQUIRE_FALSE(view.empty());
+  vpServoMorph servo;
+  servo.setCameraParameters(vpMorphPlanarScene::defaultCamera());
+  servo.setTarget(t);
+  CHECK(servo.targetOpening() == 0.0); // not posed before the first view
+  servo.computeControlLaw(view);
+  CHECK(std::fabs(vpMath::deg(servo.targetOpening()) - 32.0) < 0.2);
+  CHECK(servo.targetFixedPart() < 2);
+  // A rigid target (a contour) forgets the articulation.
+  servo.setTarget(t.contour(), 0.5);
+  servo.computeControlLaw(view);
+  CHECK(servo.targetOpening() == 0.0);
 }

@@ -467,6 +467,40 @@ TEST_CASE("a deformed object placed by best overlap lies on its template as well
   }
 }
 
+TEST_CASE("a texture placed by a given motion, its equally good placements, and a texel projected",
+          "[morph_sim][scene][overlap]")
+{
+  const vpHomogeneousMatrix cMo = view(0.01, -0.02, 0.5, 0, 0, 0.4);
+  const vpMorphPlanarScene tpl(object("pliers"));
+  vpMorphPlanarScene scene(object("pliers"));
+  scene.setReferenceImage(object("pliers"));
+  CHECK(scene.alternativePlacements().empty());
+  // The texture turned by 10 deg about texel (320, 240), and an alternative turned by -20 deg about it.
+  const vpMorphRigidTransform A(vpMath::rad(10.0), 0, 0, 1, 320, 240), B(vpMath::rad(-20.0), 0, 0, 1, 320, 240);
+  scene.setReferenceAlignment(A, {B});
+  CHECK(scene.referenceAlignment().theta() == A.theta());
+  // That texel stays where the template shows it; another one turns by 10 deg about it in the image (the camera is
+  // parallel to the plane).
+  const vpImagePoint pin = tpl.projectedTexel(320, 240, cMo);
+  CHECK(vpImagePoint::distance(scene.projectedTexel(320, 240, cMo), pin) < 1e-9);
+  const vpImagePoint p0 = tpl.projectedTexel(420, 240, cMo), p1 = scene.projectedTexel(420, 240, cMo);
+  const double turn = std::atan2(p1.get_v() - pin.get_v(), p1.get_u() - pin.get_u()) -
+                      std::atan2(p0.get_v() - pin.get_v(), p0.get_u() - pin.get_u());
+  CHECK(std::fabs(std::fabs(vpMath::deg(std::remainder(turn, 2 * M_PI))) - 10.0) < 1e-6);
+  // The alternative as a motion of the object frame: seen from cMo * W, the object shows B's placement.
+  const std::vector<vpHomogeneousMatrix> W = scene.alternativePlacements();
+  REQUIRE(W.size() == 1);
+  vpMorphPlanarScene other(object("pliers"));
+  other.setReferenceImage(object("pliers"));
+  other.setReferenceAlignment(B);
+  for (const std::pair<double, double> t :
+       {std::make_pair(320.0, 240.0), std::make_pair(420.0, 240.0), std::make_pair(250.0, 200.0)})
+    CHECK(vpImagePoint::distance(scene.projectedTexel(t.first, t.second, cMo * W[0]),
+                                 other.projectedTexel(t.first, t.second, cMo)) < 1e-6);
+  CHECK_THROWS_AS(scene.projectedTexel(NAN, 240, cMo), vpMorphException);
+  CHECK_THROWS_AS(scene.projectedTexel(320, 240, view(0, 0, -0.5, 0, 0, 0)), vpMorphException); // behind
+}
+
 TEST_CASE("bad scene input throws vpMorphException", "[morph_sim][errors]")
 {
   CHECK_THROWS_AS(vpMorphPlanarScene(object("no-such-object")), vpMorphException);
