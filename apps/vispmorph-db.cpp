@@ -3,13 +3,15 @@
   \brief Template databases from the command line: build one from a folder of images, inspect it, recognise.
 
   \code
-  vispmorph-db build DIR --out db.json [--model multiscale|paper|polygon] [--threshold T]
+  vispmorph-db build DIR --out db.json [--model multiscale|paper|polygon] [--threshold T] [--joints JDIR]
   vispmorph-db info db.json
   vispmorph-db recognize db.json IMAGE... [--json] [--exhaustive] [--min-support S|off]
   \endcode
   build: one template per image of DIR (named after the file), the largest object of each, calibrated
-  acceptance thresholds (vpMorphDatabase::calibrate()), saved atomically; progress on stderr.
-  info: templates, vertex counts, calibration (within, nearest other template, threshold).
+  acceptance thresholds (vpMorphDatabase::calibrate()), saved atomically; progress on stderr. --joints: each
+  JDIR/NAME.json (vpMorphJointFile) articulates template NAME (a joint file naming no template is an error).
+  info: templates, vertex counts, calibration (within, nearest other template, threshold), articulations.
+  recognize also gives the opening a view of an articulated template was recognised at.
   recognize: per image, the template, its distance and threshold, the share of its outline shown
   (vpMorphDatabase::support()), the runner-up (the distance's choice when the support re-ranked them), the margin,
   and ACCEPTED (by the distance or by the support) or REJECTED (beyond the threshold and short of the minimum
@@ -18,8 +20,10 @@
   Exit status: 0 on success (also when objects are rejected), 1 on an error (with several images, after recognising
   all the others), 2 on bad arguments.
 */
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -30,20 +34,24 @@
 #include <nlohmann/json.hpp>
 
 #include <visp3/core/vpImage.h>
+#include <visp3/core/vpMath.h>
 #include <visp3/core/vpTime.h>
 #include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphJointFile.h>
 
 namespace
 {
 void usage(std::ostream &os)
 {
   os << "Usage: vispmorph-db build DIR --out db.json [--model multiscale|paper|polygon] [--threshold T]\n"
+        "                         [--joints JDIR]\n"
         "       vispmorph-db info db.json\n"
         "       vispmorph-db recognize db.json IMAGE... [--json] [--exhaustive] [--min-support S|off]\n"
-        "  build      one template per image of DIR, calibrated, written atomically to db.json\n"
+        "  build      one template per image of DIR, calibrated, written atomically to db.json; JDIR/NAME.json\n"
+        "             (parts' images, pivot, range_deg) articulates template NAME\n"
         "  info       templates and calibration of a database\n"
         "  recognize  the template of the largest object of each IMAGE, accepted (by the distance, or by the share\n"
         "             of the template's outline it shows: --min-support, off for the distance alone) or rejected\n";
@@ -51,7 +59,7 @@ void usage(std::ostream &os)
 
 struct Args
 {
-  std::string verb, out, model = "multiscale";
+  std::string verb, out, model = "multiscale", joints;
   std::vector<std::string> positional;
   double threshold = 0.0;
   double minSupport = 0.0; // 0: the database's; +inf: off
@@ -79,7 +87,7 @@ bool parse(int argc, char **argv, Args &a)
       a.json = true;
     } else if (s == "--exhaustive") {
       a.exhaustive = true;
-    } else if (s == "--out" || s == "--model" || s == "--threshold" || s == "--min-support") {
+    } else if (s == "--out" || s == "--model" || s == "--threshold" || s == "--min-support" || s == "--joints") {
       if (k + 1 >= argc) {
         std::cerr << "vispmorph-db: " << s << " needs a value\n";
         return false;
@@ -87,6 +95,8 @@ bool parse(int argc, char **argv, Args &a)
       const std::string v = argv[++k];
       if (s == "--out") {
         a.out = v;
+      } else if (s == "--joints") {
+        a.joints = v;
       } else if (s == "--model") {
         a.model = v;
       } else if (s == "--min-support") {
@@ -121,6 +131,10 @@ bool parse(int argc, char **argv, Args &a)
     std::cerr << "vispmorph-db: --min-support is an option of recognize\n";
     return false;
   }
+  if (!a.joints.empty() && a.verb != "build") {
+    std::cerr << "vispmorph-db: --joints is an option of build\n";
+    return false;
+  }
   if (a.verb == "build" && a.out.empty()) {
     std::cerr << "vispmorph-db build: --out db.json is required\n";
     return false;
@@ -133,12 +147,50 @@ void progress(std::size_t done, std::size_t total)
   std::cerr << "\r  " << done << "/" << total << (done >= total ? "\n" : "") << std::flush;
 }
 
-std::string fmt(double x)
+/*!
+  Articulates the templates of \e db that a joint file of \e dir names (NAME.json, sorted); returns how many.
+  \throw vpMorphException::ioError on an unreadable directory or file, notFoundError on a joint file that names no
+  template (a misspelt file would otherwise leave its tool rigid without a word).
+*/
+std::size_t articulate(vpMorphDatabase &db, const std::string &dir)
+{
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().extension() == ".json")
+      files.push_back(it->path());
+  if (ec)
+    throw vpMorphException(vpMorphException::ioError, "cannot read joint directory '" + dir + "': " + ec.message());
+  std::sort(files.begin(), files.end());
+  for (const fs::path &f : files) {
+    const std::string name = f.stem().string();
+    if (db.find(name) == vpMorphRecognition::npos)
+      throw vpMorphException(vpMorphException::notFoundError,
+                             "joint file '" + f.string() + "' names no template of the database ('" + name + "')");
+    std::cerr << "articulating " << name << " (" << f.string() << ")\n";
+    db.setArticulation(name, vpMorphJointFile::read(f.string()).articulation());
+  }
+  return files.size();
+}
+
+//! A template's articulation as its range ("-8..60"), "-" when rigid.
+std::string joint(const vpMorphTemplate &t)
+{
+  if (!t.isArticulated())
+    return "-";
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(0) << vpMath::deg(t.articulation().minAngle()) << ".."
+     << vpMath::deg(t.articulation().maxAngle());
+  return os.str();
+}
+
+std::string fmt(double x, int decimals = 4)
 {
   if (!std::isfinite(x))
     return "-";
   std::ostringstream os;
-  os << std::fixed << std::setprecision(4) << x;
+  os << std::fixed << std::setprecision(decimals) << x;
   return os.str();
 }
 } // namespace
@@ -158,9 +210,14 @@ int main(int argc, char **argv)
           vpMorphDatabase::fromImages(a.positional[0], vpMorphShapeDistance::fromName(a.model), progress);
       if (a.threshold > 0.0)
         db.setThreshold(a.threshold);
+      std::size_t articulated = 0;
+      if (!a.joints.empty())
+        articulated = articulate(db, a.joints);
       db.save(a.out);
-      std::cout << "wrote " << a.out << ": " << db.size() << " templates, model " << db.distance().name() << ", "
-                << std::fixed << std::setprecision(1) << (vpTime::measureTimeMs() - t0) / 1000.0 << " s\n";
+      std::cout << "wrote " << a.out << ": " << db.size() << " templates"
+                << (articulated ? " (" + std::to_string(articulated) + " articulated)" : std::string()) << ", model "
+                << db.distance().name() << ", " << std::fixed << std::setprecision(1)
+                << (vpTime::measureTimeMs() - t0) / 1000.0 << " s\n";
     } else if (a.verb == "info") {
       const vpMorphDatabase db = vpMorphDatabase::load(a.positional[0]);
       std::cout << a.positional[0] << ": " << db.size() << " templates, model " << db.distance().name() << " ("
@@ -172,13 +229,13 @@ int main(int argc, char **argv)
                 << "\n";
       std::cout << std::left << std::setw(24) << "name" << std::right << std::setw(9) << "vertices" << std::setw(10)
                 << "within" << std::setw(10) << "nearest" << std::setw(11) << "threshold"
-                << "  image\n";
+                << "  joint (deg)  image\n";
       for (std::size_t k = 0; k < db.size(); ++k) {
         const bool cal = db.isCalibrated();
         std::cout << std::left << std::setw(24) << db[k].name() << std::right << std::setw(9) << db[k].contour().size()
                   << std::setw(10) << (cal ? fmt(db.withinDistances()[k]) : "-") << std::setw(10)
                   << (cal ? fmt(db.betweenDistances()[k]) : "-") << std::setw(11) << fmt(db.threshold(k)) << "  "
-                  << db[k].imagePath() << "\n";
+                  << std::left << std::setw(11) << joint(db[k]) << "  " << std::right << db[k].imagePath() << "\n";
       }
       std::cout << "minimum support (share of a template's outline that accepts a view its distance rejects): "
                 << fmt(db.minimumSupport()) << "\n";
@@ -230,6 +287,7 @@ int main(int argc, char **argv)
           j["accepted"] = r.accepted;
           j["accepted_by"] = !r.accepted ? nlohmann::json(nullptr) : nlohmann::json(supported ? "support" : "distance");
           j["mirrored"] = r.mirrored;
+          j["opening_deg"] = db[r.index].isArticulated() ? nlohmann::json(vpMath::deg(r.articulation)) : nullptr;
           j["reranked"] = r.reranked;
           j["support_floor"] = db.supportFloor();
           j["runner_up"] = r.secondIndex == vpMorphRecognition::npos ? nlohmann::json(nullptr)
@@ -243,8 +301,9 @@ int main(int argc, char **argv)
         } else {
           std::cout << (a.positional.size() > 2 ? path + ": " : std::string())
                     << (r.accepted ? (supported ? "ACCEPTED (support) " : "ACCEPTED ") : "REJECTED ")
-                    << db[r.index].name() << (r.mirrored ? " (mirrored)" : "") << ": distance " << fmt(r.distance)
-                    << " (threshold " << fmt(r.threshold) << ")";
+                    << db[r.index].name() << (r.mirrored ? " (mirrored)" : "")
+                    << (r.articulation != 0.0 ? " opened " + fmt(vpMath::deg(r.articulation), 1) + " deg" : "")
+                    << ": distance " << fmt(r.distance) << " (threshold " << fmt(r.threshold) << ")";
           if (!std::isnan(r.support))
             std::cout << ", support " << std::setprecision(2) << std::fixed << r.support << " (minimum "
                       << fmt(db.minimumSupport()) << ")";

@@ -175,9 +175,16 @@ vpMorphContour vpMorphArticulation::draw(double angle, unsigned int fixedPart, b
 
 double vpMorphArticulation::fitOverlap(const vpMorphContour &view, const vpMorphContour &pose, vpMorphMatcher &matcher)
 {
-  const vpMorphContour v = layOn(view, pose, matcher).apply(view);
-  const double inter = v.overlapArea(pose);
-  return inter / (v.area() + pose.area() - inter);
+  vpMorphContour v;
+  try {
+    v = layOn(view, pose, matcher).apply(view);
+  } catch (const vpException &) {
+    // The robust fit collapsed the view (its weight left on pairs that meet one vertex of the pose: scale 0, found on
+    // MPEG-7 shapes against the pliers' poses): no similarity lays it on the pose.
+    return 0.0;
+  }
+  const double inter = v.overlapArea(pose), uni = v.area() + pose.area() - inter;
+  return uni > 0.0 && std::isfinite(inter / uni) ? inter / uni : 0.0;
 }
 
 double vpMorphArticulation::estimate(const vpMorphContour &view, double *overlap) const

@@ -396,15 +396,25 @@ const vpMorphContour &vpMorphDatabase::templateView(std::size_t k, std::size_t p
   return pose == vpMorphRecognition::npos ? m_templates[k].contour() : m_poses[k][pose].contour;
 }
 
+void vpMorphDatabase::setArticulation(const std::string &name, const vpMorphArticulation &a)
+{
+  const std::size_t k = find(name);
+  if (k == vpMorphRecognition::npos)
+    throw vpMorphException(vpMorphException::notFoundError, "vpMorphDatabase: no template named '" + name + "'");
+  m_templates[k].setArticulation(a);
+  m_poses[k] = poses(m_templates[k]);
+}
+
 void vpMorphDatabase::setDistance(const vpMorphShapeDistance &d)
 {
   m_distance = d;
   m_shapes.clear();
-  m_poses.clear();
-  for (const vpMorphTemplate &t : m_templates) {
+  for (const vpMorphTemplate &t : m_templates)
     m_shapes.push_back(m_distance.prepare(t.contour()));
-    m_poses.push_back(poses(t));
-  }
+  // The poses are drawn from the articulation alone: only their shapes depend on the distance.
+  for (std::vector<Pose> &poses : m_poses)
+    for (Pose &p : poses)
+      p.shape = m_distance.prepare(p.contour);
   invalidate();
 }
 

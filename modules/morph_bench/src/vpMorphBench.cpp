@@ -54,21 +54,22 @@ vpMorphArticulation taughtArticulation(const std::string &dataDir, const std::st
   const std::string file = vpMorphBenchJoint::file(dataDir, name);
   if (file.empty())
     return vpMorphArticulation();
-  const vpMorphBenchJoint joint = vpMorphBenchJoint::read(file);
+  const vpMorphJointFile joint = vpMorphBenchJoint::read(file).joint;
   vpMorphContour c[2];
   for (unsigned int k = 0; k < 2; ++k) {
-    vpMorphPlanarScene scene(joint.parts[k]);
+    vpMorphPlanarScene scene(joint.part(k));
     scene.setReferenceImage(image, vpMorphPlanarScene::SHARED_FRAME); // the object's frame, not the part's own
     c[k] = taughtSilhouette(scene, cdMo, name + " (part " + std::to_string(k) + ")");
   }
   // The range is drawn in the texture's axes; the camera may see them mirrored.
   const vpMorphPlanarScene scene(image);
-  const vpImagePoint o = scene.projectedTexel(joint.pivotU, joint.pivotV, cdMo);
-  const vpImagePoint ex = scene.projectedTexel(joint.pivotU + 1.0, joint.pivotV, cdMo);
-  const vpImagePoint ey = scene.projectedTexel(joint.pivotU, joint.pivotV + 1.0, cdMo);
+  const double pu = joint.pivot().get_u(), pv = joint.pivot().get_v();
+  const vpImagePoint o = scene.projectedTexel(pu, pv, cdMo);
+  const vpImagePoint ex = scene.projectedTexel(pu + 1.0, pv, cdMo);
+  const vpImagePoint ey = scene.projectedTexel(pu, pv + 1.0, cdMo);
   const double cross =
       (ex.get_u() - o.get_u()) * (ey.get_v() - o.get_v()) - (ex.get_v() - o.get_v()) * (ey.get_u() - o.get_u());
-  const double lo = vpMath::rad(joint.minDeg), hi = vpMath::rad(joint.maxDeg);
+  const double lo = joint.minAngle(), hi = joint.maxAngle();
   return cross > 0.0 ? vpMorphArticulation(c[0], c[1], o, lo, hi) : vpMorphArticulation(c[0], c[1], o, -hi, -lo);
 }
 

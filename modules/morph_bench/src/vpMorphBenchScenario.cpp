@@ -55,10 +55,9 @@ vpMorphPlanarScene vpMorphBenchScenario::scene() const
     // An articulated object: laid by either part on the template's, undoing the turn its drawing gave that part.
     const vpMorphBenchJoint joint = vpMorphBenchJoint::read(jointFile);
     scene.setReferenceImage(templateImage, vpMorphPlanarScene::SHARED_FRAME);
-    const vpMorphRigidTransform part0(-vpMath::rad(joint.deformedTurnDeg[0]), 0.0, 0.0, 1.0, joint.pivotU,
-                                      joint.pivotV);
-    const vpMorphRigidTransform part1(-vpMath::rad(joint.deformedTurnDeg[1]), 0.0, 0.0, 1.0, joint.pivotU,
-                                      joint.pivotV);
+    const double pu = joint.joint.pivot().get_u(), pv = joint.joint.pivot().get_v();
+    const vpMorphRigidTransform part0(-vpMath::rad(joint.deformedTurnDeg[0]), 0.0, 0.0, 1.0, pu, pv);
+    const vpMorphRigidTransform part1(-vpMath::rad(joint.deformedTurnDeg[1]), 0.0, 0.0, 1.0, pu, pv);
     scene.setReferenceAlignment(part0, {part1});
   } else if (objectImage != templateImage)
     scene.setReferenceImage(templateImage, vpMorphPlanarScene::BEST_OVERLAP);

@@ -79,7 +79,8 @@ public:
   vpMorphContour poseFor(const vpMorphContour &view, double opening, unsigned int *fixedPart = nullptr) const;
   /*!
     How well \e view lies on \e pose up to a similarity: their regions' intersection over union once the view is
-    laid on the pose by the robust (Tukey) least-squares similarity of their minimal-work correspondence.
+    laid on the pose by the robust (Tukey) least-squares similarity of their minimal-work correspondence; 0 when that
+    fit collapses the view (an unrelated shape).
   */
   static double fitOverlap(const vpMorphContour &view, const vpMorphContour &pose, vpMorphMatcher &matcher);
 

@@ -152,6 +152,11 @@ public:
   void add(const vpMorphTemplate &t);
   //! Removes template \e name. \throw vpMorphException::notFoundError if unknown.
   void remove(const std::string &name);
+  /*!
+    Gives template \e name the articulation \e a (an empty one makes it rigid) and draws its poses; the calibration
+    stays, as it is made on the taught views only. \throw vpMorphException::notFoundError if unknown.
+  */
+  void setArticulation(const std::string &name, const vpMorphArticulation &a);
 
   std::size_t size() const { return m_templates.size(); }
   bool empty() const { return m_templates.empty(); }
