@@ -25,52 +25,16 @@ const double kMinDepth = 0.15, kMaxDepth = 1.5; // m: outside, the camera has di
 
 void badParameter(const std::string &msg) { throw vpMorphException(vpMorphException::badParameterError, msg); }
 
-//! The silhouette of \e scene rendered at \e cdMo, the tag masked.
-vpMorphContour taughtSilhouette(const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cdMo,
-                                const std::string &what)
-{
-  vpImage<unsigned char> I;
-  scene.render(cdMo, I);
-  vpHomogeneousMatrix cMo;
-  std::vector<vpImagePoint> corners;
-  if (!scene.tagPoseEstimator().estimate(I, cMo, &corners))
-    throw vpMorphException(vpMorphException::badImageError,
-                           "vpMorphBench: tag not found in the taught view of " + what);
-  const vpMorphContour c = vpMorphTagPoseEstimator::silhouette(I, corners);
-  if (c.empty())
-    throw vpMorphException(vpMorphException::badImageError,
-                           "vpMorphBench: no object silhouette in the taught view of " + what);
-  return c;
-}
-
 /*!
   The articulation of an object whose joint vispmorph-make-data describes (DATA/joints/NAME.json: the two parts'
-  images, drawn alone in the object image's frame, the pin and the opening's range in that frame): each part taught
-  as the object is, the pin projected. Empty for a rigid object.
+  images, drawn alone in the object image's frame, the pin and the opening's range in that frame), as the camera at
+  the desired pose sees it (vpMorphPlanarScene::articulation()). Empty for a rigid object.
 */
-vpMorphArticulation taughtArticulation(const std::string &dataDir, const std::string &name, const std::string &image,
-                                       const vpHomogeneousMatrix &cdMo)
+vpMorphArticulation taughtArticulation(const std::string &dataDir, const std::string &name,
+                                       const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cdMo)
 {
   const std::string file = vpMorphBenchJoint::file(dataDir, name);
-  if (file.empty())
-    return vpMorphArticulation();
-  const vpMorphJointFile joint = vpMorphBenchJoint::read(file).joint;
-  vpMorphContour c[2];
-  for (unsigned int k = 0; k < 2; ++k) {
-    vpMorphPlanarScene scene(joint.part(k));
-    scene.setReferenceImage(image, vpMorphPlanarScene::SHARED_FRAME); // the object's frame, not the part's own
-    c[k] = taughtSilhouette(scene, cdMo, name + " (part " + std::to_string(k) + ")");
-  }
-  // The range is drawn in the texture's axes; the camera may see them mirrored.
-  const vpMorphPlanarScene scene(image);
-  const double pu = joint.pivot().get_u(), pv = joint.pivot().get_v();
-  const vpImagePoint o = scene.projectedTexel(pu, pv, cdMo);
-  const vpImagePoint ex = scene.projectedTexel(pu + 1.0, pv, cdMo);
-  const vpImagePoint ey = scene.projectedTexel(pu, pv + 1.0, cdMo);
-  const double cross =
-      (ex.get_u() - o.get_u()) * (ey.get_v() - o.get_v()) - (ex.get_v() - o.get_v()) * (ey.get_u() - o.get_u());
-  const double lo = joint.minAngle(), hi = joint.maxAngle();
-  return cross > 0.0 ? vpMorphArticulation(c[0], c[1], o, lo, hi) : vpMorphArticulation(c[0], c[1], o, -hi, -lo);
+  return file.empty() ? vpMorphArticulation() : scene.articulation(vpMorphBenchJoint::read(file).joint, cdMo);
 }
 
 //! The taught view of an object: rendered at its desired pose, tag masked, silhouette extracted; its articulation.
@@ -78,8 +42,9 @@ vpMorphTemplate teach(const std::string &dataDir, const std::string &name)
 {
   const std::string image = dataDir + "/objects/" + name + ".png";
   const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose(name);
-  vpMorphTemplate t(name, taughtSilhouette(vpMorphPlanarScene(image), cdMo, name), image, cdMo);
-  t.setArticulation(taughtArticulation(dataDir, name, image, cdMo));
+  const vpMorphPlanarScene scene(image);
+  vpMorphTemplate t(name, scene.silhouette(cdMo), image, cdMo);
+  t.setArticulation(taughtArticulation(dataDir, name, scene, cdMo));
   t.setMetadata("source", "rendered at the desired pose, tag masked");
   return t;
 }

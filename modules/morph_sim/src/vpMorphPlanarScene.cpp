@@ -387,6 +387,47 @@ vpMorphTagPoseEstimator vpMorphPlanarScene::tagPoseEstimator() const
   return vpMorphTagPoseEstimator(m_tagId, m_tagSize, oMt(), m_cam);
 }
 
+vpMorphContour vpMorphPlanarScene::silhouette(const vpHomogeneousMatrix &cMo) const
+{
+  vpImage<unsigned char> I;
+  render(cMo, I);
+  std::vector<vpImagePoint> corners;
+  if (tagInView(cMo)) {
+    vpHomogeneousMatrix cMo_tag;
+    if (!tagPoseEstimator().estimate(I, cMo_tag, &corners))
+      throw vpMorphException(vpMorphException::badImageError,
+                             "vpMorphPlanarScene::silhouette: the tag of '" + m_path + "' is in view but not found");
+  }
+  const vpMorphContour c = vpMorphTagPoseEstimator::silhouette(I, corners);
+  if (c.empty())
+    throw vpMorphException(vpMorphException::badImageError,
+                           "vpMorphPlanarScene::silhouette: no object seen in the view of '" + m_path + "'");
+  return c;
+}
+
+vpMorphArticulation vpMorphPlanarScene::articulation(const vpMorphJointFile &joint,
+                                                     const vpHomogeneousMatrix &cMo) const
+{
+  vpMorphContour c[2];
+  for (unsigned int k = 0; k < 2; ++k) {
+    vpMorphPlanarScene part(joint.part(k), m_objectSize, m_tagId, m_tagSize);
+    part.setReferenceImage(m_path, SHARED_FRAME); // the object's texture frame, not the part's own
+    part.setObjectPlacement(m_objX, m_objY, m_objTheta);
+    if (!m_tagAuto)
+      part.setTagPlacement(m_tagX, m_tagY);
+    part.setCamera(m_cam, m_width, m_height);
+    c[k] = part.silhouette(cMo);
+  }
+  // The range is drawn in the texture's axes; the camera may see them mirrored.
+  const double pu = joint.pivot().get_u(), pv = joint.pivot().get_v();
+  const vpImagePoint o = projectedTexel(pu, pv, cMo);
+  const vpImagePoint ex = projectedTexel(pu + 1.0, pv, cMo), ey = projectedTexel(pu, pv + 1.0, cMo);
+  const double cross =
+      (ex.get_u() - o.get_u()) * (ey.get_v() - o.get_v()) - (ex.get_v() - o.get_v()) * (ey.get_u() - o.get_u());
+  const double lo = joint.minAngle(), hi = joint.maxAngle();
+  return cross > 0.0 ? vpMorphArticulation(c[0], c[1], o, lo, hi) : vpMorphArticulation(c[0], c[1], o, -hi, -lo);
+}
+
 double vpMorphPlanarScene::occludedShare() const { return m_occludedShare; }
 std::vector<vpPoint> vpMorphPlanarScene::occluderCorners3D() const { return m_occluder; }
 std::vector<std::vector<vpPoint>> vpMorphPlanarScene::distractorCorners3D() const { return m_distractors; }

@@ -5,14 +5,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <string>
 #include <thread>
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpMeterPixelConversion.h>
+#include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphJointFile.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 #include <visp3/morph_sim/vpMorphTagTexture.h>
 #include <visp3/morph_sim/vpMorphThreadCpuClock.h>
@@ -499,6 +503,69 @@ TEST_CASE("a texture placed by a given motion, its equally good placements, and 
                                  other.projectedTexel(t.first, t.second, cMo)) < 1e-6);
   CHECK_THROWS_AS(scene.projectedTexel(NAN, 240, cMo), vpMorphException);
   CHECK_THROWS_AS(scene.projectedTexel(320, 240, view(0, 0, -0.5, 0, 0, 0)), vpMorphException); // behind
+}
+
+TEST_CASE("a taught silhouette with the tag masked, and an articulation seen from a pose", "[morph_sim][scene][joint]")
+{
+  const vpHomogeneousMatrix cdMo = view(0.01, 0, 0.5, 0, 0, 20);
+  const vpMorphPlanarScene scene(object("pliers"));
+  // The tag (a larger dark region than the pliers) is masked: the silhouette is the pliers' outline.
+  const vpMorphContour c = scene.silhouette(cdMo);
+  const vpMorphContour truth = scene.projectedContour(cdMo);
+  CHECK(std::fabs(c.area() / truth.area() - 1.0) < 0.02);
+  double cx, cy, tx, ty;
+  c.centroid(cx, cy);
+  truth.centroid(tx, ty);
+  CHECK(std::hypot(cx - tx, cy - ty) < 0.5);
+  // The tag out of view: nothing to mask, the same pliers.
+  vpMorphPlanarScene far(object("pliers"));
+  far.setTagPlacement(0.6, 0.6);
+  REQUIRE_FALSE(far.tagInView(cdMo));
+  CHECK(std::fabs(far.silhouette(cdMo).area() / c.area() - 1.0) < 1e-3);
+  // No object in view.
+  CHECK_THROWS_AS(scene.silhouette(view(0.5, 0.5, 0.5, 0, 0, 0)), vpMorphException);
+
+  // The pliers' arms as the camera at cdMo sees them: at the taught opening they make the taught view, the pin is
+  // the projected texel, the range that of the joint file (the camera does not mirror the texture).
+  const std::string data = VISPMORPH_DATA_DIR;
+  const vpMorphJointFile joint = vpMorphJointFile::read(data + "/joints/pliers.json");
+  const vpMorphArticulation a = scene.articulation(joint, cdMo);
+  CHECK(vpImagePoint::distance(a.pivot(), scene.projectedTexel(320, 240, cdMo)) < 1e-9);
+  CHECK(a.minAngle() == joint.minAngle());
+  CHECK(a.maxAngle() == joint.maxAngle());
+  const vpMorphContour closed = a.pose(0.0);
+  double px, py, rx, ry;
+  closed.regionCentroid(px, py);
+  c.regionCentroid(rx, ry);
+  CAPTURE(closed.regionArea() / c.regionArea(), std::hypot(px - rx, py - ry));
+  CHECK(std::fabs(closed.regionArea() / c.regionArea() - 1.0) < 0.005);
+  CHECK(std::hypot(px - rx, py - ry) < 0.1);
+  // At 32 deg: the opened pliers laid by arm 0, seen from cdMo.
+  vpMorphPlanarScene opened(object("pliers-deformed"));
+  opened.setReferenceImage(object("pliers"));
+  opened.setReferenceAlignment(vpMorphRigidTransform(vpMath::rad(16.0), 0, 0, 1, 320, 240));
+  const vpMorphContour v = opened.silhouette(cdMo);
+  CHECK(std::fabs(vpMath::deg(a.estimate(v)) - 32.0) < 0.3);
+  vpMorphMatcher matcher;
+  const double atOpening = vpMorphArticulation::fitOverlap(v, a.pose(vpMath::rad(32.0)), matcher);
+  const double atTaught = vpMorphArticulation::fitOverlap(v, closed, matcher);
+  CAPTURE(atOpening, atTaught);
+  CHECK(atOpening > 0.9);
+  CHECK(atOpening > atTaught + 0.2);
+  // A part image of another size than the object's.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path();
+  vpImage<unsigned char> small(240, 320, 255);
+  for (unsigned int r = 100; r < 140; ++r)
+    for (unsigned int k = 100; k < 220; ++k)
+      small[r][k] = 0;
+  vpImageIo::write(small, (dir / "joint-small-part.png").string());
+  std::ofstream(dir / "joint-bad-size.json") << "{\"parts\": [\"" << data
+                                             << "/joints/pliers-part0.png\", \"joint-small-part.png\"], "
+                                                "\"pivot\": [320, 240], \"range_deg\": [-8, 60]}";
+  CHECK_THROWS_AS(scene.articulation(vpMorphJointFile::read((dir / "joint-bad-size.json").string()), cdMo),
+                  vpMorphException);
+  std::filesystem::remove(dir / "joint-bad-size.json");
+  std::filesystem::remove(dir / "joint-small-part.png");
 }
 
 TEST_CASE("bad scene input throws vpMorphException", "[morph_sim][errors]")

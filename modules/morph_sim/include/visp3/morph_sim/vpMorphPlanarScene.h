@@ -14,7 +14,9 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpPoint.h>
 #include <visp3/core/vpRGBa.h>
+#include <visp3/morph/vpMorphArticulation.h>
 #include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphJointFile.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 
@@ -163,6 +165,23 @@ public:
   double metresPerTexel() const { return m_metresPerTexel; }
   //! An estimator of cMo from the tag in images of this scene; keep it for a whole run (its detector is built once).
   vpMorphTagPoseEstimator tagPoseEstimator() const;
+
+  /*!
+    The object's silhouette as the camera at \e cMo sees it, to teach a template: rendered (with the faults), the tag
+    found by the detector and masked when it is in view (vpMorphTagPoseEstimator::silhouette()), extracted.
+    \throw vpMorphException::badImageError when the tag is in view but not found, or no object is seen.
+  */
+  vpMorphContour silhouette(const vpHomogeneousMatrix &cMo) const;
+  /*!
+    The articulation of the object of this scene (the template image that \e joint's parts are drawn over, see
+    vpMorphJointFile) as the camera at \e cMo sees it: each part alone in this scene's layout (object size and
+    placement, tag, camera; no faults) and silhouette() of it, the pin projected, and the range mirrored when the
+    camera sees the texture's axes mirrored. With the template's silhouette() at the same pose it makes an articulated
+    template (vpMorphTemplate::setArticulation()).
+    \throw vpMorphException as silhouette() and vpMorphJointFile::articulation(); badParameterError when a part's
+    image is not of the object image's size.
+  */
+  vpMorphArticulation articulation(const vpMorphJointFile &joint, const vpHomogeneousMatrix &cMo) const;
 
   /*!
     Share of the object's contour length actually hidden by the occluder (measured on the outline densely
