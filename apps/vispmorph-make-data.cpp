@@ -8,9 +8,9 @@
   paper's experiments (key, pliers, wedge, wrench, screwdriver, hammer), and two demo views
   OUTDIR/demo/key-view.png and OUTDIR/demo/pliers-view.png; and the pliers' two arms drawn alone with their pin
   (OUTDIR/joints/pliers-part{0,1}.png and pliers.json: an articulated template, vpMorphArticulation). Images are
-  640x480, white background, black object (about 200-300 px long), binary. Every shape is a union of polygons built
-  here, so the data can be regenerated bit for bit; each image is checked by extracting its contour with
-  vpMorphContourExtractor.
+  640x480, white background, black object (about 200-300 px long), binary but for the opened pliers, whose arms are
+  the closed ones' drawings turned (grey edges). Every shape is a union of polygons built here, so the data can be
+  regenerated bit for bit; each image is checked by extracting its contour with vpMorphContourExtractor.
 */
 #include <cmath>
 #include <cstdlib>
@@ -115,10 +115,11 @@ Parts rivet() { return {{circle(0, 0, 17, 24), false}, {circle(0, 0, 5, 12), tru
 
 const double kPliersClosedHalf = 4.0, kPliersOpenedHalf = 20.0; // deg: half the angle between the jaws
 
-// Pliers: two crossed arms (jaw + handle) about a pivot. Deformed: opened wider (jaws 40 deg apart, not 8).
-Parts pliers(bool deformed)
+// Pliers: two crossed arms (jaw + handle) about a pivot, closed (jaws 8 deg apart). The deformed variant, opened
+// wider, is openedPliers(): the arms' own drawings turned.
+Parts pliers(bool)
 {
-  const double half = (deformed ? kPliersOpenedHalf : kPliersClosedHalf) * kPi / 180;
+  const double half = kPliersClosedHalf * kPi / 180;
   Parts out;
   for (double side : {-1.0, 1.0})
     for (const Part &p : pliersArm(side, half))
@@ -245,6 +246,40 @@ vpImage<unsigned char> render(const Parts &parts, double u0, double v0, double t
   return I;
 }
 
+/*
+  The pliers opened wider (jaws 40 deg apart): each arm's drawing (pliersPart()) turned about the pivot (u0, v0) by
+  +-(kPliersOpenedHalf - kPliersClosedHalf), its texels resampled bilinearly, and the two laid over each other (the
+  darker texel). Why not the arms' polygons drawn again at the new angle: a binary texel grid cuts a turned polygon
+  elsewhere, and an arm's two drawings differed by up to half a texel at its tips, 0.2 % of its length, the depth of
+  a millimetre at 0.5 m between the opened pliers and their template posed at the same opening. A real pliers opens
+  with the same arms.
+*/
+vpImage<unsigned char> openedPliers(double u0, double v0)
+{
+  const double turn = (kPliersOpenedHalf - kPliersClosedHalf) * kPi / 180;
+  vpImage<unsigned char> out;
+  for (int k : {0, 1}) {
+    const vpImage<unsigned char> arm = render(pliersPart(k), u0, v0);
+    if (k == 0)
+      out.resize(arm.getHeight(), arm.getWidth(), 255);
+    // Each output texel reads the arm where the turn brings it from (the inverse turn), bilinearly.
+    const double a = k == 0 ? -turn : turn, c = std::cos(a), s = std::sin(a);
+    const int W = static_cast<int>(arm.getWidth()), H = static_cast<int>(arm.getHeight());
+    auto at = [&](int x, int y) { return x < 0 || y < 0 || x >= W || y >= H ? 255.0 : double(arm[y][x]); };
+    for (int v = 0; v < H; ++v)
+      for (int u = 0; u < W; ++u) {
+        const double x = u0 + c * (u - u0) + s * (v - v0), y = v0 - s * (u - u0) + c * (v - v0);
+        const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+        const double fx = x - x0, fy = y - y0;
+        const double g = (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+                         fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+        unsigned char &o = out[static_cast<unsigned int>(v)][static_cast<unsigned int>(u)];
+        o = std::min(o, static_cast<unsigned char>(std::lround(g)));
+      }
+  }
+  return out;
+}
+
 bool save(const vpImage<unsigned char> &I, const std::filesystem::path &file)
 {
   vpImageIo::write(I, file.string());
@@ -284,7 +319,8 @@ int main(int argc, char **argv)
     bool ok = true;
     for (const auto &o : objects) {
       ok &= save(render(o.second(false), 320, 240), out / "objects" / (o.first + ".png"));
-      ok &= save(render(o.second(true), 320, 240), out / "objects" / (o.first + "-deformed.png"));
+      ok &= save(o.first == "pliers" ? openedPliers(320, 240) : render(o.second(true), 320, 240),
+                 out / "objects" / (o.first + "-deformed.png"));
     }
     // The pliers' joint: part 1 (side +1) turns counter-clockwise in the image axes when the jaws open; from
     // closed (jaws touching: -2 x 4 deg) to wide open. In the deformed variant each arm turned by 16 deg.

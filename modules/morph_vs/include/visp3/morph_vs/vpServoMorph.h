@@ -296,7 +296,8 @@ public:
     The goal from a template (its contour, and the depth of its cdMo). An articulated template
     (vpMorphTemplate::articulation()) is posed, at the start of each sequence, at the opening its current view shows
     (vpMorphArticulation::estimate()), with the part that needs the smaller turn where the taught view has it: the
-    view is then a rigid placement of the target, and its depth follows from it.
+    view is then a rigid placement of the target, and its depth follows from it: from the edges on the final
+    approach, as the posed target's region is drawn from its parts' outlines, not seen.
   */
   void setTarget(const vpMorphTemplate &t);
   //! The opening the articulated target was posed at (radians; 0 for a rigid target or before the first period).
@@ -487,6 +488,9 @@ private:
   // Target's over current region's area (both measured with their edges, views alike, the target the sub-goal), the
   // target's less the band along its edges that the current edges lie off it by (see the source), fitted from T.
   double bandCorrectedAreaRatio(const vpMorphContour &currentN, const vpMorphRigidTransform &T);
+  //! The current edge outline laid on the target's by their similarity, from T (robust scale floored at a fifth of a
+  //! half pixel): the depth at the goal when the regions cannot give it.
+  vpMorphRigidTransform targetEdgeFit(const vpMorphContour &currentN, const vpMorphRigidTransform &T) const;
   bool tiltActive() const;
   bool estimateTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &cMct, double &Zp);
   // estimateTilt()'s fit, each time it is tried.
