@@ -59,13 +59,11 @@ int main(int argc, char **argv)
     //! [World]
 
     //! [Start]
-    // A free-flying camera 40 mm and 70 deg away. The controller believes its mount 1 cm off and turned by 3 deg
-    // about the optical axis, which the online hand-eye estimation takes up. (A mount tilted by a few degrees would
-    // tilt the camera along the turn, about the pliers' long axis, where their outline barely changes: the
-    // benchmark's calib set, README.)
+    // A free-flying camera 40 mm and 70 deg away. The controller believes its mount 1 cm off along each axis and
+    // turned by 3 deg about (1, 1, 1): the online hand-eye estimation takes up the part about the optical axis; the
+    // tilt of the mount, which tilts the camera along the turn, the tilt correction of the final approach.
     vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA);
-    robot.setCameraMount(robot.eMcTrue(),
-                         robot.eMcTrue() * vpHomogeneousMatrix(0.008, -0.006, 0, 0, 0, vpMath::rad(3)));
+    robot.setCameraMount(robot.eMcTrue(), vpMorphSimRobot::perturbed(robot.eMcTrue(), 0.01, vpMath::rad(3)));
     robot.setDesiredPose(cdMo);
     if (!robot.initialiseCameraRelativeToObject(vpHomogeneousMatrix(0.04, 0, 0, 0, 0, vpMath::rad(70)).inverse() *
                                                 cdMo)) {
