@@ -11,8 +11,8 @@
   acceptance thresholds (vpMorphDatabase::calibrate()), saved atomically; progress on stderr. --joints: each
   JDIR/NAME.json (vpMorphJointFile) articulates template NAME (a joint file naming no template is an error).
   info: templates, vertex counts, calibration (within, nearest other template, threshold), articulations.
-  recognize also gives the opening a view of an articulated template was recognised at.
-  recognize: per image, the template, its distance and threshold, the share of its outline shown
+  recognize: per image, the template (and the opening a view of an articulated one was recognised at), its distance
+  and threshold, the share of its outline shown
   (vpMorphDatabase::support()), the runner-up (the distance's choice when the support re-ranked them), the margin,
   and ACCEPTED (by the distance or by the support) or REJECTED (beyond the threshold and short of the minimum
   support, or within it but under the support floor); with several images, how many were accepted each way.
