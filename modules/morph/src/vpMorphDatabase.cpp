@@ -353,7 +353,17 @@ double vpMorphDatabase::templateDistance(const vpMorphShapeDistance::Shape &q, s
 {
   bool mir = false;
   double best = m_distance.distance(q, m_shapes[k], matcher, abandonAbove, &mir);
-  for (std::size_t p = 0; poses && p < m_poses[k].size(); ++p) {
+  if (poses)
+    best = poseDistance(q, k, matcher, best, abandonAbove, mir);
+  if (mirrored)
+    *mirrored = mir;
+  return best;
+}
+
+double vpMorphDatabase::poseDistance(const vpMorphShapeDistance::Shape &q, std::size_t k, vpMorphMatcher &matcher,
+                                     double best, double abandonAbove, bool &mirrored) const
+{
+  for (std::size_t p = 0; p < m_poses[k].size(); ++p) {
     const double bound = std::isfinite(best) && (abandonAbove < 0.0 || best < abandonAbove) ? best : abandonAbove;
     if (bound >= 0.0 && m_distance.lowerBound(q, m_poses[k][p].shape) > bound)
       continue; // this pose cannot beat the best so far
@@ -361,11 +371,9 @@ double vpMorphDatabase::templateDistance(const vpMorphShapeDistance::Shape &q, s
     const double d = m_distance.distance(q, m_poses[k][p].shape, matcher, bound, &m);
     if (d < best) {
       best = d;
-      mir = m;
+      mirrored = m;
     }
   }
-  if (mirrored)
-    *mirrored = mir;
   return best;
 }
 
@@ -478,8 +486,8 @@ bool vpMorphDatabase::accepts(const vpMorphContour &c, std::size_t k, double sla
   bool mirrored = false;
   const vpMorphShapeDistance::Shape q = m_distance.prepare(c);
   double d = m_distance.distance(q, m_shapes[k], matcher, -1.0, &mirrored);
-  if (d > slack * threshold(k) && !m_poses[k].empty()) // an articulated template: its other openings too
-    d = templateDistance(q, k, matcher, -1.0, &mirrored, true);
+  if (d > slack * threshold(k)) // an articulated template: its other openings too
+    d = poseDistance(q, k, matcher, d, -1.0, mirrored);
   if (distance)
     *distance = d;
   if (d <= slack * threshold(k))

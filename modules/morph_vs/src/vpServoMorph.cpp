@@ -721,10 +721,9 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
         // scale on the bench's opened pliers, half a millimetre of depth at 0.5 m), while its edges are the taught
         // ones turned, on which the view's lie within 0.03 %. Its depth comes from the edges, as when the regions are
         // not alike.
-        const double halfPixel = normalisedPixels(0.5);
         if (m_opening != 0.0) {
           const vpMorphRigidTransform Te = targetEdgeFit(currentN, T);
-          if (largestShift(T, Te, currentN.outline()) <= 4.0 * halfPixel)
+          if (largestShift(T, Te, currentN.outline()) <= 4.0 * normalisedPixels(0.5))
             T = vpMorphRigidTransform(T.theta(), T.tx(), T.ty(), Te.scale(), T.cx(), T.cy());
         }
       }

@@ -270,6 +270,10 @@ private:
   //! Distance of \e q to template k: to its taught view, and with \e poses the least over its poses too.
   double templateDistance(const vpMorphShapeDistance::Shape &q, std::size_t k, vpMorphMatcher &matcher,
                           double abandonAbove, bool *mirrored, bool poses) const;
+  //! The least of \e best (the distance to the taught view, \e mirrored its side) and the distances of \e q to
+  //! template k's poses, each abandoned above the best so far (or \e abandonAbove, when given and smaller).
+  double poseDistance(const vpMorphShapeDistance::Shape &q, std::size_t k, vpMorphMatcher &matcher, double best,
+                      double abandonAbove, bool &mirrored) const;
   double templateLowerBound(const vpMorphShapeDistance::Shape &q, std::size_t k, bool poses) const;
   /*!
     The pose of articulated template k that \e c lies on best (vpMorphArticulation::fitOverlap(); npos: the taught
