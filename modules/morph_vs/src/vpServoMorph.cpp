@@ -671,7 +671,7 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
       if (m_k + 1 == m_subGoals.size() && currentN.hasOutline() && m_target.hasOutline() && m_deformed != DEFORMED) {
         const vpMorphContour &o = currentN.outline();
         const vpMorphContour targetOutline = m_target.toNormalized(m_cam).outline();
-        const vpMorphRigidTransform Te = targetEdgeFit(currentN, T);
+        const vpMorphRigidTransform Te = targetEdgeFit(o, targetOutline, T);
         // A bend that only takes area away (a wedge whose top sags) is not found deformed by overlapFit() (nothing
         // of the view lies outside the target), and the edge fit, pulled by the bent stretch, ended 1.6 % off in
         // scale (8 mm deep). So the pose is the fit of the largest part of the outline lying on the target's, when
@@ -722,7 +722,7 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
         // ones turned, on which the view's lie within 0.03 %. Its depth comes from the edges, as when the regions are
         // not alike.
         if (m_opening != 0.0) {
-          const vpMorphRigidTransform Te = targetEdgeFit(currentN, T);
+          const vpMorphRigidTransform Te = targetEdgeFit(currentN.outline(), m_target.toNormalized(m_cam).outline(), T);
           if (largestShift(T, Te, currentN.outline()) <= 4.0 * normalisedPixels(0.5))
             T = vpMorphRigidTransform(T.theta(), T.tx(), T.ty(), Te.scale(), T.cx(), T.cy());
         }
@@ -922,12 +922,13 @@ double vpServoMorph::bandCorrectedAreaRatio(const vpMorphContour &currentN, cons
   return (goalArea > 0.0 ? goalArea : targetN.regionArea()) / currentN.regionArea();
 }
 
-vpMorphRigidTransform vpServoMorph::targetEdgeFit(const vpMorphContour &currentN, const vpMorphRigidTransform &T) const
+vpMorphRigidTransform vpServoMorph::targetEdgeFit(const vpMorphContour &currentOutline,
+                                                  const vpMorphContour &targetOutline,
+                                                  const vpMorphRigidTransform &T) const
 {
   // Five rounds from T: the fit has settled by then (ten gave the held-out runs the same outcomes, final errors
   // within 0.002 mm and iterations within 2, at twice the cost).
-  return vpMorphRigidTransform::refineOnOutline(currentN.outline(), m_target.toNormalized(m_cam).outline(), T, true,
-                                                0.2 * normalisedPixels(0.5), 5);
+  return vpMorphRigidTransform::refineOnOutline(currentOutline, targetOutline, T, true, 0.2 * normalisedPixels(0.5), 5);
 }
 
 void vpServoMorph::residuals(const vpMorphRigidTransform &T, const vpMorphContour &currentPx)

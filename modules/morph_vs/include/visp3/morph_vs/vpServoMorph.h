@@ -488,9 +488,11 @@ private:
   // Target's over current region's area (both measured with their edges, views alike, the target the sub-goal), the
   // target's less the band along its edges that the current edges lie off it by (see the source), fitted from T.
   double bandCorrectedAreaRatio(const vpMorphContour &currentN, const vpMorphRigidTransform &T);
-  //! The current edge outline laid on the target's by their similarity, from T (robust scale floored at a fifth of a
-  //! half pixel): the depth at the goal when the regions cannot give it.
-  vpMorphRigidTransform targetEdgeFit(const vpMorphContour &currentN, const vpMorphRigidTransform &T) const;
+  //! The current edge outline laid on the target's (both normalised; the caller has the target's normalised once) by
+  //! their similarity, from T (robust scale floored at a fifth of a half pixel): the depth at the goal when the
+  //! regions cannot give it.
+  vpMorphRigidTransform targetEdgeFit(const vpMorphContour &currentOutline, const vpMorphContour &targetOutline,
+                                      const vpMorphRigidTransform &T) const;
   bool tiltActive() const;
   bool estimateTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &cMct, double &Zp);
   // estimateTilt()'s fit, each time it is tried.
