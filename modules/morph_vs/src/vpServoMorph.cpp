@@ -206,6 +206,16 @@ double largestShift(const vpMorphRigidTransform &A, const vpMorphRigidTransform 
   return moved;
 }
 
+// T with the scale of the edge fit Te, when Te moves the outline \e o by at most \e maxShift from where T puts it (the
+// same basin); T as it is otherwise.
+vpMorphRigidTransform withEdgeScale(const vpMorphRigidTransform &T, const vpMorphRigidTransform &Te,
+                                    const vpMorphContour &o, double maxShift)
+{
+  if (largestShift(T, Te, o) > maxShift)
+    return T;
+  return vpMorphRigidTransform(T.theta(), T.tx(), T.ty(), Te.scale(), T.cx(), T.cy());
+}
+
 double rmsRadius(const vpMorphContour &c)
 {
   double cx, cy, s = 0;
@@ -705,8 +715,8 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
         }
         if (m_edgePartKnown)
           T = m_edgePartOffset * Te;
-        else if (largestShift(T, Te, o) <= 4.0 * halfPixel)
-          T = vpMorphRigidTransform(T.theta(), T.tx(), T.ty(), Te.scale(), T.cx(), T.cy());
+        else
+          T = withEdgeScale(T, Te, o, 4.0 * halfPixel);
       }
     } else {
       T = vpMorphRigidTransform(refinedRotation(goalN, currentN, Tfit.theta()), gx - cx, gy - cy, s, cx, cy);
@@ -723,8 +733,7 @@ vpMorphRigidTransform vpServoMorph::fitToSubGoal(const vpMorphContour &currentN,
         // not alike.
         if (m_opening != 0.0) {
           const vpMorphRigidTransform Te = targetEdgeFit(currentN.outline(), m_target.toNormalized(m_cam).outline(), T);
-          if (largestShift(T, Te, currentN.outline()) <= 4.0 * normalisedPixels(0.5))
-            T = vpMorphRigidTransform(T.theta(), T.tx(), T.ty(), Te.scale(), T.cx(), T.cy());
+          T = withEdgeScale(T, Te, currentN.outline(), 4.0 * normalisedPixels(0.5));
         }
       }
     }
