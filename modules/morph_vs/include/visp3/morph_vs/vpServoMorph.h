@@ -18,6 +18,7 @@
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpRGBa.h>
+#include <visp3/core/vpThetaUVector.h>
 #include <visp3/core/vpVelocityTwistMatrix.h>
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphDatabase.h>
@@ -366,6 +367,34 @@ public:
   */
   void setOutlineTiltDeadZone(double rad);
   double outlineTiltDeadZone() const { return m_outlineTiltDeadZone; }
+  /*!
+    Before the first sequence (and after each restart()), turn the camera about its optical axis by \e rad and back,
+    reading the view's tilt (its outline's homography to the target) at each period, and correct eMc by the tilt of
+    the camera on the hand they show (its error about the axes of the image plane). Why: a turn about an optical axis
+    that eMc gets wrong by e tilts the camera by 2 sin(turn / 2) e, and a thin object's outline barely shows a tilt
+    about its long axis, so the final approach cannot take that back; along a turn, the object's long axis turns in
+    the image and the readings see every axis of e.
+    - The turn runs at 1 rad/s: set setSamplingTime() to the loop's period, which the turn's angle is counted in.
+    - It comes back early when the view comes within 40 px of the border of the \e imageWidth x \e imageHeight image,
+      and does not start there; it comes back at once when the view's tilt cannot be read (a bent or hidden object:
+      the outline's homography explains less than 99 % of it).
+    - A view off the turn's way (more than jumpPixels(), plus 6 px a period since the last view read) or whose area
+      changed by 10 % is not read: another region joined to the object, an occluder. Off the way with its area kept
+      three periods in a row, the robot or the object was displaced: the turn ends there, uncorrected, and the view
+      is planned again (REPLANNED, counted in maxReplans()).
+    - The correction is applied when it is at least 0.01 rad and 5 deviations of its estimate: below that, the
+      readings' correlated errors on a thin object (a few times the deviation they show) would tilt a camera mounted
+      right. Once applied, a second turn reads what the intrinsics' error left of it (the readings are scaled by it).
+    - Cost: 2 \e rad / (1 rad/s) per turn, with the camera's centre still if eMc is right.
+    Needs measured outlines (vpMorphContourExtractor). \e rad in [0, pi] (0, the default: no turn), the image's size
+    > 0 when \e rad > 0; restarts the task. \throw vpMorphException otherwise.
+  */
+  void setHandEyeTiltExploration(double rad, unsigned int imageWidth, unsigned int imageHeight);
+  double handEyeTiltExploration() const { return m_exploreAngle; }
+  //! True while the exploration turn runs (its commands are the turn's).
+  bool exploring() const { return m_explorePhase == EXPLORE_OUT || m_explorePhase == EXPLORE_BACK; }
+  //! The rotation the exploration applied to eMc, about axes of the image plane (zero when none was applied).
+  const vpThetaUVector &exploredHandEyeTilt() const { return m_exploredTilt; }
   //! Successive calls without a contour (TARGET_LOST, holding) before LOST_TOO_LONG (default 25).
   void setMaxLostIterations(unsigned int n) { m_maxLost = n; }
   unsigned int maxLostIterations() const { return m_maxLost; }
@@ -590,6 +619,29 @@ private:
   std::vector<TiltSample> m_tiltWindow;
   double m_tiltKappa = 1.0; // reduced chi-square of the last window of three or more
   vpHomogeneousMatrix m_cMcdH;
+  // Hand-eye tilt exploration (setHandEyeTiltExploration()): the turn asked and commanded so far (rad), the image's
+  // size, and the readings of the view's tilt along the turn.
+  double m_exploreAngle = 0.0, m_exploreTheta = 0.0;
+  // The last view read (centroid, area), the turn commanded since, the views in a row displaced from it.
+  double m_exploreCx = 0.0, m_exploreCy = 0.0, m_exploreArea = 0.0, m_exploreTurned = 0.0;
+  unsigned int m_exploreJumps = 0, m_exploreSince = 0; // and the periods since it was read
+  unsigned int m_imageWidth = 0, m_imageHeight = 0;
+  unsigned int m_exploreCount = 0, m_explorePass = 0; // periods of this turn, turns done
+  vpThetaUVector m_exploredTilt{0, 0, 0};             // the correction applied to eMc
+  enum { EXPLORE_NONE, EXPLORE_OUT, EXPLORE_BACK, EXPLORE_JUMPED, EXPLORE_DONE } m_explorePhase = EXPLORE_NONE;
+  struct TiltReading
+  {
+    double theta = 0, nx = 0, ny = 0; // the turn then, and the plane normal's image-plane part in the camera
+    double c00 = 0, c01 = 0, c11 = 0; // its covariance
+  };
+  std::vector<TiltReading> m_exploreReadings;
+  bool exploreStep(const vpMorphContour &current, const vpMorphContour &currentN, vpColVector &ve);
+  bool exploreCommand(vpColVector &ve);
+  // A sequence planned from \e current anew, with the target check of a new start; with \e replan, after a view
+  // jump (counted, at most maxReplans()). False with the zero velocity \e v of the stop or of REPLANNED.
+  bool planAgain(const vpMorphContour &current, bool replan, vpColVector &v);
+  bool readTilt(const vpMorphContour &currentN, TiltReading &r);
+  double finishExploration();
   // For the distance-jump test and the calibration: the previous iteration to the same sub-goal.
   bool m_haveWork = false, m_haveMove = false;
   bool m_fittedInSequence = false; // m_prevT is a fit of this sequence (to this sub-goal or the one before)
