@@ -1560,6 +1560,18 @@ bool vpServoMorph::exploreStep(const vpMorphContour &current, const vpMorphConto
   for (std::size_t k = 0; k < current.size(); ++k)
     border = std::min(
         {border, current.x(k), current.y(k), m_imageWidth - 1.0 - current.x(k), m_imageHeight - 1.0 - current.y(k)});
+  // A turn that the joints cannot make (their limits, with the Jacobian of the start) is not started: the Afma6's
+  // wrist has about 100 deg either way, which the turn to the goal may need.
+  if (m_exploreCount == 0 && m_explorePass == 0 && m_q.size() > 0) {
+    vpColVector xi(6, 0.0);
+    xi[5] = m_exploreAngle;
+    const vpColVector qEnd = m_q + m_eJe.pseudoInverse() * (vpVelocityTwistMatrix(m_estimator.get_eMc()) * xi);
+    for (unsigned int i = 0; i < qEnd.size() && i < m_qMin.size(); ++i)
+      if (!(qEnd[i] >= m_qMin[i] && qEnd[i] <= m_qMax[i])) {
+        m_explorePhase = EXPLORE_DONE;
+        return false;
+      }
+  }
   const bool comingBack = m_explorePhase == EXPLORE_BACK;
   if (border < kExploreBorderPx && m_explorePhase == EXPLORE_OUT && m_exploreTheta > 0.0)
     m_explorePhase = EXPLORE_BACK;

@@ -375,6 +375,7 @@ public:
     about its long axis, so the final approach cannot take that back; along a turn, the object's long axis turns in
     the image and the readings see every axis of e.
     - The turn runs at 1 rad/s: set setSamplingTime() to the loop's period, which the turn's angle is counted in.
+    - It does not start when the joints (setJointState()) would pass a limit along it.
     - It comes back early when the view comes within 40 px of the border of the \e imageWidth x \e imageHeight image,
       and does not start there; it comes back at once when the view's tilt cannot be read (a bent or hidden object:
       the outline's homography explains less than 99 % of it).
