@@ -309,13 +309,33 @@ TEST_CASE("The exploration turn reads the tilt of the camera on the hand and cor
   CHECK(right.periods > 50);
 }
 
-TEST_CASE("The exploration turn is skipped near the image border and refused with a bad turn", "[bench][tilt][safety]")
+TEST_CASE("The exploration turn is skipped near the image border or a joint limit and refused with a bad turn",
+          "[bench][tilt][safety]")
 {
   vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA);
   // The screwdriver 70 mm aside at 0.5 m, within 40 px of the image border: no turn at all.
   const Exploration e = explore(robot.eMcTrue(), vpHomogeneousMatrix(0.0, 0.07, 0, 0, 0, vpMath::rad(10)));
   CHECK(e.periods == 0);
   CHECK(e.returnDeg == 0.0);
+  // A turn the joints cannot make is not started: here the joint that turns the camera about its axis has 0.5 rad
+  // of room, the turn needs pi / 2 (eJe the identity, eMc the identity: joint 5 is that turn).
+  const std::string data = VISPMORPH_DATA_DIR;
+  const vpMorphPlanarScene scene(data + "/objects/screwdriver.png");
+  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose("screwdriver");
+  const vpColVector q(6, 0.0);
+  vpColVector qMin(6, -INFINITY), qMax(6, INFINITY);
+  for (double room : {0.5, 2.0}) {
+    vpServoMorph turning;
+    turning.setCameraParameters(scene.camera());
+    turning.setHandEyeTiltExploration(vpMath::rad(90), 640, 480);
+    turning.setTarget(scene.silhouette(cdMo), cdMo[2][3]);
+    qMax[5] = room;
+    vpMatrix eJe;
+    eJe.eye(6);
+    turning.setJointState(eJe, q, qMin, qMax);
+    turning.computeControlLaw(scene.silhouette(vpHomogeneousMatrix(0, 0, 0, 0, 0, vpMath::rad(20)).inverse() * cdMo));
+    CHECK(turning.exploring() == (room > M_PI / 2));
+  }
   vpServoMorph servo;
   for (double bad : {-0.1, 4.0, std::nan("")})
     CHECK_THROWS_AS(servo.setHandEyeTiltExploration(bad, 640, 480), vpMorphException);
