@@ -1341,7 +1341,6 @@ bool vpServoMorph::fitTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &
 {
   try {
     const vpMorphContour targetN = m_target.toNormalized(m_cam);
-    const double pixel = normalisedPixels(1.0);
     const bool dense = currentN.hasOutline() && targetN.hasOutline();
     // Regions not alike (see start()): a tilted view, or a part hidden or bent. Only a homography that explains the
     // whole outline tells the first: an occluder's edge or a bent limb fitted away by the robust weights still
@@ -1349,35 +1348,14 @@ bool vpServoMorph::fitTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &
     const bool notAlike = m_regionsAlike == NOT_ALIKE;
     const double minInliers = notAlike ? kNotAlikeMinInliers : 0.0;
     const double maxResidualPx = notAlike ? kNotAlikeMaxResidualPx : kOutlineMaxResidualPx;
-    // Measured edges of one plane's outline meet within hundredths of a pixel (tenths under noise): a fit on them
-    // that leaves a tenth out, or half a pixel RMS, is of an outline that changed (bent, partly hidden).
-    auto denseFit = [&](const vpMorphHomography &start, unsigned int iterations, vpMorphHomography &G) {
-      G = vpMorphHomography::refine(currentN.outline(), targetN.outline(), start, 0.1 * pixel, 400, iterations);
-      return G.inlierShare() >= std::max(kOutlineMinInliers, minInliers) && G.residual() <= maxResidualPx * pixel;
-    };
-    vpMorphHomography G;
     // Outlines: from the previous period's homography (the camera moved by a fraction of its error since), which
     // follows the view smoothly and saves the polygons' correspondence and fit; from the polygons otherwise.
     const bool warm = dense && m_tiltWarm;
     m_tiltWarm = false;
-    bool fitted = false;
-    if (warm) {
-      try {
-        fitted = denseFit(m_tiltG, 6, G);
-      } catch (const vpException &) {
-        fitted = false; // from the polygons, below
-      }
-    }
-    if (!fitted) {
-      const vpMorphCorrespondence &corr = m_tiltTracker.update(currentN, targetN);
-      G = vpMorphHomography::fit(currentN, targetN, corr, 0.5 * pixel, 120, 12);
-      // A wrong correspondence ends in a local minimum that leaves much of the outline unexplained: ignore it.
-      if (G.inlierShare() < std::max(m_tiltMinInliers, minInliers) || G.residual() > m_tiltMaxResidualPx * pixel)
-        return false;
-      // Refined on the measured edges: tenths of a pixel -> hundredths.
-      if (dense && !denseFit(vpMorphHomography(G), 8, G))
-        return false;
-    }
+    vpMorphHomography G;
+    if (!outlineHomography(currentN, targetN, warm ? &m_tiltG : nullptr, minInliers,
+                           std::max(kOutlineMinInliers, minInliers), maxResidualPx, G))
+      return false;
     m_tiltDeadZoneUsed = m_tiltDeadZone;
     // A homography that explains the whole outline (a fit held to kNotAlikeMinInliers) shows a rigid, unhidden object
     // seen in perspective: the regions were not alike because of the tilt. Once it is corrected enough for the
@@ -1496,6 +1474,35 @@ bool vpServoMorph::fitTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &
   }
 }
 
+bool vpServoMorph::outlineHomography(const vpMorphContour &currentN, const vpMorphContour &targetN,
+                                     const vpMorphHomography *warm, double polygonMinInliers, double minInliers,
+                                     double maxResidualPx, vpMorphHomography &G)
+{
+  const double pixel = normalisedPixels(1.0);
+  const bool dense = currentN.hasOutline() && targetN.hasOutline();
+  // Measured edges of one plane's outline meet within hundredths of a pixel (tenths under noise): a fit on them
+  // that leaves a tenth out, or half a pixel RMS, is of an outline that changed (bent, partly hidden).
+  auto denseFit = [&](const vpMorphHomography &start, unsigned int iterations) {
+    G = vpMorphHomography::refine(currentN.outline(), targetN.outline(), start, 0.1 * pixel, 400, iterations);
+    return G.inlierShare() >= minInliers && G.residual() <= maxResidualPx * pixel;
+  };
+  if (dense && warm) {
+    try {
+      if (denseFit(*warm, 6))
+        return true;
+    } catch (const vpException &) {
+      // from the polygons, below
+    }
+  }
+  const vpMorphCorrespondence &corr = m_tiltTracker.update(currentN, targetN);
+  G = vpMorphHomography::fit(currentN, targetN, corr, 0.5 * pixel, 120, 12);
+  // A wrong correspondence ends in a local minimum that leaves much of the outline unexplained: ignore it.
+  if (G.inlierShare() < std::max(m_tiltMinInliers, polygonMinInliers) || G.residual() > m_tiltMaxResidualPx * pixel)
+    return false;
+  // Refined on the measured edges: tenths of a pixel -> hundredths.
+  return !dense || denseFit(vpMorphHomography(G), 8);
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // Hand-eye tilt exploration.
 
@@ -1521,13 +1528,8 @@ bool vpServoMorph::readTilt(const vpMorphContour &currentN, TiltReading &r)
     const vpMorphContour targetN = m_target.toNormalized(m_cam);
     if (!currentN.hasOutline() || !targetN.hasOutline() || !currentN.hasRegion())
       return false;
-    const double pixel = normalisedPixels(1.0);
-    const vpMorphCorrespondence &corr = m_tiltTracker.update(currentN, targetN);
-    vpMorphHomography G = vpMorphHomography::fit(currentN, targetN, corr, 0.5 * pixel, 120, 12);
-    if (G.inlierShare() < m_tiltMinInliers || G.residual() > m_tiltMaxResidualPx * pixel)
-      return false;
-    G = vpMorphHomography::refine(currentN.outline(), targetN.outline(), G, 0.1 * pixel, 400, 8);
-    if (G.inlierShare() < kNotAlikeMinInliers || G.residual() > kOutlineMaxResidualPx * pixel)
+    vpMorphHomography G;
+    if (!outlineHomography(currentN, targetN, nullptr, 0.0, kNotAlikeMinInliers, kOutlineMaxResidualPx, G))
       return false;
     const vpColVector n = G.inputMtarget(m_Zd).getRotationMatrix().getCol(2);
     const vpMatrix &C = G.covariance();

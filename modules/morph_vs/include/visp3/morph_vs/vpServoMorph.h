@@ -527,6 +527,15 @@ private:
   bool estimateTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &cMct, double &Zp);
   // estimateTilt()'s fit, each time it is tried.
   bool fitTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &cMct, double &Zp);
+  /*
+    The homography current -> target that fitTilt() and readTilt() read the tilt from: refined on the measured edge
+    outlines (when both have them) from \e warm (6 iterations) or, without it or when that fails, from the polygons'
+    correspondence (m_tiltTracker) fit then refined (8). False when it does not explain the view: the polygons' fit
+    under max(m_tiltMinInliers, polygonMinInliers) of inliers or over m_tiltMaxResidualPx, the refined one under
+    minInliers or over maxResidualPx (pixels).
+  */
+  bool outlineHomography(const vpMorphContour &currentN, const vpMorphContour &targetN, const vpMorphHomography *warm,
+                         double polygonMinInliers, double minInliers, double maxResidualPx, vpMorphHomography &G);
   void fuseTilt(const vpMatrix &C, double &angle, double &ax, double &ay, double &sa);
   void record();
   bool targetMismatch(const vpMorphContour &current);
