@@ -243,11 +243,14 @@ struct Exploration
   vpThetaUVector applied{0, 0, 0}; // exploredHandEyeTilt()
 };
 // The free camera, mounted at eMcTrue but believed at eMcBelieved, servoed by vpServoMorph with the exploration turn
-// (90 deg) towards the screwdriver seen from cdMc: the servo's hand-eye estimate when the turn is over.
-Exploration explore(const vpHomogeneousMatrix &eMcBelieved, const vpHomogeneousMatrix &cdMc)
+// (90 deg) towards the screwdriver seen from cdMc (or, with \e seen, that texture at the screwdriver's place): the
+// servo's hand-eye estimate when the turn is over.
+Exploration explore(const vpHomogeneousMatrix &eMcBelieved, const vpHomogeneousMatrix &cdMc,
+                    const std::string &seen = "screwdriver")
 {
   const std::string data = VISPMORPH_DATA_DIR;
   const vpMorphPlanarScene scene(data + "/objects/screwdriver.png");
+  const vpMorphPlanarScene view(data + "/objects/" + seen + ".png");
   const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose("screwdriver");
   vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA);
   robot.setDesiredPose(cdMo);
@@ -263,7 +266,7 @@ Exploration explore(const vpHomogeneousMatrix &eMcBelieved, const vpHomogeneousM
   const vpHomogeneousMatrix cMo0 = robot.get_cMo();
   for (unsigned int k = 0; k < 400; ++k) {
     const vpHomogeneousMatrix cMo = robot.get_cMo();
-    const vpColVector v = servo.computeControlLaw(scene.silhouette(cMo));
+    const vpColVector v = servo.computeControlLaw(view.silhouette(cMo));
     if (!servo.exploring()) { // this period's command is the law's: the turn ended at the image of cMo
       double t;
       vpMorphTagPoseEstimator::poseDifference(cMo0, cMo, t, e.returnDeg);
@@ -307,6 +310,12 @@ TEST_CASE("The exploration turn reads the tilt of the camera on the hand and cor
   CHECK(right.applied.getTheta() == 0.0);
   CHECK(axisAngleDeg(eMcTrue, right.eMcAfter) < 1e-9);
   CHECK(right.periods > 50);
+  // A view whose tilt cannot be read (the screwdriver bent, a deformable-set view): two views unread, and back.
+  const Exploration bent = explore(wrong, cdMc, "screwdriver-deformed");
+  std::printf("[exploration] bent: %u periods\n", bent.periods);
+  CHECK(bent.periods <= 2);
+  CHECK(bent.returnDeg < 0.01);
+  CHECK(bent.applied.getTheta() == 0.0);
 }
 
 TEST_CASE("The exploration turn is skipped near the image border or a joint limit and refused with a bad turn",

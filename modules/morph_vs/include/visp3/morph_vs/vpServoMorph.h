@@ -645,6 +645,9 @@ private:
     double c00 = 0, c01 = 0, c11 = 0; // its covariance
   };
   std::vector<TiltReading> m_exploreReadings;
+  vpMorphHomography m_readG; // the last reading's homography, and the turn then: the next reading's warm start
+  double m_readTheta = 0.0;
+  bool m_readWarm = false;
   bool exploreStep(const vpMorphContour &current, const vpMorphContour &currentN, vpColVector &ve);
   bool exploreCommand(vpColVector &ve);
   // A sequence planned from \e current anew, with the target check of a new start; with \e replan, after a view
