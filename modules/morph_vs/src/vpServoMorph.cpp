@@ -1625,7 +1625,7 @@ bool vpServoMorph::exploreStep(const vpMorphContour &current, const vpMorphConto
   if (readTilt(currentN, r))
     m_exploreReadings.push_back(r);
   // A view whose tilt cannot be read (bent, partly hidden): back at once, nothing to learn. Such a view is unread from
-  // its start (seed 2's 120 camera turns of six sets: none whose first two views were unread read enough later): its
+  // its start (seed 2's 114 camera turns of six sets: none whose first two views were unread read enough later): its
   // first two views unread, or fewer than half read by kExploreProbe.
   const bool unread = m_exploreReadings.empty() && m_exploreCount >= 1;
   if (m_explorePhase == EXPLORE_OUT &&

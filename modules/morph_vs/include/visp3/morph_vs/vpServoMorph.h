@@ -377,8 +377,9 @@ public:
     - The turn runs at 1 rad/s: set setSamplingTime() to the loop's period, which the turn's angle is counted in.
     - It does not start when the joints (setJointState()) would pass a limit along it.
     - It comes back early when the view comes within 40 px of the border of the \e imageWidth x \e imageHeight image,
-      and does not start there; it comes back at once when the view's tilt cannot be read (a bent or hidden object:
-      the outline's homography explains less than 99 % of it).
+      and does not start there; it comes back when the view's tilt cannot be read (a bent or hidden object: the
+      outline's homography explains less than 99 % of it): after its first two views unread, or with fewer than half
+      of its views read by 0.35 rad.
     - A view off the turn's way (more than jumpPixels(), plus 6 px a period since the last view read) or whose area
       changed by 10 % is not read: another region joined to the object, an occluder. Off the way with its area kept
       three periods in a row, the robot or the object was displaced: the turn ends there, uncorrected, and the view
