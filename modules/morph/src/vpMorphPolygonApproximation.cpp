@@ -61,7 +61,17 @@ public:
     }
   }
 
-  std::ptrdiff_t wrap(std::ptrdiff_t i) const { return ((i % m_n) + m_n) % m_n; }
+  // The unwrapped indices are mostly within one turn of [0, n): a comparison then, not a division.
+  std::ptrdiff_t wrap(std::ptrdiff_t i) const
+  {
+    if (i >= 0 && i < m_n)
+      return i;
+    if (i < 0 && i >= -m_n)
+      return i + m_n;
+    if (i >= m_n && i < 2 * m_n)
+      return i - m_n;
+    return ((i % m_n) + m_n) % m_n;
+  }
   const Pt &at(std::ptrdiff_t i) const { return m_p[static_cast<std::size_t>(wrap(i))]; }
   std::ptrdiff_t size() const { return m_n; }
 
