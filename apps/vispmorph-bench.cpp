@@ -34,6 +34,8 @@
 #include <unistd.h>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include <visp3/core/vpMath.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_bench/vpMorphBench.h>
@@ -204,6 +206,10 @@ int recognizeStarts(const vpMorphBench &bench, const std::vector<vpMorphBenchSce
 
 int main(int argc, char **argv)
 {
+  // The runs already share the cores among them; OpenCV's own pool would put part of each extraction on other
+  // threads (findContours() thresholds through it), which oversubscribes the cores and which a run's CPU clock, the
+  // calling thread's, does not count. With one OpenCV thread a run's compute time is all its work.
+  cv::setNumThreads(1);
   std::vector<std::string> sets, controllers = vpMorphBenchController::names();
   std::string out, robotName = "camera", dataDir = VISPMORPH_DATA_DIR;
   unsigned int count = 10, seed = 1, threads = 0;
