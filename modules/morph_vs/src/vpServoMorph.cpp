@@ -1351,7 +1351,7 @@ bool vpServoMorph::fitTilt(const vpMorphContour &currentN, vpHomogeneousMatrix &
     const double maxResidualPx = notAlike ? kNotAlikeMaxResidualPx : kOutlineMaxResidualPx;
     // Outlines: from the previous period's homography (the camera moved by a fraction of its error since), which
     // follows the view smoothly and saves the polygons' correspondence and fit; from the polygons otherwise.
-    const bool warm = dense && m_tiltWarm;
+    const bool warm = m_tiltWarm; // outlineHomography() starts from it on outlines only
     m_tiltWarm = false;
     vpMorphHomography G;
     if (!outlineHomography(currentN, targetN, warm ? &m_tiltG : nullptr, minInliers,
@@ -1533,15 +1533,9 @@ bool vpServoMorph::readTilt(const vpMorphContour &currentN, TiltReading &r)
     // normalised image by that rotation): the readings follow the view as fitTilt()'s do, at a fraction of the cost.
     const bool warm = m_readWarm;
     m_readWarm = false;
-    if (warm) {
-      const double c = std::cos(m_exploreTheta - m_readTheta), s = std::sin(m_exploreTheta - m_readTheta);
-      vpMatrix R(3, 3, 0.0);
-      R[0][0] = R[1][1] = c;
-      R[0][1] = -s;
-      R[1][0] = s;
-      R[2][2] = 1.0;
-      m_readG = vpMorphHomography(m_readG.matrix() * R);
-    }
+    if (warm)
+      m_readG = vpMorphHomography(m_readG.matrix() *
+                                  vpMorphRigidTransform(m_exploreTheta - m_readTheta, 0, 0, 1, 0, 0).toMatrix());
     vpMorphHomography G;
     if (!outlineHomography(currentN, targetN, warm ? &m_readG : nullptr, 0.0, kNotAlikeMinInliers,
                            kOutlineMaxResidualPx, G))
