@@ -4,7 +4,6 @@
 #include <iostream>
 #include <sstream>
 
-#include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/morph/vpMorphException.h>
 
@@ -46,12 +45,6 @@ void regionMoments(const vpMorphContour &c, double &a, double &xg, double &yg, d
   n02 = syy / (12 * A) - yg * yg;
   n11 = sxy / (24 * A) - xg * yg;
   a = std::fabs(A);
-}
-
-void drawContour(const vpMorphContour &normalized, const vpCameraParameters &cam, std::vector<vpImagePoint> &ips)
-{
-  const vpMorphContour px = normalized.toPixels(cam);
-  ips = px.points();
 }
 } // namespace
 
@@ -433,26 +426,6 @@ vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int sel
     if (select & FEATURE_LINE[k])
       e.stack(full[k]);
   return e;
-}
-
-void vpFeatureMorph::display(const vpCameraParameters &cam, const vpImage<unsigned char> &I, const vpColor &color,
-                             unsigned int thickness) const
-{
-  if (m_contour.empty())
-    return;
-  std::vector<vpImagePoint> ips;
-  drawContour(m_contour, cam, ips);
-  vpDisplay::displayPolygon(I, ips, color, thickness);
-}
-
-void vpFeatureMorph::display(const vpCameraParameters &cam, const vpImage<vpRGBa> &I, const vpColor &color,
-                             unsigned int thickness) const
-{
-  if (m_contour.empty())
-    return;
-  std::vector<vpImagePoint> ips;
-  drawContour(m_contour, cam, ips);
-  vpDisplay::displayPolygon(I, ips, color, thickness);
 }
 
 vpFeatureMorph *vpFeatureMorph::duplicate() const { return new vpFeatureMorph(*this); }

@@ -8,7 +8,6 @@
 
 #include <Eigen/Dense>
 
-#include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpExponentialMap.h>
 #include <visp3/core/vpRotationMatrix.h>
 #include <visp3/core/vpThetaUVector.h>
@@ -242,34 +241,6 @@ double rmsRadius(const vpMorphContour &c)
   return std::sqrt(s / c.size());
 }
 } // namespace
-
-namespace
-{
-template <typename T>
-void drawGoals(const vpImage<T> &I, const vpMorphContour &current, const std::vector<vpMorphContour> &subGoals,
-               std::size_t k, const vpMorphContour &target, const vpColor &currentColor, const vpColor &subGoalColor,
-               const vpColor &targetColor, unsigned int thickness)
-{
-  if (!current.empty())
-    vpDisplay::displayPolygon(I, current.points(), currentColor, thickness);
-  if (!target.empty())
-    vpDisplay::displayPolygon(I, target.points(), targetColor, thickness);
-  if (k < subGoals.size() && k + 1 < subGoals.size())
-    vpDisplay::displayPolygon(I, subGoals[k].points(), subGoalColor, thickness);
-}
-} // namespace
-
-void vpServoMorph::display(const vpImage<unsigned char> &I, const vpColor &currentColor, const vpColor &subGoalColor,
-                           const vpColor &targetColor, unsigned int thickness) const
-{
-  drawGoals(I, m_current, m_subGoals, m_k, m_target, currentColor, subGoalColor, targetColor, thickness);
-}
-
-void vpServoMorph::display(const vpImage<vpRGBa> &I, const vpColor &currentColor, const vpColor &subGoalColor,
-                           const vpColor &targetColor, unsigned int thickness) const
-{
-  drawGoals(I, m_current, m_subGoals, m_k, m_target, currentColor, subGoalColor, targetColor, thickness);
-}
 
 vpServoMorph::vpServoMorph() : m_cam(800, 800, 320, 240), m_ve(6, 0.0), m_vc(6, 0.0)
 {

@@ -1,5 +1,5 @@
-// A headless vpDisplay that records the lines drawn on the image it is attached to, so that tests can check
-// what display() methods draw without a window (vpDisplay::displayPolygon draws through displayLine).
+// A headless vpDisplay that records the lines, crosses and text drawn on the image it is attached to, so that tests
+// can check what display() methods draw without a window (vpDisplay::displayPolygon draws through displayLine).
 #ifndef TEST_MORPH_VS_RECORDING_DISPLAY_H
 #define TEST_MORPH_VS_RECORDING_DISPLAY_H
 
@@ -19,7 +19,15 @@ public:
     vpImagePoint a, b;
     vpColor color;
   };
+  struct Text
+  {
+    vpImagePoint position;
+    std::string text;
+    vpColor color;
+  };
   std::vector<Line> lines;
+  std::vector<vpImagePoint> crosses;
+  std::vector<Text> texts;
 
   //! Attaches to \e I (the display is used by vpDisplay's static functions on I) until detach().
   template <typename T> void attach(vpImage<T> &I)
@@ -45,6 +53,14 @@ public:
   {
     lines.push_back({a, b, color});
   }
+  void displayCharString(const vpImagePoint &p, const char *text, const vpColor &color) override
+  {
+    texts.push_back({p, text, color});
+  }
+  void displayCross(const vpImagePoint &p, unsigned int, const vpColor &, unsigned int) override
+  {
+    crosses.push_back(p);
+  }
 
   // Everything else does nothing.
   void clearDisplay(const vpColor &) override {}
@@ -53,9 +69,7 @@ public:
                     unsigned int) override
   {
   }
-  void displayCharString(const vpImagePoint &, const char *, const vpColor &) override {}
   void displayCircle(const vpImagePoint &, unsigned int, const vpColor &, bool, unsigned int) override {}
-  void displayCross(const vpImagePoint &, unsigned int, const vpColor &, unsigned int) override {}
   void displayImage(const vpImage<unsigned char> &) override {}
   void displayImage(const vpImage<vpRGBa> &) override {}
   void displayImageROI(const vpImage<unsigned char> &, const vpImagePoint &, unsigned int, unsigned int) override {}

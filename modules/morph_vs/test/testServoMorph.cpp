@@ -3,6 +3,7 @@
 // the stock-vpServo law, safety, and the 4-point IBVS failure that motivates the feature.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -33,7 +34,7 @@ struct Setup
   vpServoMorph::RigidPath rigidPath = vpServoMorph::CAMERA_STRAIGHT_LINE;
   bool online = true;
   int maxIterations = 400;
-  double noisePx = 0; // Gaussian noise on the vertices (seeded)
+  double noisePx = 0;                    // Gaussian noise on the vertices (seeded)
   double finalRotation = 0, finalPx = 0; // setFinalThresholds() when finalPx > 0
   double finalScale = 0;                 // setFinalScaleThreshold()
   // Limits of a roll joint about the optical axis (rad, from the start), given to setJointState() each period with
@@ -386,14 +387,16 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
   vpImage<vpRGBa> I(480, 640);
   CHECK_NOTHROW(servo.display(I)); // headless: no display attached, nothing drawn
   {
-    // Converged: the contour (9 edges, red) and the target (9 edges, green); the sub-goal is the target.
+    // Converged: the contour (9 edges, red), the target (9 edges, green) and their correspondence (a cyan line per
+    // pair of vertices); the sub-goal is the target.
     RecordingDisplay rec;
     rec.attach(I);
     servo.display(I);
     RecordingDisplay::detach(I);
     CHECK(rec.count(vpColor::red) == 9);
     CHECK(rec.count(vpColor::green) == 9);
-    CHECK(rec.lines.size() == 18);
+    CHECK(rec.count(vpColor::cyan) == servo.tracker().correspondence().size());
+    CHECK(rec.lines.size() == 18 + rec.count(vpColor::cyan));
   }
   CHECK(servo.subGoals().size() == 6);
   CHECK(servo.subGoalIndex() == 5);
@@ -507,8 +510,11 @@ TEST_CASE("vpServoMorph sub-goal switching thresholds are configurable", "[servo
     CHECK(rec.count(vpColor::orange) == 9);
     CHECK(rec.count(vpColor::green) == 9);
     // The drawn contour is the one given, in pixels.
-    CHECK(rec.lines[0].a.get_u() == Approx(start.x(0)));
-    CHECK(rec.lines[0].a.get_v() == Approx(start.y(0)));
+    const auto first = std::find_if(rec.lines.begin(), rec.lines.end(),
+                                    [](const RecordingDisplay::Line &l) { return l.color == vpColor::blue; });
+    REQUIRE(first != rec.lines.end());
+    CHECK(first->a.get_u() == Approx(start.x(0)));
+    CHECK(first->a.get_v() == Approx(start.y(0)));
   }
   // Thresholds above any residual: every intermediate sub-goal counts as reached at once, only the goal is left.
   servo.setSubGoalThresholds(4.0, 1000.0);

@@ -115,11 +115,24 @@ public:
     \throw vpMorphException::badParameterError if s_star is not a vpFeatureMorph or either is not built.
   */
   vpColVector error(const vpBasicFeature &s_star, unsigned int select = FEATURE_ALL) override;
-  //! Draws the contour (no-op without a display attached to I).
+  /*!
+    Draws the feature as ViSP's features draw theirs: its contour and a cross at its centroid \f$(x_g, y_g)\f$, in
+    pixels through \e cam, on the display attached to \e I (no-op without one, or when not built). With a stock
+    vpServo, vpServoDisplay::display(task, cam, I) calls it for the current and the desired feature:
+    \code
+    vpDisplayX d(I);
+    vpDisplay::display(I);
+    vpServoDisplay::display(task, cam, I, vpColor::green, vpColor::red); // desired green, current red
+    vpDisplay::flush(I);
+    \endcode
+  */
   void display(const vpCameraParameters &cam, const vpImage<unsigned char> &I, const vpColor &color = vpColor::green,
                unsigned int thickness = 1) const override;
   void display(const vpCameraParameters &cam, const vpImage<vpRGBa> &I, const vpColor &color = vpColor::green,
                unsigned int thickness = 1) const override;
+  //! What display() draws, burnt into the pixels of \e I (vpImageDraw): for pictures and videos without a window.
+  void draw(const vpCameraParameters &cam, vpImage<vpRGBa> &I, const vpColor &color = vpColor::green,
+            unsigned int thickness = 1) const;
   //! A fresh heap copy (vpServo owns it when it made it, and calls init() on it).
   vpFeatureMorph *duplicate() const override;
   //! Writes the selected components to std::cout (ViSP's contract for print(); only on the caller's request).

@@ -476,9 +476,32 @@ public:
   //! The correspondence tracker of the control law in use (with STOCK_VPSERVO, the one of vpFeatureMorph).
   const vpMorphCorrespondenceTracker &tracker() const { return m_law == STOCK_VPSERVO ? m_s.tracker() : m_tracker; }
 
+  //! The last contour given to computeControlLaw() (pixels; empty after an empty one, or on a stop).
+  const vpMorphContour &getCurrentContour() const { return m_current; }
+  //! The target in pixels (an articulated target as posed for the current sequence).
+  const vpMorphContour &getTargetContour() const { return m_target; }
   /*!
-    Draws the last contour given to computeControlLaw(), the current sub-goal (when it is not the target) and the
-    final target, in pixels (vpDisplay: no-op without a display attached to I).
+    Draws in one call what the servo sees and chases, on the display attached to \e I (vpDisplay: no-op without one):
+    - the target (\e targetColor, \e thickness + 2 pixels wide, underneath the rest, so that it stays visible where
+      the current contour reaches it);
+    - the current sub-goal while it is not the target (\e subGoalColor);
+    - the correspondence from the current contour to that sub-goal, a line per corresponded pair of vertices (cyan),
+      while the servo moves or has converged;
+    - the last contour given to computeControlLaw() (\e currentColor);
+    - the status in yellow on a black band in the top-left corner: statusName(), the sub-goal chased (k / n), the
+      residuals to it (rad, px) and the tilt when it is estimated.
+    \code
+    vpImage<unsigned char> I;                // the camera image
+    vpDisplayX d(I, 0, 0, "camera");         // or vpDisplayOpenCV
+    for (;;) {
+      acquire(I);                            // the user's grabber
+      const vpColVector ve = servo.computeControlLaw(vpMorphContourExtractor().extract(I));
+      vpDisplay::display(I);
+      servo.display(I);
+      vpDisplay::flush(I);
+      if (!servo.converged()) robot.setVelocity(vpRobot::END_EFFECTOR_FRAME, ve); else break;
+    }
+    \endcode
   */
   void display(const vpImage<unsigned char> &I, const vpColor &currentColor = vpColor::red,
                const vpColor &subGoalColor = vpColor::orange, const vpColor &targetColor = vpColor::green,
@@ -486,6 +509,12 @@ public:
   void display(const vpImage<vpRGBa> &I, const vpColor &currentColor = vpColor::red,
                const vpColor &subGoalColor = vpColor::orange, const vpColor &targetColor = vpColor::green,
                unsigned int thickness = 1) const;
+  //! What display() draws, burnt into the pixels of \e I (vpImageDraw, vpFont): video frames without a window.
+  void draw(vpImage<vpRGBa> &I, const vpColor &currentColor = vpColor::red,
+            const vpColor &subGoalColor = vpColor::orange, const vpColor &targetColor = vpColor::green,
+            unsigned int thickness = 1) const;
+  //! The status lines display() writes.
+  std::vector<std::string> statusText() const;
 
 private:
   void start(const vpMorphContour &current);
