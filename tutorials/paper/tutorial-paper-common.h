@@ -4,7 +4,6 @@
 #define TUTORIAL_PAPER_COMMON_H
 
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -25,22 +24,23 @@
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 #include <visp3/morph_vs/vpServoMorph.h>
 
+#include "tutorial-display.h"
+#include "tutorial-servo-windows.h"
+
 namespace paper
 {
-//! Parses "[-c] [-d] [--out DIR]" (-c and -d are accepted as in ViSP's tutorials: nothing is ever displayed).
-//! Returns false (after printing the usage) on anything else; creates DIR.
-inline bool parseArgs(int argc, char **argv, std::string &out)
+//! Takes "[--out DIR]" from the arguments tutorial::Viewer left (its -c, -d, --save-display taken out). Returns false
+//! (after printing the usage) on anything else; creates DIR.
+inline bool parseArgs(const char *program, const std::vector<std::string> &args, std::string &out)
 {
   out = ".";
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "-c") || !std::strcmp(argv[i], "-d"))
-      continue;
-    if (!std::strcmp(argv[i], "--out") && i + 1 < argc) {
-      out = argv[++i];
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--out" && i + 1 < args.size()) {
+      out = args[++i];
       continue;
     }
-    std::cout << "Usage: " << argv[0] << " [-c] [-d] [--out DIR]  (headless; PNG and CSV files go to DIR, default .)"
-              << std::endl;
+    std::cout << "Usage: " << program << " " << tutorial::Viewer::options()
+              << " [--out DIR]  (PNG and CSV files go to DIR, default .)" << std::endl;
     return false;
   }
   vpIoTools::makeDirectory(out);
@@ -61,7 +61,7 @@ inline vpMorphContour observe(const vpMorphPlanarScene &scene, const vpMorphTagP
   scene.render(cMo, I);
   vpHomogeneousMatrix cMo_tag;
   std::vector<vpImagePoint> corners;
-  tag.estimate(I, cMo_tag, &corners); // not found: nothing to mask
+  tag.estimate(I, cMo_tag, &corners);                     // not found: nothing to mask
   return vpMorphTagPoseEstimator::silhouette(I, corners); // empty when no object: the servo reports TARGET_LOST
 }
 

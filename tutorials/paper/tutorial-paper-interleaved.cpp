@@ -54,8 +54,10 @@ vpImage<vpRGBa> grid(const std::vector<Tile> &tiles, unsigned int columns, unsig
 int main(int argc, char **argv)
 {
   std::string out;
+  std::vector<std::string> args;
+  tutorial::Viewer viewer(argc, argv, args);
   try {
-    if (!paper::parseArgs(argc, argv, out))
+    if (!paper::parseArgs(argv[0], args, out))
       return EXIT_FAILURE;
 
     paper::Bench bench("pliers");
@@ -66,6 +68,9 @@ int main(int argc, char **argv)
     vpServoMorph servo;
     paper::setUpController(servo, bench.robot, bench.scene.camera(), bench.storedView, bench.cdMo[2][3],
                            paper::Bench::dt);
+    tutorial::ServoWindows watch(viewer, bench.scene.imageWidth(), bench.scene.imageHeight(),
+                                 bench.scene.objectContour3D(), bench.scene.tagCorners3D(), bench.cdMo,
+                                 "Viper850 camera"); // windows, when a display is available
 
     std::vector<Tile> tiles;
     vpImage<unsigned char> I;
@@ -78,6 +83,7 @@ int main(int argc, char **argv)
         tiles.push_back({paper::withContour(I, vpMorphContour(), vpColor::orange), "start", true});
       const std::size_t before = servo.subGoalIndex();
       const vpColVector ve = servo.computeControlLaw(seen);
+      watch.show(I, servo, move, bench.robot.get_cMo());
       // The sub-goals reached at this move: each virtual image, then the real view that reached it.
       const std::size_t reached = servo.converged() ? servo.subGoals().size() : servo.subGoalIndex();
       for (std::size_t k = before; k < reached; ++k) {
@@ -90,7 +96,7 @@ int main(int argc, char **argv)
         tiles.push_back({paper::withContour(I, goal, vpColor::orange), r.str(), k + 1 == servo.subGoals().size()});
       }
       e = bench.error();
-      if (!paper::running(servo))
+      if (!paper::running(servo) || watch.stopped())
         break;
       bench.move(ve);
     }
@@ -106,6 +112,7 @@ int main(int argc, char **argv)
     std::printf("wrote %s/fig5-interleaved.png\n", out.c_str());
     const bool ok = paper::aligned(servo, e);
     std::printf("%s\n", ok ? "aligned" : "NOT aligned");
+    watch.end(servo);
     return ok ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "error: " << e.getStringMessage() << std::endl;

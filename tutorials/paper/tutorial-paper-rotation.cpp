@@ -15,8 +15,10 @@
 int main(int argc, char **argv)
 {
   std::string out;
+  std::vector<std::string> args;
+  tutorial::Viewer viewer(argc, argv, args);
   try {
-    if (!paper::parseArgs(argc, argv, out))
+    if (!paper::parseArgs(argv[0], args, out))
       return EXIT_FAILURE;
 
     //! [Bench]
@@ -29,6 +31,9 @@ int main(int argc, char **argv)
     vpServoMorph servo;
     paper::setUpController(servo, bench.robot, bench.scene.camera(), bench.storedView, bench.cdMo[2][3],
                            paper::Bench::dt);
+    tutorial::ServoWindows watch(viewer, bench.scene.imageWidth(), bench.scene.imageHeight(),
+                                 bench.scene.objectContour3D(), bench.scene.tagCorners3D(), bench.cdMo,
+                                 "Viper850 camera"); // windows, when a display is available
     //! [Bench]
 
     std::ofstream moves = paper::openCsv(out + "/fig2-moves.csv", "move,subgoal,status,rotation_error_deg,"
@@ -45,6 +50,7 @@ int main(int argc, char **argv)
         vpMorphDrawing::write(paper::withContour(I, bench.storedView, vpColor::green), out + "/fig2-start.png");
       const std::size_t before = servo.subGoalIndex();
       const vpColVector ve = servo.computeControlLaw(seen);
+      watch.show(I, servo, move, bench.robot.get_cMo());
       // Every sub-goal passed at this iteration was reached by the contour seen now: how far was it from it?
       const std::size_t reached = servo.converged() ? servo.subGoals().size() : servo.subGoalIndex();
       for (std::size_t k = before; k < reached; ++k) {
@@ -55,7 +61,7 @@ int main(int argc, char **argv)
       e = bench.error();
       moves << move << "," << servo.subGoalIndex() + 1 << "," << vpServoMorph::statusName(servo.status()) << ","
             << e.deg << "," << e.inPlaneMm << "," << e.depthMm << "\n";
-      if (!paper::running(servo))
+      if (!paper::running(servo) || watch.stopped())
         break;
       bench.move(ve);
     }
@@ -73,6 +79,7 @@ int main(int argc, char **argv)
     std::printf("wrote %s/fig2-moves.csv, fig2-subgoals.csv, fig2-start.png, fig2-final.png\n", out.c_str());
     const bool ok = paper::aligned(servo, e);
     std::printf("%s\n", ok ? "aligned" : "NOT aligned");
+    watch.end(servo);
     return ok ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "error: " << e.getStringMessage() << std::endl;

@@ -15,8 +15,10 @@
 int main(int argc, char **argv)
 {
   std::string out;
+  std::vector<std::string> args;
+  tutorial::Viewer viewer(argc, argv, args);
   try {
-    if (!paper::parseArgs(argc, argv, out))
+    if (!paper::parseArgs(argv[0], args, out))
       return EXIT_FAILURE;
 
     //! [Bench]
@@ -29,6 +31,9 @@ int main(int argc, char **argv)
     vpServoMorph servo;
     paper::setUpController(servo, bench.robot, bench.scene.camera(), bench.storedView, bench.cdMo[2][3],
                            paper::Bench::dt);
+    tutorial::ServoWindows watch(viewer, bench.scene.imageWidth(), bench.scene.imageHeight(),
+                                 bench.scene.objectContour3D(), bench.scene.tagCorners3D(), bench.cdMo,
+                                 "Viper850 camera"); // windows, when a display is available
     // The camera trajectory is drawn in the desired camera frame: x right, y down, as in the image.
     const vpHomogeneousMatrix cdMf = (bench.cdMo * bench.robot.get_fMo().inverse());
     //! [Bench]
@@ -45,6 +50,7 @@ int main(int argc, char **argv)
       const vpMorphContour seen = bench.look(I);
       const std::size_t before = servo.subGoalIndex();
       const vpColVector ve = servo.computeControlLaw(seen);
+      watch.show(I, servo, move, bench.robot.get_cMo());
       const vpHomogeneousMatrix cdMc = cdMf * bench.robot.get_fMc(); // where the camera is (truth)
       const std::size_t reached = servo.converged() ? servo.subGoals().size() : servo.subGoalIndex();
       for (std::size_t k = before; k < reached; ++k) {
@@ -58,7 +64,7 @@ int main(int argc, char **argv)
       moves << move << "," << servo.subGoalIndex() + 1 << "," << vpServoMorph::statusName(servo.status()) << ","
             << imagePx << "," << std::hypot(e.inPlaneMm, e.depthMm) << "," << cdMc[0][3] * 1000 << ","
             << cdMc[1][3] * 1000 << "\n";
-      if (!paper::running(servo))
+      if (!paper::running(servo) || watch.stopped())
         break;
       bench.move(ve);
     }
@@ -72,6 +78,7 @@ int main(int argc, char **argv)
     std::printf("wrote %s/fig3-moves.csv, fig3-subgoals.csv\n", out.c_str());
     const bool ok = paper::aligned(servo, e);
     std::printf("%s\n", ok ? "aligned" : "NOT aligned");
+    watch.end(servo);
     return ok ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "error: " << e.getStringMessage() << std::endl;

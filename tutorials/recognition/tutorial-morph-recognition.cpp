@@ -1,16 +1,21 @@
 //! \example tutorial-morph-recognition.cpp
 //! Recognition by least morph work: build a template database from images, recognise a rotated, noisy and
 //! partly occluded view of a known object and a view with a notch bitten out of it, and reject an object that is
-//! not in the database.
+//! not in the database. With a display, shows each view with its contour (red) and the template recognised laid on it
+//! (green; orange when rejected). Usage: [OBJECTS_DIR] [-c] [-d] [--save-display FILE].
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <string>
 
 #include <visp3/core/vpGaussRand.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/io/vpImageIo.h>
+#include <visp3/morph/vpMorph.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphDatabase.h>
+
+#include "tutorial-display.h"
 
 namespace
 {
@@ -30,11 +35,44 @@ vpImage<unsigned char> newView(const vpImage<unsigned char> &I, double theta, do
     }
   return V;
 }
+
+/*!
+  A window on \e I (when a display is available) with the view's contour \e c (red), the template \e r recognised
+  laid on it by the morph's rigid part (green if accepted, orange if rejected), and the verdict as a caption.
+  Registers what the display test checks there.
+*/
+void show(tutorial::Viewer &viewer, vpImage<unsigned char> &I, int x, int y, const std::string &tag,
+          const vpMorphContour &c, const vpMorphDatabase &db, const vpMorphRecognition &r)
+{
+  if (!viewer.open(I, x, y, tag + ": contour (red), template laid on it (green: accepted, orange: rejected)", tag))
+    return;
+  char line[160];
+  std::snprintf(line, sizeof line, "%s %s: distance %.3f, threshold %.3f",
+                r.accepted ? "recognised as" : "rejected, closest is", db[r.index].name().c_str(), r.distance,
+                r.threshold);
+  const std::vector<std::string> caption = {tag, line};
+  const vpColor verdict = r.accepted ? vpColor::green : vpColor::orange;
+  const vpMorphContour laid = vpMorph(db[r.index].contour(), c).rectified();
+  vpDisplay::display(I);
+  vpDisplay::displayPolygon(I, laid.points(), verdict, 4);
+  vpDisplay::displayPolygon(I, c.points(), vpColor::red, 1);
+  tutorial::Viewer::caption(I, caption);
+  vpDisplay::flush(I);
+  if (r.accepted)
+    viewer.expectContour(tag, "template laid on the view", laid.points(), vpColor::green);
+  viewer.expectText(tag, "verdict", tutorial::Viewer::captionBand(caption), vpColor::white, caption);
+}
 } // namespace
 
 int main(int argc, char **argv)
 {
-  const std::string objects = argc > 1 ? argv[1] : VISPMORPH_DATA_DIR "/objects";
+  std::vector<std::string> args;
+  tutorial::Viewer viewer(argc, argv, args);
+  if (args.size() > 1) {
+    std::cout << "Usage: " << argv[0] << " [OBJECTS_DIR] " << tutorial::Viewer::options() << std::endl;
+    return 1;
+  }
+  const std::string objects = args.empty() ? VISPMORPH_DATA_DIR "/objects" : args[0];
   try {
     //! [Build]
     // One template per image (named after the file: the six tools and a deformed version of each); the
@@ -60,7 +98,8 @@ int main(int argc, char **argv)
     //! [Recognize]
     // The template that costs the least morph work; accepted if that work is within its calibrated threshold.
     // db[r.index].cdMo() is where the camera must go, r.correspondence feeds vpMorph for the virtual images.
-    const vpMorphRecognition r = db.recognize(vpMorphContourExtractor().extract(query));
+    const vpMorphContour qc = vpMorphContourExtractor().extract(query);
+    const vpMorphRecognition r = db.recognize(qc);
     std::cout << "query: " << (r.accepted ? "recognised as " : "rejected, closest is ") << db[r.index].name()
               << " (distance " << r.distance << ", threshold " << r.threshold << ", runner-up "
               << db[r.secondIndex].name() << " at " << r.secondDistance << ")" << std::endl;
@@ -78,7 +117,8 @@ int main(int argc, char **argv)
     for (unsigned int v = bottom - 26; v <= bottom + 26; ++v)
       for (unsigned int u = 380 - 26; u <= 380 + 26; ++u)
         wedge[v][u] = 170;
-    const vpMorphRecognition w = db.recognize(vpMorphContourExtractor().extract(wedge));
+    const vpMorphContour wc = vpMorphContourExtractor().extract(wedge);
+    const vpMorphRecognition w = db.recognize(wc);
     std::cout << "wedge: " << (w.accepted ? "recognised as " : "rejected, closest is ") << db[w.index].name()
               << " (distance " << w.distance << ", threshold " << w.threshold;
     if (!std::isnan(w.support))
@@ -93,10 +133,19 @@ int main(int argc, char **argv)
       for (unsigned int u = 0; u < moon.getWidth(); ++u)
         if (std::hypot(u - 320.0, v - 240.0) < 120.0 && std::hypot(u - 380.0, v - 220.0) > 110.0)
           moon[v][u] = 0;
-    const vpMorphRecognition m = db.recognize(vpMorphContourExtractor().extract(moon));
+    const vpMorphContour mc = vpMorphContourExtractor().extract(moon);
+    const vpMorphRecognition m = db.recognize(mc);
     std::cout << "moon:  " << (m.accepted ? "recognised as " : "rejected, closest is ") << db[m.index].name()
               << " (distance " << m.distance << ", threshold " << m.threshold << ")" << std::endl;
     //! [Unknown]
+
+    //! [Display]
+    show(viewer, query, 0, 0, "key", qc, db, r);
+    show(viewer, wedge, 660, 0, "wedge", wc, db, w);
+    show(viewer, moon, 1320, 0, "moon", mc, db, m);
+    viewer.save();
+    viewer.waitClick(query);
+    //! [Display]
 
     const bool ok = r.accepted && db[r.index].name().rfind("key", 0) == 0 && w.accepted &&
                     db[w.index].name().rfind("wedge", 0) == 0 && !m.accepted;

@@ -2,7 +2,9 @@
 //! An articulated template: the pliers, taught closed together with their two arms and the pin (a joint file),
 //! recognise the pliers opened by 32 deg, pose themselves at that opening, and vpServoMorph aligns a simulated
 //! free-flying camera with the opened pliers. Writes OUTDIR/morph-articulated.png (default: the current folder): the
-//! morph from the first view to the template posed at its opening.
+//! morph from the first view to the template posed at its opening. With a display, shows the servo as it runs
+//! (vpServoMorph::display(), its residuals and velocity, the camera's path from outside). Usage: OUTDIR [-c] [-d]
+//! [--save-display FILE].
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -21,9 +23,18 @@
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 #include <visp3/morph_vs/vpServoMorph.h>
 
+#include "tutorial-display.h"
+#include "tutorial-servo-windows.h"
+
 int main(int argc, char **argv)
 {
-  const std::string out = argc > 1 ? argv[1] : ".";
+  std::vector<std::string> args;
+  tutorial::Viewer viewer(argc, argv, args);
+  if (args.size() > 1) {
+    std::cout << "Usage: " << argv[0] << " [OUTDIR] " << tutorial::Viewer::options() << std::endl;
+    return EXIT_FAILURE;
+  }
+  const std::string out = args.empty() ? "." : args[0];
   const std::string data = VISPMORPH_DATA_DIR;
   try {
     //! [Teach]
@@ -72,8 +83,8 @@ int main(int argc, char **argv)
     }
     // The camera's view: rendered, the tag found by the detector and masked, the pliers' silhouette extracted.
     const vpMorphTagPoseEstimator tags = world.tagPoseEstimator();
+    vpImage<unsigned char> I;
     auto look = [&]() {
-      vpImage<unsigned char> I;
       world.render(robot.get_cMo(), I);
       vpHomogeneousMatrix cMo_tag;
       std::vector<vpImagePoint> corners;
@@ -112,9 +123,13 @@ int main(int argc, char **argv)
     servo.setGain(0.1);
     servo.setTiltCorrection(vpServoMorph::TILT_FINAL_APPROACH);
     servo.setTarget(db[r.index]);
+    tutorial::ServoWindows windows(viewer, world.imageWidth(), world.imageHeight(), world.objectContour3D(),
+                                   world.tagCorners3D(), cdMo, "Free camera");
     int it = 0;
-    for (; it < 600 && !servo.converged(); ++it) {
+    for (; it < 600 && !servo.converged() && !windows.stopped(); ++it) {
       const vpColVector ve = servo.computeControlLaw(look());
+      windows.setDesiredPose(goals[servo.targetFixedPart()]); // the arm kept still decides the goal
+      windows.show(I, servo, it, robot.get_cMo());
       if (!servo.converged() && servo.status() != vpServoMorph::MOVING &&
           servo.status() != vpServoMorph::SUBGOAL_REACHED && servo.status() != vpServoMorph::REPLANNED)
         break; // lost, degenerate or unreliable: the velocity is zero, stop here
@@ -128,6 +143,7 @@ int main(int argc, char **argv)
                 servo.converged() ? "converged" : "stopped", it, vpServoMorph::statusName(servo.status()),
                 vpMath::deg(servo.targetOpening()), servo.targetFixedPart(), t * 1000, vpMath::deg(rot));
     std::cout << "wrote " << out + "/morph-articulated.png" << std::endl;
+    windows.end(servo);
     return servo.converged() ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "error: " << e.getStringMessage() << std::endl;

@@ -1,7 +1,10 @@
 //! \example tutorial-morph-scene.cpp
 //! A simulated benchmark scene: the pliers and an AprilTag on a plane, seen by the camera of a simulated Viper850
 //! from a start pose, rendered headless with noise and an occluder; the truth two ways (simulator and tag).
-//! Writes OUTDIR/morph-scene.png (default: the current folder).
+//! Writes OUTDIR/morph-scene.png (default: the current folder). With a display, shows the camera image with the tag's
+//! corners and pose as detected, the object's outline projected from the truth (green) and the silhouette extracted
+//! from the image (red); and the robot's camera seen from outside. Usage: [OUTDIR] [-c] [-d] [--save-display FILE].
+#include <cstdio>
 #include <iostream>
 #include <string>
 
@@ -12,9 +15,18 @@
 #include <visp3/morph_sim/vpMorphSimRobot.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 
+#include "tutorial-display.h"
+#include "tutorial-external-view.h"
+
 int main(int argc, char **argv)
 {
-  const std::string out = argc > 1 ? argv[1] : ".";
+  std::vector<std::string> args;
+  tutorial::Viewer viewer(argc, argv, args);
+  if (args.size() > 1) {
+    std::cout << "Usage: " << argv[0] << " [OUTDIR] " << tutorial::Viewer::options() << std::endl;
+    return EXIT_FAILURE;
+  }
+  const std::string out = args.empty() ? "." : args[0];
   try {
     //! [Scene]
     // The pliers (15 cm long) at the origin of the object frame, an 8 cm AprilTag 36h11 beside them; 10 % of the
@@ -50,18 +62,51 @@ int main(int argc, char **argv)
 
     //! [Truth]
     vpHomogeneousMatrix cMo_tag;
-    if (!scene.tagPoseEstimator().estimate(I, cMo_tag)) {
+    std::vector<vpImagePoint> corners;
+    if (!scene.tagPoseEstimator().estimate(I, cMo_tag, &corners)) {
       std::cerr << "tag not found" << std::endl;
       return EXIT_FAILURE;
     }
     double t, r;
     vpMorphTagPoseEstimator::poseDifference(cMo_tag, robot.get_cMo(), t, r);
     //! [Truth]
+
+    //! [Display]
+    // The image with what the truth and the image each say: the projected outline (green), the silhouette extracted
+    // with the tag masked (red), the tag's corners and the object frame from its pose (ViSP's frame colours).
+    const vpMorphContour truth = scene.projectedContour(robot.get_cMo());
+    const vpMorphContour seen = vpMorphTagPoseEstimator::silhouette(I, corners);
+    char line[120];
+    std::snprintf(line, sizeof line, "simulator vs AprilTag: %.2f mm, %.3f deg", t * 1000, vpMath::deg(r));
+    const std::vector<std::string> caption = {"Viper850 camera, 10 % of the outline hidden, noise 2 grey levels", line};
+    vpImage<unsigned char> Iext(480, 640, 255);
+    if (viewer.open(I, 0, 0, "Scene: projected outline (green), extracted silhouette (red), tag", "camera")) {
+      vpDisplay::display(I);
+      vpDisplay::displayPolygon(I, truth.points(), vpColor::green, 3);
+      if (!seen.empty())
+        vpDisplay::displayPolygon(I, seen.points(), vpColor::red, 1);
+      for (const vpImagePoint &c : corners)
+        vpDisplay::displayCross(I, c, 14, vpColor::blue, 2);
+      vpDisplay::displayFrame(I, cMo_tag, scene.camera(), 0.05, vpColor::none, 2);
+      tutorial::Viewer::caption(I, caption);
+      vpDisplay::flush(I);
+      viewer.open(Iext, 0, 540, "External view: the start camera (red), desired camera (green)", "external");
+      tutorial::ExternalView external(scene.objectContour3D(), scene.tagCorners3D(), cdMo);
+      external.add(0, robot.get_cMo(), vpColor::red);
+      vpDisplay::display(Iext);
+      external.display(Iext);
+      vpDisplay::flush(Iext);
+    }
+    //! [Display]
     std::cout << "robot: " << vpMorphSimRobot::kindName(robot.kind()) << ", joints " << robot.getJointPositions().t()
               << std::endl;
     std::cout << "occluded share of the contour: " << scene.occludedShare() << std::endl;
     std::cout << "truth: simulator vs AprilTag " << t * 1000 << " mm, " << vpMath::deg(r) << " deg" << std::endl;
     std::cout << "wrote " << out + "/morph-scene.png" << std::endl;
+    viewer.expectContour("camera", "projected outline", truth.points(), vpColor::green);
+    viewer.expectText("camera", "caption", tutorial::Viewer::captionBand(caption), vpColor::white, caption);
+    viewer.save();
+    viewer.waitClick(I);
     return (t < 0.002 && vpMath::deg(r) < 0.5) ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "error: " << e.getStringMessage() << std::endl;

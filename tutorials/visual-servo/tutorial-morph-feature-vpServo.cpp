@@ -1,9 +1,12 @@
 //! \example tutorial-morph-feature-vpServo.cpp
 //! vpFeatureMorph in a stock vpServo loop: a free-flying camera aligns itself with a planar object that it first
-//! sees rotated by 170 deg, a start where 4-point IBVS makes the camera retreat.
+//! sees rotated by 170 deg, a start where 4-point IBVS makes the camera retreat. With a display, shows the camera's
+//! view with the current (red) and desired (green) features, the error and the velocity (vpPlot), and the camera's path
+//! from outside.
 #include <cmath>
-#include <cstring>
+#include <cstdio>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include <visp3/core/vpCameraParameters.h>
@@ -13,30 +16,18 @@
 #include <visp3/robot/vpSimulatorCamera.h>
 #include <visp3/vs/vpServo.h>
 
-namespace
-{
-// The contour of a planar L-shaped part (z = 0 in its frame) as the camera at cMo sees it, in pixels.
-vpMorphContour project(const vpHomogeneousMatrix &cMo, const vpCameraParameters &cam)
-{
-  const double P[][2] = {{-0.07, -0.05}, {0.08, -0.05}, {0.08, -0.01}, {0.02, -0.01}, {0.02, 0.04},
-                         {-0.01, 0.07},  {-0.03, 0.07}, {-0.03, 0.02}, {-0.07, 0.02}};
-  std::vector<double> x, y;
-  for (const auto &p : P) {
-    const vpColVector X = cMo * vpColVector({p[0], p[1], 0, 1});
-    x.push_back(X[0] / X[2]);
-    y.push_back(X[1] / X[2]);
-  }
-  return vpMorphContour(x, y, vpMorphContour::NORMALIZED).toPixels(cam);
-}
-} // namespace
+#include "tutorial-display.h"
+#include "tutorial-external-view.h"
+#include "tutorial-morph-part.h"
 
 int main(int argc, char **argv)
 {
-  for (int i = 1; i < argc; ++i)
-    if (std::strcmp(argv[i], "-c") && std::strcmp(argv[i], "-d")) {
-      std::cout << "Usage: " << argv[0] << " [-c] [-d]  (headless: nothing is displayed)" << std::endl;
-      return EXIT_FAILURE;
-    }
+  std::vector<std::string> args;
+  tutorial::Viewer viewer(argc, argv, args);
+  if (!args.empty()) {
+    std::cout << "Usage: " << argv[0] << " " << tutorial::Viewer::options() << std::endl;
+    return EXIT_FAILURE;
+  }
   try {
     const vpCameraParameters cam(800, 800, 320, 240);
     const vpHomogeneousMatrix cdMo(0.01, 0, 0.5, 0, 0, vpMath::rad(20));     // desired pose: 0.5 m above the part
@@ -45,10 +36,10 @@ int main(int argc, char **argv)
     //! [Features]
     // The desired feature is built once from the goal view; its depth Zd is known (the taught pose).
     const double Zd = 0.5;
-    const vpMorphContour goal = project(cdMo, cam);
+    const vpMorphContour goal = tutorial::project(cdMo, cam);
     vpFeatureMorph s, s_star;
     s_star.buildFrom(goal, cam, Zd);
-    s.buildFrom(project(cMo, cam), cam, Zd);
+    s.buildFrom(tutorial::project(cMo, cam), cam, Zd);
     //! [Features]
 
     //! [Task]
@@ -69,30 +60,85 @@ int main(int argc, char **argv)
     robot.setMaxRotationVelocity(100.0);
     robot.setPosition(cMo.inverse()); // world frame = object frame
 
+    //! [Display]
+    // The camera's view (the part's contour on white), the error and velocity plot, the camera's path from outside.
+    vpImage<unsigned char> I(480, 640, 255), Iext(480, 640, 255);
+    viewer.open(I, 0, 0, "Camera: current feature (red), desired feature (green)", "camera");
+    vpPlot *plot = viewer.plot(2, 700, 560, 660, 0, "vpFeatureMorph in vpServo: error, camera velocity", "plot");
+    if (plot) {
+      plot->initGraph(0, 4);
+      plot->setTitle(0, "error s - s*");
+      plot->initGraph(1, 6);
+      plot->setTitle(1, "camera velocity (m/s, rad/s)");
+      const char *e[] = {"xg", "yg", "theta", "sigma"}, *v[] = {"vx", "vy", "vz", "wx", "wy", "wz"};
+      for (unsigned int k = 0; k < 6; ++k) {
+        if (k < 4)
+          plot->setLegend(0, k, e[k]);
+        plot->setLegend(1, k, v[k]);
+      }
+    }
+    viewer.open(Iext, 0, 540, "External view: the camera's path (red), desired camera (green)", "external");
+    tutorial::ExternalView external(tutorial::part(), {}, cdMo);
+    //! [Display]
+
     //! [Loop]
+    bool ok = false;
+    std::vector<std::string> status;
     for (int iter = 0; iter < 300; ++iter) {
       const vpHomogeneousMatrix cMo_now = robot.getPosition().inverse();
-      const vpMorphContour c = project(cMo_now, cam);
+      const vpMorphContour c = tutorial::project(cMo_now, cam);
       // Depth of the plane from the area ratio with the goal view: no 3-D measurement needed.
       s.buildFrom(c, cam, Zd * std::sqrt(goal.area() / c.area()));
       const vpColVector v = task.computeControlLaw(); // s.error() tracks the correspondence from the last call
-      if (task.getError().frobeniusNorm() < 1e-5) {
+      ok = task.getError().frobeniusNorm() < 1e-5;
+
+      //! [Show]
+      // The desired feature wider and underneath, so that it stays visible where the current one reaches it.
+      char line[120];
+      std::snprintf(line, sizeof line, "iteration %d  |e| = %.5f  theta error %.2f deg", iter,
+                    task.getError().frobeniusNorm(), vpMath::deg(s.get_theta()));
+      status = {ok ? "converged" : "moving", line};
+      vpDisplay::display(I);
+      s_star.display(cam, I, vpColor::green, 4);
+      s.display(cam, I, vpColor::red, 2);
+      tutorial::Viewer::caption(I, status);
+      vpDisplay::flush(I);
+      //! [Show]
+      if (plot) {
+        plot->plot(0, iter, task.getError());
+        plot->plot(1, iter, v);
+      }
+      external.add(0, cMo_now, vpColor::red);
+      vpDisplay::display(Iext);
+      external.display(Iext);
+      vpDisplay::flush(Iext);
+      viewer.pace(40);
+
+      if (ok) {
         const vpHomogeneousMatrix cdMc = cdMo * cMo_now.inverse();
         std::cout << "converged after " << iter << " iterations: position error "
                   << cdMc.getTranslationVector().frobeniusNorm() * 1000 << " mm, rotation error "
                   << vpMath::deg(vpThetaUVector(cdMc.getRotationMatrix()).getTheta()) << " deg, "
                   << s.tracker().fullMatchCount() << " full correspondence search(es), "
                   << s.tracker().trackedMatchCount() << " tracked" << std::endl;
-        return EXIT_SUCCESS;
+        break;
       }
       if (iter % 10 == 0)
         std::cout << "iteration " << iter << ": |e| = " << task.getError().frobeniusNorm()
                   << ", theta error = " << vpMath::deg(s.get_theta()) << " deg" << std::endl;
+      if (viewer.clicked(I))
+        break; // a click in the camera window stops the servo
       robot.setVelocity(vpRobot::CAMERA_FRAME, v);
     }
     //! [Loop]
-    std::cout << "not converged" << std::endl;
-    return EXIT_FAILURE;
+    if (!ok)
+      std::cout << "not converged" << std::endl;
+    viewer.expectContour("camera", "desired feature", goal.points(), vpColor::green);
+    viewer.expectText("camera", "status", tutorial::Viewer::captionBand(status), vpColor::white, status);
+    viewer.expectCurves("plot", "error and velocity", {vpColor::blue, vpColor::green, vpColor::red});
+    viewer.save();
+    viewer.waitClick(I);
+    return ok ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "error: " << e.getMessage() << std::endl;
     return EXIT_FAILURE;
