@@ -143,3 +143,41 @@ void vpMorphDrawing::write(const vpImage<vpRGBa> &image, const std::string &pngP
   if (!std::filesystem::is_regular_file(path, ec) || std::filesystem::file_size(path, ec) == 0)
     throw vpMorphException(vpMorphException::ioError, "vpMorphDrawing::write: " + pngPath + " was not written");
 }
+
+void vpMorphDrawing::drawLine(vpImage<vpRGBa> &I, const vpImagePoint &a, const vpImagePoint &b, const vpColor &color,
+                              unsigned int thickness)
+{
+  const double u0 = a.get_u(), v0 = a.get_v(), du = b.get_u() - u0, dv = b.get_v() - v0;
+  if (I.getWidth() == 0 || I.getHeight() == 0 || !std::isfinite(u0) || !std::isfinite(v0) || !std::isfinite(du) ||
+      !std::isfinite(dv))
+    return;
+  // Liang-Barsky: the part of u0 + t du, v0 + t dv, t in [0, 1], inside [0, W-1] x [0, H-1].
+  const double W = I.getWidth() - 1.0, H = I.getHeight() - 1.0;
+  const double p[4] = {-du, du, -dv, dv}, q[4] = {u0, W - u0, v0, H - v0};
+  double t0 = 0.0, t1 = 1.0;
+  for (int k = 0; k < 4; ++k) {
+    if (p[k] == 0.0) {
+      if (q[k] < 0.0)
+        return; // parallel to this border and outside it
+      continue;
+    }
+    const double r = q[k] / p[k];
+    if (p[k] < 0.0)
+      t0 = std::max(t0, r);
+    else
+      t1 = std::min(t1, r);
+  }
+  if (t0 > t1)
+    return;
+  auto inside = [&](double t) {
+    return vpImagePoint(std::min(std::max(v0 + t * dv, 0.0), H), std::min(std::max(u0 + t * du, 0.0), W));
+  };
+  vpImageDraw::drawLine(I, inside(t0), inside(t1), color, thickness);
+}
+
+void vpMorphDrawing::drawPolygon(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points, const vpColor &color,
+                                 unsigned int thickness)
+{
+  for (std::size_t k = 0; k < points.size() && points.size() > 1; ++k)
+    drawLine(I, points[k], points[(k + 1) % points.size()], color, thickness);
+}

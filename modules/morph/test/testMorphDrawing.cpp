@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorph.h>
@@ -97,4 +98,37 @@ TEST_CASE("vpMorphDrawing: bad input", "[morph][drawing]")
   }
   CHECK_THROWS_AS(vpMorphDrawing::write(vpMorphDrawing::sequenceStrip(A, {A}, 64), "morph_test_output/a_file/x.png"),
                   vpMorphException);
+}
+
+namespace
+{
+bool is(const vpRGBa &p, const vpColor &c) { return p.R == c.R && p.G == c.G && p.B == c.B; }
+} // namespace
+
+TEST_CASE("vpMorphDrawing::drawLine clips segments to the image", "[morph][drawing]")
+{
+  // Random segments across and around a small image, of every thickness drawn: vpImageDraw alone wrote outside it.
+  vpImage<vpRGBa> I(48, 64, vpRGBa(255, 255, 255));
+  std::mt19937 g(7);
+  std::uniform_real_distribution<double> u(-300, 400);
+  for (int k = 0; k < 20000; ++k)
+    vpMorphDrawing::drawLine(I, vpImagePoint(u(g), u(g)), vpImagePoint(u(g), u(g)), vpColor::red, 1 + k % 3);
+  // A segment across the image draws the whole row inside; one outside draws nothing; a NaN end draws nothing.
+  vpImage<vpRGBa> J(48, 64, vpRGBa(255, 255, 255));
+  vpMorphDrawing::drawLine(J, vpImagePoint(10, -100), vpImagePoint(10, 200), vpColor::blue);
+  for (unsigned int c = 0; c < 64; ++c)
+    CHECK(is(J[10][c], vpColor::blue));
+  vpImage<vpRGBa> K(48, 64, vpRGBa(255, 255, 255));
+  vpMorphDrawing::drawLine(K, vpImagePoint(-5, -100), vpImagePoint(-20, 200), vpColor::blue);
+  vpMorphDrawing::drawLine(K, vpImagePoint(10, std::nan("")), vpImagePoint(10, 20), vpColor::blue);
+  vpMorphDrawing::drawPolygon(K, {vpImagePoint(100, 100), vpImagePoint(100, 200), vpImagePoint(200, 150)},
+                              vpColor::blue);
+  std::size_t painted = 0;
+  for (unsigned int k = 0; k < K.getSize(); ++k)
+    painted += !is(K.bitmap[k], vpColor::white);
+  CHECK(painted == 0);
+  // A polygon crossing the border: its edges inside are drawn.
+  vpMorphDrawing::drawPolygon(K, {vpImagePoint(5, 5), vpImagePoint(5, 100), vpImagePoint(40, 5)}, vpColor::green);
+  CHECK(is(K[5][60], vpColor::green));
+  CHECK(is(K[20][5], vpColor::green));
 }

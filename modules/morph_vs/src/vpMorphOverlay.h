@@ -20,6 +20,7 @@
 #include <visp3/core/vpRGBa.h>
 #include <visp3/core/vpRect.h>
 #include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphDrawing.h>
 
 //! The few primitives the morph overlays are made of.
 class vpMorphOverlay
@@ -86,23 +87,24 @@ private:
   const vpImage<T> &m_I;
 };
 
-//! Burnt into the pixels of \e I (no display needed).
+//! Burnt into the pixels of \e I (no display needed), the lines clipped by vpMorphDrawing.
 class vpMorphImageOverlay : public vpMorphOverlay
 {
 public:
   explicit vpMorphImageOverlay(vpImage<vpRGBa> &I) : m_I(I) {}
   void polygon(const std::vector<vpImagePoint> &ips, const vpColor &color, unsigned int thickness) override
   {
-    if (ips.size() > 1)
-      vpImageDraw::drawPolygon(m_I, ips, color, thickness, true);
+    vpMorphDrawing::drawPolygon(m_I, ips, color, thickness);
   }
   void line(const vpImagePoint &a, const vpImagePoint &b, const vpColor &color, unsigned int thickness) override
   {
-    vpImageDraw::drawLine(m_I, a, b, color, thickness);
+    vpMorphDrawing::drawLine(m_I, a, b, color, thickness);
   }
   void cross(const vpImagePoint &p, unsigned int size, const vpColor &color, unsigned int thickness) override
   {
-    vpImageDraw::drawCross(m_I, p, size, color, thickness);
+    const double h = size / 2.0;
+    vpMorphDrawing::drawLine(m_I, p - vpImagePoint(h, 0), p + vpImagePoint(h, 0), color, thickness);
+    vpMorphDrawing::drawLine(m_I, p - vpImagePoint(0, h), p + vpImagePoint(0, h), color, thickness);
   }
   void text(const std::vector<std::string> &lines, const vpColor &color, const vpColor &band) override
   {

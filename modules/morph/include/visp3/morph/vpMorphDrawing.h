@@ -11,6 +11,7 @@
 
 #include <visp3/core/vpColor.h>
 #include <visp3/core/vpImage.h>
+#include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpRGBa.h>
 #include <visp3/morph/vpMorph.h>
 #include <visp3/morph/vpMorphContour.h>
@@ -51,6 +52,17 @@ public:
   */
   static vpImage<vpRGBa> sequenceStrip(const vpMorph &morph, std::size_t n, unsigned int tileSize = 200,
                                        unsigned int columns = 0);
+
+  /*!
+    The segment from \e a to \e b drawn into \e I (vpImageDraw), clipped to the image first: ViSP 3.5's own clipping
+    writes outside the image for some segments that cross its border (a segfault on random segments). Nothing is
+    drawn for a segment outside the image or with a non-finite end.
+  */
+  static void drawLine(vpImage<vpRGBa> &I, const vpImagePoint &a, const vpImagePoint &b, const vpColor &color,
+                       unsigned int thickness = 1);
+  //! A closed polygon, each edge by drawLine().
+  static void drawPolygon(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points, const vpColor &color,
+                          unsigned int thickness = 1);
 
   /*!
     Writes \e image as PNG (format from the extension, as vpImageIo does), creating parent directories.
