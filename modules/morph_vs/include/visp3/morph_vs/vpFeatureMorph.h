@@ -117,12 +117,14 @@ public:
   vpColVector error(const vpBasicFeature &s_star, unsigned int select = FEATURE_ALL) override;
   /*!
     Draws the feature as ViSP's features draw theirs: its contour and a cross at its centroid \f$(x_g, y_g)\f$, in
-    pixels through \e cam, on the display attached to \e I (no-op without one, or when not built). With a stock
-    vpServo, vpServoDisplay::display(task, cam, I) calls it for the current and the desired feature:
+    pixels through \e cam, on the display attached to \e I (no-op without one, or when not built). The desired
+    feature drawn wider and first stays visible where the current one reaches it (vpServoDisplay::display(task, cam,
+    I, currentColor, desiredColor) draws both, the same width):
     \code
     vpDisplayX d(I);
     vpDisplay::display(I);
-    vpServoDisplay::display(task, cam, I, vpColor::green, vpColor::red); // desired green, current red
+    s_star.display(cam, I, vpColor::green, 3);
+    s.display(cam, I, vpColor::red);
     vpDisplay::flush(I);
     \endcode
   */
