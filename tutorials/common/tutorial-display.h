@@ -60,6 +60,18 @@ public:
   }
   //! The options, for a tutorial's usage line.
   static const char *options() { return "[-c] [-d] [--save-display FILE]"; }
+  /*!
+    True when at most \e most arguments are left in \e rest for the tutorial; else prints the usage (\e more: the
+    tutorial's own arguments) and returns false.
+  */
+  static bool accepts(const std::vector<std::string> &rest, std::size_t most, const char *program,
+                      const std::string &more = "")
+  {
+    if (rest.size() <= most)
+      return true;
+    std::cout << "Usage: " << program << " " << (more.empty() ? "" : more + " ") << options() << std::endl;
+    return false;
+  }
 
   bool clickFree() const { return !m_click; }
   //! True once a window is open.

@@ -68,10 +68,8 @@ int main(int argc, char **argv)
 {
   std::vector<std::string> args;
   tutorial::Viewer viewer(argc, argv, args);
-  if (args.size() > 1) {
-    std::cout << "Usage: " << argv[0] << " [OBJECTS_DIR] " << tutorial::Viewer::options() << std::endl;
+  if (!tutorial::Viewer::accepts(args, 1, argv[0], "[OBJECTS_DIR]"))
     return 1;
-  }
   const std::string objects = args.empty() ? VISPMORPH_DATA_DIR "/objects" : args[0];
   try {
     //! [Build]

@@ -22,10 +22,8 @@ int main(int argc, char **argv)
 {
   std::vector<std::string> args;
   tutorial::Viewer viewer(argc, argv, args);
-  if (args.size() > 1) {
-    std::cout << "Usage: " << argv[0] << " [OUTDIR] " << tutorial::Viewer::options() << std::endl;
+  if (!tutorial::Viewer::accepts(args, 1, argv[0], "[OUTDIR]"))
     return EXIT_FAILURE;
-  }
   const std::string out = args.empty() ? "." : args[0];
   try {
     //! [Scene]

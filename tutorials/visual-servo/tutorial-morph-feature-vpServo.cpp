@@ -24,10 +24,8 @@ int main(int argc, char **argv)
 {
   std::vector<std::string> args;
   tutorial::Viewer viewer(argc, argv, args);
-  if (!args.empty()) {
-    std::cout << "Usage: " << argv[0] << " " << tutorial::Viewer::options() << std::endl;
+  if (!tutorial::Viewer::accepts(args, 0, argv[0]))
     return EXIT_FAILURE;
-  }
   try {
     const vpCameraParameters cam(800, 800, 320, 240);
     const vpHomogeneousMatrix cdMo(0.01, 0, 0.5, 0, 0, vpMath::rad(20));     // desired pose: 0.5 m above the part

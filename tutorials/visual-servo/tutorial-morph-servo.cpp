@@ -34,10 +34,8 @@ int main(int argc, char **argv)
 {
   std::vector<std::string> args;
   tutorial::Viewer viewer(argc, argv, args);
-  if (!args.empty()) {
-    std::cout << "Usage: " << argv[0] << " " << tutorial::Viewer::options() << std::endl;
+  if (!tutorial::Viewer::accepts(args, 0, argv[0]))
     return EXIT_FAILURE;
-  }
   try {
     // The truth, known only to the simulation: camera, hand-eye transform, desired and start poses.
     const vpCameraParameters camTrue(800, 800, 320, 240);

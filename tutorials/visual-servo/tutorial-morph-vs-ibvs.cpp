@@ -67,10 +67,8 @@ int main(int argc, char **argv)
 {
   std::vector<std::string> args;
   tutorial::Viewer viewer(argc, argv, args);
-  if (!args.empty()) {
-    std::cout << "Usage: " << argv[0] << " " << tutorial::Viewer::options() << std::endl;
+  if (!tutorial::Viewer::accepts(args, 0, argv[0]))
     return EXIT_FAILURE;
-  }
   try {
     //! [Scene]
     // The key (15 cm) and an 8 cm AprilTag on a plane; the desired pose 0.5 m above it, optical axis normal to it.

@@ -57,6 +57,17 @@ std::size_t countColor(const vpImage<vpRGBa> &I, const vpColor &col, unsigned in
   return n;
 }
 
+// What servo.display() draws on an image with a recording display.
+RecordingDisplay recorded(const vpServoMorph &servo)
+{
+  vpImage<unsigned char> I(480, 640, 255);
+  RecordingDisplay rec;
+  rec.attach(I);
+  servo.display(I);
+  RecordingDisplay::detach(I);
+  return rec;
+}
+
 const vpHomogeneousMatrix cdMo = planarPose(20, 0.01, 0.0);
 } // namespace
 
@@ -96,12 +107,8 @@ TEST_CASE("vpServoMorph::display() draws the same on a display, and nothing of a
   servo.setTarget(projectPixels(cdMo), depth(cdMo));
   servo.setSubGoalCount(6);
   servo.computeControlLaw(projectPixels(planarPose(20 + 120, 0.05, -0.03)));
-  vpImage<unsigned char> I(480, 640, 255);
   {
-    RecordingDisplay rec;
-    rec.attach(I);
-    servo.display(I);
-    RecordingDisplay::detach(I);
+    const RecordingDisplay rec = recorded(servo);
     CHECK(rec.count(vpColor::green) == 9);
     CHECK(rec.count(vpColor::orange) == 9);
     CHECK(rec.count(vpColor::red) == 9);
@@ -115,10 +122,7 @@ TEST_CASE("vpServoMorph::display() draws the same on a display, and nothing of a
   servo.computeControlLaw(vpMorphContour());
   REQUIRE(servo.status() == vpServoMorph::TARGET_LOST);
   {
-    RecordingDisplay rec;
-    rec.attach(I);
-    servo.display(I);
-    RecordingDisplay::detach(I);
+    const RecordingDisplay rec = recorded(servo);
     CHECK(rec.count(vpColor::green) == 9);
     CHECK(rec.count(vpColor::orange) == 9);
     CHECK(rec.count(vpColor::red) == 0);
