@@ -21,8 +21,9 @@
 namespace
 {
 const unsigned int kTagCell = 10; // tag texture: 10 x 10 cells of 10 px
-const double kBackground = 210, kObject = 40, kOccluder = 170;
-const vpRGBa kBackgroundRGB(215, 210, 195), kObjectRGB(25, 45, 120), kOccluderRGB(190, 165, 125);
+const double kBackground = 210, kObject = 40, kOccluder = 170, kFloor = 70;
+const vpRGBa kBackgroundRGB(215, 210, 195), kObjectRGB(25, 45, 120), kOccluderRGB(190, 165, 125), kFloorRGB(70, 60, 50);
+const double kFloorExtent = 0.6; // m: the floor beyond the plane's edge, as seen from about 0.5 m
 
 void badParameter(const std::string &msg) { throw vpMorphException(vpMorphException::badParameterError, msg); }
 
@@ -61,6 +62,38 @@ bool inside(const std::vector<double> &x, const std::vector<double> &y, double p
     if ((y[i] > py) != (y[j] > py) && px < (x[j] - x[i]) * (py - y[i]) / (y[j] - y[i]) + x[i])
       in = !in;
   return in;
+}
+
+struct TagCandidate
+{
+  double x, y, distance; // centre in the object frame, its distance to the object's centre (m)
+};
+
+/*!
+  For each of \e directions directions around the object's centre (ox, oy), the nearest centre (1 mm steps) at which a
+  tag texture of half side \e half lies 1 cm clear of the outline (x, y) (no outline sample within 1 cm of the
+  square, the centre outside the object); directions where none is found within reach give none.
+*/
+std::vector<TagCandidate> tagCandidates(const std::vector<double> &x, const std::vector<double> &y, double ox,
+                                        double oy, double radius, double half, int directions)
+{
+  std::vector<double> sx, sy;
+  densify(x, y, 0.001, sx, sy);
+  std::vector<TagCandidate> out;
+  for (int k = 0; k < directions; ++k) {
+    const double a = k * 2.0 * M_PI / directions;
+    for (double d = 0.0; d < radius + 3 * half + 0.02; d += 0.001) {
+      const double tx = ox + d * std::cos(a), ty = oy + d * std::sin(a);
+      bool clear = !inside(x, y, tx, ty);
+      for (size_t i = 0; i < sx.size() && clear; ++i)
+        clear = std::max(std::fabs(sx[i] - tx), std::fabs(sy[i] - ty)) > half + 0.01;
+      if (clear) {
+        out.push_back({tx, ty, d});
+        break;
+      }
+    }
+  }
+  return out;
 }
 
 bool finitePose(const vpHomogeneousMatrix &M)
@@ -111,16 +144,24 @@ void photometric(vpImage<T> &I, const vpMorphPlanarScene::Faults &f, unsigned in
     cv::GaussianBlur(m, b, cv::Size(0, 0), f.blurSigma, f.blurSigma, cv::BORDER_REPLICATE);
     b.copyTo(m);
   }
-  if (f.gain == 1.0 && f.offset == 0.0 && f.noiseSigma <= 0.0)
+  if (f.gain == 1.0 && f.offset == 0.0 && f.noiseSigma <= 0.0 && f.gradient == 0.0)
     return;
   std::mt19937 rng(static_cast<std::mt19937::result_type>(f.seed * 2654435761u + frame * 40503u + 12345u));
   std::normal_distribution<double> noise(0.0, f.noiseSigma > 0.0 ? f.noiseSigma : 1.0);
   unsigned char *p = reinterpret_cast<unsigned char *>(I.bitmap);
   const size_t n = static_cast<size_t>(I.getSize()) * (cvType == CV_8UC1 ? 1 : 4);
+  const unsigned int w = I.getWidth();
+  const double gx = std::cos(f.gradientAngle), gy = std::sin(f.gradientAngle);
+  const double cx = 0.5 * (w - 1.0), cy = 0.5 * (I.getHeight() - 1.0), halfDiagonal = std::hypot(cx, cy) + 1e-9;
   for (size_t k = 0; k < n; ++k) {
     if (channels == 4 && (k % 4) == 3)
       continue; // alpha
-    double v = f.gain * p[k] + f.offset;
+    double gain = f.gain;
+    if (f.gradient != 0.0) {
+      const size_t pixel = k / channels;
+      gain *= 1.0 + f.gradient * ((pixel % w - cx) * gx + (pixel / w - cy) * gy) / halfDiagonal;
+    }
+    double v = gain * p[k] + f.offset;
     if (f.noiseSigma > 0.0)
       v += noise(rng);
     p[k] = clip(v);
@@ -149,8 +190,7 @@ void readImage(const std::string &path, const std::string &what, vpImage<unsigne
   try {
     vpImageIo::read(I, path);
   } catch (const vpException &e) {
-    throw vpMorphException(vpMorphException::ioError,
-                           what + " '" + path + "' cannot be read: " + e.getStringMessage());
+    throw vpMorphException(vpMorphException::ioError, what + " '" + path + "' cannot be read: " + e.getStringMessage());
   }
 }
 } // namespace
@@ -165,7 +205,7 @@ vpMorphPlanarScene::vpMorphPlanarScene(const std::string &objectImage, double ob
     badParameter(os.str());
   }
   readImage(objectImage, "vpMorphPlanarScene: object image", m_texture);
-  m_tag = vpMorphTagTexture::create(tagId, kTagCell);                    // checks the id
+  m_tag = vpMorphTagTexture::create(tagId, kTagCell);          // checks the id
   m_texContour = vpMorphContourExtractor().extract(m_texture); // throws badImageError without object
   textureFrame(m_texContour, m_objectSize, m_texCx, m_texCy, m_metresPerTexel);
   updateLayout();
@@ -229,6 +269,75 @@ void vpMorphPlanarScene::setTagPlacement(double x, double y)
   updateLayout();
 }
 
+void vpMorphPlanarScene::setTagSize(double tagSize)
+{
+  if (!isFinite(tagSize) || tagSize <= 0.0)
+    badParameter("vpMorphPlanarScene::setTagSize: the tag size must be finite and > 0");
+  m_tagSize = tagSize;
+  updateLayout();
+}
+
+bool vpMorphPlanarScene::placeTagInView(const vpHomogeneousMatrix &cMo, const std::vector<double> &tagSizes,
+                                        double margin)
+{
+  if (!finitePose(cMo) || !isFinite(margin))
+    badParameter("vpMorphPlanarScene::placeTagInView: invalid cMo or margin");
+  for (double size : tagSizes)
+    if (!isFinite(size) || size <= 0.0)
+      badParameter("vpMorphPlanarScene::placeTagInView: tag sizes must be finite and > 0");
+  std::vector<double> x, y;
+  double radius = 0.0;
+  for (const vpPoint &p : objectContour3D()) {
+    x.push_back(p.get_oX());
+    y.push_back(p.get_oY());
+    radius = std::max(radius, std::hypot(p.get_oX() - m_objX, p.get_oY() - m_objY));
+  }
+  for (double size : tagSizes) {
+    const double half = vpMorphTagTexture::textureSideForTagSize(size, kTagCell) / 2;
+    const TagCandidate *best = nullptr;
+    const std::vector<TagCandidate> candidates = tagCandidates(x, y, m_objX, m_objY, radius, half, 24);
+    for (const TagCandidate &c : candidates) {
+      const std::vector<vpPoint> square = {planePoint(c.x - half, c.y - half), planePoint(c.x + half, c.y - half),
+                                           planePoint(c.x + half, c.y + half), planePoint(c.x - half, c.y + half)};
+      bool in = true;
+      for (vpPoint p : square) {
+        p.track(cMo);
+        double u = 0.0, v = 0.0;
+        vpMeterPixelConversion::convertPoint(m_cam, p.get_x(), p.get_y(), u, v);
+        in = in && p.get_Z() > 0.0 && u >= margin && v >= margin && u <= m_width - 1.0 - margin &&
+             v <= m_height - 1.0 - margin;
+      }
+      if (in && (!best || c.distance < best->distance - 1e-9))
+        best = &c;
+    }
+    if (best) {
+      m_tagSize = size;
+      m_tagAuto = false;
+      m_tagX = best->x;
+      m_tagY = best->y;
+      updateLayout();
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<vpPoint> vpMorphPlanarScene::tagTextureCorners3D() const
+{
+  const double h = vpMorphTagTexture::textureSideForTagSize(m_tagSize, kTagCell) / 2;
+  return {planePoint(m_tagX - h, m_tagY - h), planePoint(m_tagX + h, m_tagY - h), planePoint(m_tagX + h, m_tagY + h),
+          planePoint(m_tagX - h, m_tagY + h)};
+}
+
+double vpMorphPlanarScene::objectArea() const
+{
+  const std::vector<vpPoint> P = objectContour3D();
+  double a = 0.0;
+  for (std::size_t i = 0, j = P.size() - 1; i < P.size(); j = i++)
+    a += P[j].get_oX() * P[i].get_oY() - P[i].get_oX() * P[j].get_oY();
+  return 0.5 * std::fabs(a);
+}
+
 void vpMorphPlanarScene::setFaults(const Faults &f)
 {
   std::ostringstream os;
@@ -244,6 +353,14 @@ void vpMorphPlanarScene::setFaults(const Faults &f)
     os << "occluder position must be in [0, 1), got " << f.occluderPosition;
   else if (f.distractors > 20)
     os << "at most 20 distractors, got " << f.distractors;
+  else if (!isFinite(f.gradient) || f.gradient < 0.0 || f.gradient > 0.9 || !isFinite(f.gradientAngle))
+    os << "the gradient must be in [0, 0.9] with a finite angle, got " << f.gradient;
+  else if (!isFinite(f.planeEdgeX) || !isFinite(f.planeEdgeY) || !isFinite(f.planeEdgeAngle))
+    os << "the plane's edge must be finite";
+  else if (!isFinite(f.largeDistractorArea) || f.largeDistractorArea < 0.0 || f.largeDistractorArea > 0.1 ||
+           !isFinite(f.largeDistractorAspect) || f.largeDistractorAspect < 1.0 || f.largeDistractorAspect > 10.0 ||
+           !isFinite(f.largeDistractorX) || !isFinite(f.largeDistractorY) || !isFinite(f.largeDistractorAngle))
+    os << "the large distractor needs an area in [0, 0.1] m^2, an aspect in [1, 10] and a finite placement";
   if (!os.str().empty())
     badParameter("vpMorphPlanarScene::setFaults: " + os.str());
   m_faults = f;
@@ -271,20 +388,24 @@ std::vector<vpPoint> vpMorphPlanarScene::objectContour3D() const
 
 std::vector<vpHomogeneousMatrix> vpMorphPlanarScene::alternativePlacements() const
 {
-  // W maps the object laid by m_texAlign onto the object laid by the alternative, in the object frame: two texels
-  // fix the in-plane rotation and translation.
   std::vector<vpHomogeneousMatrix> out;
+  for (const vpMorphRigidTransform &A : m_texAlternatives)
+    out.push_back(placementOf(A));
+  return out;
+}
+
+vpHomogeneousMatrix vpMorphPlanarScene::placementOf(const vpMorphRigidTransform &A) const
+{
+  // W maps the object laid by m_texAlign onto the object laid by A, in the object frame: two texels fix the in-plane
+  // rotation and translation.
   const double ax = m_texCx, ay = m_texCy, bx = m_texCx + 100.0, by = m_texCy;
   const vpPoint p1a = texelOnPlane(ax, ay), p1b = texelOnPlane(bx, by);
-  for (const vpMorphRigidTransform &A : m_texAlternatives) {
-    const vpPoint p2a = texelOnPlane(ax, ay, A), p2b = texelOnPlane(bx, by, A);
-    const double angle = std::atan2(p2b.get_oY() - p2a.get_oY(), p2b.get_oX() - p2a.get_oX()) -
-                         std::atan2(p1b.get_oY() - p1a.get_oY(), p1b.get_oX() - p1a.get_oX());
-    const double c = std::cos(angle), s = std::sin(angle);
-    out.emplace_back(p2a.get_oX() - (c * p1a.get_oX() - s * p1a.get_oY()),
-                     p2a.get_oY() - (s * p1a.get_oX() + c * p1a.get_oY()), 0.0, 0.0, 0.0, angle);
-  }
-  return out;
+  const vpPoint p2a = texelOnPlane(ax, ay, A), p2b = texelOnPlane(bx, by, A);
+  const double angle = std::atan2(p2b.get_oY() - p2a.get_oY(), p2b.get_oX() - p2a.get_oX()) -
+                       std::atan2(p1b.get_oY() - p1a.get_oY(), p1b.get_oX() - p1a.get_oX());
+  const double c = std::cos(angle), s = std::sin(angle);
+  return vpHomogeneousMatrix(p2a.get_oX() - (c * p1a.get_oX() - s * p1a.get_oY()),
+                             p2a.get_oY() - (s * p1a.get_oX() + c * p1a.get_oY()), 0.0, 0.0, 0.0, angle);
 }
 
 vpPoint vpMorphPlanarScene::texelOnPlane(double tx, double ty) const { return texelOnPlane(tx, ty, m_texAlign); }
@@ -444,29 +565,14 @@ void vpMorphPlanarScene::updateLayout()
   }
   const double tagHalf = vpMorphTagTexture::textureSideForTagSize(m_tagSize, kTagCell) / 2; // with quiet zone
   if (m_tagAuto) {
-    std::vector<double> ox, oy;
-    densify(x, y, 0.001, ox, oy);
-    // Candidate directions around the object: the nearest centre that keeps the whole tag texture 1 cm clear of
-    // the silhouette (distance measured from the outline vertices to the square).
+    // The nearest of 8 directions (the first found among equals).
     double best = 1e9;
-    for (int k = 0; k < 8; ++k) {
-      const double a = k * M_PI / 4;
-      for (double d = 0.0; d < radius + 3 * tagHalf + 0.02; d += 0.001) {
-        const double tx = m_objX + d * std::cos(a), ty = m_objY + d * std::sin(a);
-        // Clear when no outline sample comes within 1 cm of the tag texture and the centre is outside the object.
-        bool clear = !inside(x, y, tx, ty);
-        for (size_t i = 0; i < ox.size() && clear; ++i)
-          clear = std::max(std::fabs(ox[i] - tx), std::fabs(oy[i] - ty)) > tagHalf + 0.01;
-        if (clear) {
-          if (d < best - 1e-9) {
-            best = d;
-            m_tagX = tx;
-            m_tagY = ty;
-          }
-          break;
-        }
+    for (const TagCandidate &c : tagCandidates(x, y, m_objX, m_objY, radius, tagHalf, 8))
+      if (c.distance < best - 1e-9) {
+        best = c.distance;
+        m_tagX = c.x;
+        m_tagY = c.y;
       }
-    }
   }
 
   // Occluder: a square centred on the outline point at the requested arc length, grown by bisection until the
@@ -518,6 +624,15 @@ void vpMorphPlanarScene::updateLayout()
         {corner(-L / 2, -W / 2), corner(L / 2, -W / 2), corner(L / 2, W / 2), corner(-L / 2, W / 2)});
     ++k;
   }
+  if (m_faults.largeDistractorArea > 0.0) {
+    const double L = std::sqrt(m_faults.largeDistractorArea * m_faults.largeDistractorAspect);
+    const double W = m_faults.largeDistractorArea / L;
+    const double c = std::cos(m_faults.largeDistractorAngle), s = std::sin(m_faults.largeDistractorAngle);
+    const double cx = m_faults.largeDistractorX, cy = m_faults.largeDistractorY;
+    auto corner = [&](double u, double v) { return planePoint(cx + c * u - s * v, cy + s * u + c * v); };
+    m_distractors.push_back(
+        {corner(-L / 2, -W / 2), corner(L / 2, -W / 2), corner(L / 2, W / 2), corner(-L / 2, W / 2)});
+  }
 }
 
 std::vector<vpMorphPlanarScene::Patch> vpMorphPlanarScene::patches() const
@@ -528,6 +643,15 @@ std::vector<vpMorphPlanarScene::Patch> vpMorphPlanarScene::patches() const
   const double W = m_texture.getWidth() - 1.0, H = m_texture.getHeight() - 1.0;
   if (!m_faults.objectHidden)
     out.push_back({{texelOnPlane(0, 0), texelOnPlane(W, 0), texelOnPlane(W, H), texelOnPlane(0, H)}, 0});
+  if (m_faults.planeEdge) {
+    // The floor beyond the edge, painted over the object texture's white margin where the edge crosses it.
+    const double nx = std::cos(m_faults.planeEdgeAngle), ny = std::sin(m_faults.planeEdgeAngle), F = kFloorExtent;
+    const double px = m_faults.planeEdgeX, py = m_faults.planeEdgeY;
+    out.push_back({{planePoint(px - F * ny, py + F * nx), planePoint(px + F * ny, py - F * nx),
+                    planePoint(px + F * ny + F * nx, py - F * nx + F * ny),
+                    planePoint(px - F * ny + F * nx, py + F * nx + F * ny)},
+                   4});
+  }
   for (const auto &d : m_distractors)
     out.push_back({d, 3});
   const double h = vpMorphTagTexture::textureSideForTagSize(m_tagSize, kTagCell) / 2;
@@ -547,13 +671,18 @@ void vpMorphPlanarScene::renderT(const vpHomogeneousMatrix &cMo, vpImage<T> &I, 
   const T background = level<T>(kBackground, kBackgroundRGB);
   I.resize(m_height, m_width, background);
   const vpImage<T> object = recolour<T>(m_texture), tag = recolour<T>(m_tag);
-  vpImage<T> dark(2, 2, level<T>(kObject, kObjectRGB)), occluder(2, 2, level<T>(kOccluder, kOccluderRGB));
+  vpImage<T> dark(2, 2, level<T>(kObject, kObjectRGB)), occluder(2, 2, level<T>(kOccluder, kOccluderRGB)),
+      floor(2, 2, level<T>(kFloor, kFloorRGB));
   const vpImageSimulator::vpColorPlan plan =
       std::is_same<T, unsigned char>::value ? vpImageSimulator::GRAY_SCALED : vpImageSimulator::COLORED;
   for (const Patch &patch : patches()) {
     vpImageSimulator sim(plan);
     sim.setInterpolationType(vpImageSimulator::BILINEAR_INTERPOLATION);
-    const vpImage<T> &tex = patch.kind == 0 ? object : patch.kind == 1 ? tag : patch.kind == 2 ? occluder : dark;
+    const vpImage<T> &tex = patch.kind == 0   ? object
+                            : patch.kind == 1 ? tag
+                            : patch.kind == 2 ? occluder
+                            : patch.kind == 4 ? floor
+                                              : dark;
     sim.init(tex, patch.corners);
     sim.setCameraPosition(cMo);
     sim.getImage(I, m_cam); // paints only where the patch is seen, over what is already there (coplanar: in order)

@@ -322,3 +322,30 @@ TEST_CASE("bad robot input throws vpMorphException", "[morph_sim][errors]")
   q[0] += 0.1;
   CHECK_THROWS_AS(robot.setJointPositions(q), vpMorphException);
 }
+
+TEST_CASE("the free camera carries its camera on a true eMc: a hand-eye error sits between the command and the camera",
+          "[morph_sim][robot]")
+{
+  // A camera twist of 1 cm/s along the camera's x, turned into an end-effector twist with an eMc believed turned by
+  // 90 deg about the optical axis: the camera moves along its y instead, as an arm's would.
+  vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA, 0.04);
+  robot.setDesiredPose(vpHomogeneousMatrix(0, 0, 0.5, 0, 0, 0));
+  REQUIRE(robot.initialiseCameraRelativeToDesired(vpHomogeneousMatrix()));
+  const vpHomogeneousMatrix eMcBelieved = robot.eMcTrue() * vpHomogeneousMatrix(0, 0, 0, 0, 0, vpMath::rad(90));
+  vpColVector vc(6, 0.0);
+  vc[0] = 0.01;
+  const vpHomogeneousMatrix fMc0 = robot.get_fMc();
+  for (int k = 0; k < 25; ++k)
+    robot.setVelocity(vpRobot::END_EFFECTOR_FRAME, vpVelocityTwistMatrix(eMcBelieved) * vc);
+  const vpTranslationVector d = (fMc0.inverse() * robot.get_fMc()).getTranslationVector(); // in the first camera frame
+  INFO("camera moved by " << d.t());
+  CHECK(std::fabs(d[0]) < 1e-6);
+  CHECK(std::fabs(std::fabs(d[1]) - 0.01) < 1e-6); // 1 s at 1 cm/s, along y
+  // With the true eMc, along x.
+  REQUIRE(robot.initialiseCameraRelativeToDesired(vpHomogeneousMatrix()));
+  for (int k = 0; k < 25; ++k)
+    robot.setVelocity(vpRobot::END_EFFECTOR_FRAME, vpVelocityTwistMatrix(robot.eMcTrue()) * vc);
+  const vpTranslationVector e = (fMc0.inverse() * robot.get_fMc()).getTranslationVector();
+  CHECK(e[0] == Approx(0.01).margin(1e-6));
+  CHECK(std::fabs(e[1]) < 1e-6);
+}

@@ -38,7 +38,9 @@
 
   <b>Look:</b> light plane (grey 210), dark object (40), tag black 40 on 210. The light-grey occluder (170) is
   a square card lying on the plane over a chosen share of the contour; distractors are small dark rectangles
-  away from the object and the tag. Colour renders use a blue object on a beige plane (same geometry).
+  away from the object and the tag, the large distractor one dark rectangle; beyond the plane's edge, a dark floor
+  (70). Gain, offset and the illumination gradient act before the noise, and clip at 0 and 255 as a sensor does.
+  Colour renders use a blue object on a beige plane (same geometry).
 
   <b>Determinism:</b> no clock and no global state: the same scene, faults, pose and frame index give the
   same image bit for bit. The noise generator is seeded with (seed, frame) so a sequence gets fresh noise.
@@ -62,6 +64,20 @@ public:
     //! The object is not drawn (a frame where it is absent: taken away, or hidden from the camera); the tag,
     //! occluder and distractors still are.
     bool objectHidden = false;
+    //! Illumination gradient: the gain is multiplied by 1 + gradient r, r in [-1, 1] the position along
+    //! gradientAngle (rad, image axes) over the image's half diagonal; [0, 0.9].
+    double gradient = 0.0;
+    double gradientAngle = 0.0; //!< See gradient.
+    //! The plane ends: beyond the line through (planeEdgeX, planeEdgeY) of the object frame whose outward normal
+    //! has angle planeEdgeAngle (rad, object frame), a dark floor (grey 70) is seen instead.
+    bool planeEdge = false;
+    double planeEdgeX = 0.0, planeEdgeY = 0.0, planeEdgeAngle = 0.0; //!< See planeEdge (m, rad).
+    //! A dark distractor larger than the object: a rectangle of largeDistractorArea m^2 (0: none), aspect
+    //! largeDistractorAspect (>= 1), centred at (largeDistractorX, largeDistractorY) of the object frame, its long
+    //! side at largeDistractorAngle (rad).
+    double largeDistractorArea = 0.0;
+    double largeDistractorAspect = 1.5;
+    double largeDistractorX = 0.0, largeDistractorY = 0.0, largeDistractorAngle = 0.0; //!< See largeDistractorArea.
   };
 
   /*!
@@ -116,7 +132,13 @@ public:
     object as placed to it: for a desired pose cdMo, cdMo * W is an equally good one. Empty by default.
   */
   std::vector<vpHomogeneousMatrix> alternativePlacements() const;
-  //! Places the object frame origin (the outline centroid, of the reference image if set) at (x, y), turned by theta (rad) about z.
+  /*!
+    The in-plane motion W of the object frame that takes the object as placed to the object placed by \e align
+    (template pixels, as setReferenceAlignment()): for a desired pose cdMo, cdMo * W sees the object placed so.
+  */
+  vpHomogeneousMatrix placementOf(const vpMorphRigidTransform &align) const;
+  //! Places the object frame origin (the outline centroid, of the reference image if set) at (x, y), turned by theta
+  //! (rad) about z.
   void setObjectPlacement(double x, double y, double theta);
   /*!
     Places the tag centre at (x, y) of the object frame (tag axes = object axes). By default it sits on the
@@ -124,6 +146,21 @@ public:
     remains in view at the desired pose whatever the in-plane rotation.
   */
   void setTagPlacement(double x, double y);
+  /*!
+    Places the tag where it fits in the view from \e cMo: for each size of \e tagSizes in turn (black-border sides,
+    m, largest first), every direction around the object 15 deg apart, the nearest centre 1 cm clear of the
+    silhouette (as by default); the nearest to the object's centroid whose whole texture (quiet zone included) is in
+    view \e margin pixels from the border. Returns false, the tag left as it was, when no size fits.
+    \throw vpMorphException::badParameterError for a size that is not finite and > 0, or an invalid cMo.
+  */
+  bool placeTagInView(const vpHomogeneousMatrix &cMo, const std::vector<double> &tagSizes, double margin = 10.0);
+  //! Changes the tag's black-border side (m, > 0); its placement is kept (automatic placement is redone).
+  void setTagSize(double tagSize);
+  //! Tag centre in the object frame (x, y), m.
+  double tagX() const { return m_tagX; }
+  double tagY() const { return m_tagY; }
+  //! The corners of the tag's whole texture (quiet zone included) in the object frame.
+  std::vector<vpPoint> tagTextureCorners3D() const;
   void setFaults(const Faults &faults);
   const Faults &faults() const { return m_faults; }
   //! Camera intrinsics and image size used by render() (default: defaultCamera(), 640 x 480).
@@ -190,18 +227,19 @@ public:
   double occludedShare() const;
   //! Corners of the occluder square in the object frame (empty without occluder).
   std::vector<vpPoint> occluderCorners3D() const;
-  //! Corners of each distractor rectangle in the object frame.
+  //! Corners of each distractor rectangle in the object frame (the large distractor last, when there is one).
   std::vector<std::vector<vpPoint>> distractorCorners3D() const;
+  //! Area of the object's outline on the plane, m^2.
+  double objectArea() const;
 
 private:
   struct Patch
   {
     std::vector<vpPoint> corners; // top-left, top-right, bottom-right, bottom-left (object frame)
-    int kind;                     // 0 object, 1 tag, 2 occluder, 3 distractor
+    int kind;                     // 0 object, 1 tag, 2 occluder, 3 distractor, 4 floor beyond the plane's edge
   };
   void updateLayout();
-  static void textureFrame(const vpMorphContour &c, double objectSize, double &cx, double &cy,
-                           double &metresPerTexel);
+  static void textureFrame(const vpMorphContour &c, double objectSize, double &cx, double &cy, double &metresPerTexel);
   std::vector<Patch> patches() const;
   // A texture point (template pixels) on the plane: referenceAlignment(), the texture frame, the placement.
   vpPoint texelOnPlane(double tx, double ty) const;
@@ -212,10 +250,10 @@ private:
   double m_objectSize, m_tagSize;
   int m_tagId;
   vpImage<unsigned char> m_texture, m_tag;
-  vpMorphContour m_texContour; // the object's outline in template pixels (with its edge outline)
-  double m_texCx = 0, m_texCy = 0;    // outline centroid in template pixels
+  vpMorphContour m_texContour;     // the object's outline in template pixels (with its edge outline)
+  double m_texCx = 0, m_texCy = 0; // outline centroid in template pixels
   double m_metresPerTexel = 0;
-  vpMorphRigidTransform m_texAlign; // texture motion of setReferenceImage(BEST_OVERLAP)
+  vpMorphRigidTransform m_texAlign;                     // texture motion of setReferenceImage(BEST_OVERLAP)
   std::vector<vpMorphRigidTransform> m_texAlternatives; // equally good others (setReferenceAlignment())
   double m_objX = 0, m_objY = 0, m_objTheta = 0;
   bool m_tagAuto = true;
