@@ -3,7 +3,8 @@
 
 Usage: vispmorph-bench-compare.py [--strict] BEFORE AFTER
 
-Reads BEFORE/runs.csv and AFTER/runs.csv (and their summary.json for the machine yardstick when present), pairs the
+Reads BEFORE/runs.csv and AFTER/runs.csv (their timings.csv and timings.json for the compute and the machine yardstick
+when present), pairs the
 runs by set, robot, controller, scenario and scenario seed, and prints in markdown:
 - how many runs are identical (same outcome, failure reason, iterations and final errors, as written), and those
   found in one folder only;
@@ -20,7 +21,7 @@ a folder cannot be read.
 import os
 import sys
 
-from vispmorph_bench_files import SETS, BenchFileError, number, ordered, read_csv, read_meta, success, yardstick
+from vispmorph_bench_files import SETS, BenchFileError, number, ordered, read_meta, read_runs, success, yardstick
 
 KEY = ("set", "robot", "controller", "scenario", "seed")
 RESULT = ("success", "failure", "iterations", "final_t_mm", "final_r_deg")
@@ -34,7 +35,7 @@ def fail(message):
 
 def read_dir(path):
     try:
-        rows = read_csv(os.path.join(path, "runs.csv"), COLUMNS)
+        rows = read_runs(path, COLUMNS)
     except BenchFileError as e:
         fail(str(e))
     runs = {}

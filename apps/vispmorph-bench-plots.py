@@ -32,7 +32,7 @@ RUN_COLUMNS = [
     "set", "robot", "controller", "scenario", "seed", "object", "start_rotation_deg", "start_translation_mm",
     "start_tilt_deg", "start_depth_change", "success", "failure", "iterations", "converged_iteration",
     "path_length_m", "straight_line_m", "path_ratio", "final_t_mm", "final_r_deg", "final_tag_t_mm",
-    "final_tag_r_deg", "recognized", "recognition_correct", "measure_ms", "control_ms",
+    "final_tag_r_deg", "recognized", "recognition_correct",
 ]
 CURVE_COLUMNS = ["set", "robot", "controller", "scenario", "iteration", "t_mm", "r_deg"]
 

@@ -4,6 +4,7 @@ controller's side by side.
 
 Usage: vispmorph-bench-table.py [--controller NAME] OUTDIR [OUTDIR ...]
        vispmorph-bench-table.py --by-controller OUTDIR [OUTDIR ...]
+       vispmorph-bench-table.py --report OUTDIR [OUTDIR ...]
 
 Reads each OUTDIR/runs.csv (and OUTDIR/summary.json when present, for the machine yardstick) and prints, per set:
 the successes of each OUTDIR (a column each, headed by its robot and seed), all of them together, the median path
@@ -12,15 +13,20 @@ measured) and its ratio to each run's machine yardstick, and issue 5's target fo
 OUTDIRs given. With --by-controller: a row per set and a column per controller (all the runs of the OUTDIRs given,
 which may hold different controllers: one run of the stock ones, another of VISPMorph's), each cell the successes
 over the runs and, in brackets, the median final error of the successful ones (mm / deg, simulator truth). The table
-is computed from the files only: what it says is what the runs did.
+is computed from the files only: what it says is what the runs did. With --report: a table per robot of every set
+and controller: success with its 95 % interval (Wilson's; 3 / n for none) over the runs that could be set up and whose
+pose the taught view bounds, the false convergences, the views apart (unobservable: their runs, successes and false
+convergences; symmetric, scored modulo their symmetry), the set-up failures, the median final error, and the compute
+a period (median and 95th percentile, ms and over each run's machine yardstick; from timings.csv).
 """
 
+import math
 import os
 import statistics
 import sys
 
-from vispmorph_bench_files import (CONTROLLERS, SETS, BenchFileError, number, ordered, read_csv, read_meta, success,
-                                   yardstick)
+from vispmorph_bench_files import (CONTROLLERS, SETS, BenchFileError, interval, number, ordered, read_csv, read_meta,
+                                   read_runs, success, yardstick)
 
 # Issue 5's targets for morph: (least success rate, largest median path ratio or None).
 TARGETS = {
@@ -42,7 +48,7 @@ def fail(message):
 def read_dir(path, controller):
     columns = ("set", "robot", "controller", "success", "path_ratio", "measure_ms", "control_ms")
     try:
-        rows = [r for r in read_csv(os.path.join(path, "runs.csv"), columns) if r["controller"] == controller]
+        rows = [r for r in read_runs(path, columns) if r["controller"] == controller]
     except BenchFileError as e:
         fail(str(e))
     meta = read_meta(path)  # {} without a summary: no yardstick, the directory's name for the seed
@@ -121,6 +127,75 @@ def by_controller(paths):
     return "\n".join(out)
 
 
+def quantile(values, q):
+    """The q-quantile by nearest rank, as the bench computes it (None for none)."""
+    if not values:
+        return None
+    v = sorted(values)
+    return v[max(0, min(len(v) - 1, math.ceil(q * len(v)) - 1))]
+
+
+def report(paths):
+    """One table per robot: every set and controller, success with its 95 % interval, false convergences, the views
+    apart (unobservable: their successes and false convergences; symmetric), the set-up failures, the median final
+    error and the compute per period (median / p95 and over the yardstick), from the runs and timings of \a paths."""
+    columns = ("set", "robot", "controller", "success", "failure", "iterations", "final_t_mm", "final_r_deg",
+               "false_converged", "unobservable", "symmetry", "period_ms", "yardstick_ms")
+    rows = []
+    for p in paths:
+        try:
+            rows += read_runs(p, columns)
+        except BenchFileError as e:
+            fail(str(e))
+    if not rows:
+        fail("no run in " + ", ".join(paths))
+    out = []
+    for robot in ordered([r["robot"] for r in rows], []):
+        out += ["", "**%s**" % robot, "",
+                "| set | controller | success (95 % interval) | false-converged | unobservable: runs (successes, "
+                "false-converged) | symmetric | set-up failures | median final error (mm / deg) | compute a period, "
+                "median / p95 (ms) | over the yardstick, median / p95 |",
+                "|---|---|---|---|---|---|---|---|---|---|"]
+        mine = [r for r in rows if r["robot"] == robot]
+        for s in ordered([r["set"] for r in mine], SETS):
+            for c in ordered([r["controller"] for r in mine if r["set"] == s], CONTROLLERS):
+                runs = [r for r in mine if r["set"] == s and r["controller"] == c]
+                setup = [r for r in runs if r["failure"] == "setup"]
+                apart = [r for r in runs if r["unobservable"] and r not in setup]
+                main = [r for r in runs if r not in setup and r not in apart]
+                ok = sum(1 for r in main if success(r))
+                false = sum(1 for r in main if r["false_converged"] == "1")
+                lo, hi = interval(ok, len(main))
+                _, false_hi = interval(false, len(main))
+                started = [r for r in main if (number(r["iterations"]) or 0) > 0]
+                t = [v for v in (number(r["final_t_mm"]) for r in started) if v is not None]
+                d = [v for v in (number(r["final_r_deg"]) for r in started) if v is not None]
+                periods, ratios = [], []
+                for r in runs:
+                    y = number(r.get("yardstick_ms"))
+                    for x in (r.get("period_ms") or "").split():
+                        v = number(x)
+                        if v is not None:
+                            periods.append(v)
+                            if y:
+                                ratios.append(v / y)
+
+                def pair(a, b, fmt):
+                    return "%s / %s" % (fmt % a if a is not None else "-", fmt % b if b is not None else "-")
+                out.append("| %s | %s | %s | %s | %s | %d | %d | %s | %s | %s |" % (
+                    s, c,
+                    "%d/%d (%.0f %%, %.0f-%.0f)" % (ok, len(main), 100.0 * ok / len(main), 100 * lo, 100 * hi)
+                    if main else "-",
+                    "%d (<= %.1f %%)" % (false, 100 * false_hi) if main else "-",
+                    "%d (%d, %d)" % (len(apart), sum(1 for r in apart if success(r)),
+                                     sum(1 for r in apart if r["false_converged"] == "1")) if apart else "0",
+                    sum(1 for r in main if (number(r["symmetry"]) or 1) != 1), len(setup),
+                    pair(statistics.median(t) if t else None, statistics.median(d) if d else None, "%.3g"),
+                    pair(quantile(periods, 0.5), quantile(periods, 0.95), "%.2f"),
+                    pair(quantile(ratios, 0.5), quantile(ratios, 0.95), "%.2f")))
+    return "\n".join(out[1:])
+
+
 def target(set_name, controller, rate, median_ratio, mean_compute):
     if controller != "morph":
         return "(for morph)"
@@ -138,11 +213,14 @@ def target(set_name, controller, rate, median_ratio, mean_compute):
 
 
 def main(argv):
-    controller, dirs, side_by_side = "morph", [], False
+    controller, dirs, side_by_side, full = "morph", [], False, False
     i = 1
     while i < len(argv):
         if argv[i] == "--by-controller":
             side_by_side = True
+            i += 1
+        elif argv[i] == "--report":
+            full = True
             i += 1
         elif argv[i] == "--controller":
             if i + 1 >= len(argv):
@@ -159,6 +237,9 @@ def main(argv):
         fail("no OUTDIR given (usage: vispmorph-bench-table.py [--controller NAME | --by-controller] OUTDIR ...)")
     if side_by_side:
         print(by_controller(dirs))
+        return 0
+    if full:
+        print(report(dirs))
         return 0
     data = [read_dir(d, controller) for d in dirs]
     if not any(d["rows"] for d in data):

@@ -1,46 +1,53 @@
 /*!
   \file vispmorph-bench.cpp
-  \brief The comparison: VISPMorph and ViSP's stock controllers on identical simulated starts.
+  \brief The comparison: VISPMorph and ViSP's stock controllers on identical simulated starts, on any objects.
 
   \code
-  vispmorph-bench --set planar|planar-hard|6dof|calib|calib-no-tilt|noise|occlusion|deformable|faults|all[,...]
-                  [--controllers morph,morph-planar,morph-vpservo,ibvs-current,ibvs-desired,ibvs-mean,pbvs,moments,
-                                 moments-planar]
-                  [--robot camera|viper850|afma6] [--count N] [--seed S] --out DIR
-                  [--threads T] [--max-iterations N] [--lambda L] [--no-curves] [--no-plots] [--recognition]
+  vispmorph-bench --set SETS|all --out DIR [--objects DIR|LIST | --pool development|evaluation] [--shard K/N] ...
+  vispmorph-bench merge --out DIR SHARD_DIR...
   \endcode
   Generates the scenarios of each set (vpMorphBenchScenario::generate, seeded), runs every controller on every
   scenario (vpMorphBench, all cores, progress on stderr) and writes in DIR:
-  - scenarios.csv: the starts, to replay any run (set, index, seed, object, start, faults, calibration errors);
-  - runs.csv: one row per run, appended as runs finish (an interrupted bench keeps what it finished);
+  - objects.csv: the objects used and the inputs skipped, with why; objects/: their laid-out images and variants;
+  - scenarios.csv and scenarios.json: the starts (the JSON to the bit, vpMorphBenchScenario::fromJson());
+  - runs.csv: one row per run (runs.partial.csv while they run: an interrupted bench keeps what it finished);
   - curves.csv: the truth pose error at every iteration of every run;
   - summary.json and summary.md: per set, robot and controller (vpMorphBenchReport);
+  - timings.csv, timings.json and timings.md: the compute times (vpMorphBenchTimings) and the machine;
   - PNG plots made by vispmorph-bench-plots.py (Debian's /usr/bin/python3 with matplotlib) unless --no-plots.
+  With --shard K/N only the scenarios at positions K - 1, K - 1 + N, ... of the command's list run; merge joins
+  the shards' folders into the files of one run, identical to the byte but for the timings.
   With --recognition, no run: the first view of every scenario is recognised (vpMorphBench::recognizeStart()), one
-  row each in recognition.csv, and the counts per set (right tool, another tool, rejected, re-ranked) are printed and
+  row each in recognition.csv, and the counts per set (right object, another, rejected, re-ranked) are printed and
   written to recognition.md: the recognition checked on more starts than the servo can afford.
   Exit status: 0 when the bench ran (whatever the controllers did), 1 on an error, 2 on bad arguments.
 */
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <unistd.h>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
 #include <visp3/core/vpMath.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_bench/vpMorphBench.h>
 #include <visp3/morph_bench/vpMorphBenchController.h>
+#include <visp3/morph_bench/vpMorphBenchObjectSet.h>
 #include <visp3/morph_bench/vpMorphBenchReport.h>
+#include <visp3/morph_bench/vpMorphBenchTimings.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 
@@ -51,23 +58,36 @@ namespace
 void usage(std::ostream &os)
 {
   os << "Usage: vispmorph-bench --set SETS --out DIR [options]\n"
-        "  --set SETS         comma-separated: planar, planar-hard, 6dof, calib, noise, occlusion, deformable,\n"
-        "                     faults (timed faults, 5 kinds in turn), calib-no-tilt (calib's starts, the hand-eye\n"
-        "                     rotation error about the optical axis only), all\n"
+        "  --set SETS         comma-separated, or all: planar, planar-hard, 6dof, calib, noise, occlusion, "
+        "deformable,\n"
+        "                     faults, calib-no-tilt, calib-wide, saturated, low-contrast, rough, gradient, "
+        "plane-edge,\n"
+        "                     large-distractor, res-1280, res-320\n"
         "  --controllers L    comma-separated (default all): morph, morph-planar, morph-vpservo, ibvs-current, "
         "ibvs-desired,\n"
         "                     ibvs-mean, pbvs, moments, moments-planar\n"
         "  --robot R          camera (default), viper850 or afma6\n"
-        "  --count N          scenarios per set (default 10)\n"
+        "  --objects D|LIST   the objects: every image of folder D (or each path of a list file), any polarity and\n"
+        "                     size, named by its file stem (default: the six tools of DATA/objects)\n"
+        "  --pool P           the objects of pool P of data/pools/split.json: development or evaluation\n"
+        "  --per-class N      with --pool: images per class (default 1)\n"
+        "  --datasets DIR     the shape datasets' folder (default: $VISPMORPH_DATASETS_DIR, else ../shared/datasets\n"
+        "                     beside the repository)\n"
+        "  --count N          scenarios per set (default 10), objects in turn\n"
+        "  --starts K         starts per object and set (instead of --count: K x the objects)\n"
         "  --only LIST        replay only these scenario indices of each set (comma-separated, each < N)\n"
-        "  --seed S           seed of the scenario sets (default 1)\n"
+        "  --seed S           seed of the scenario sets (default 100; development 100-999, evaluation 1000 and up)\n"
+        "  --shard K/N        run the K-th of N deterministic shares of the scenarios (vispmorph-bench merge joins "
+        "them)\n"
         "  --threads T        threads (default: all cores)\n"
         "  --max-iterations N iteration budget per run (default 600)\n"
         "  --lambda L         gain of every controller, 1/s (default 2.5)\n"
         "  --data DIR         the data/ folder (default: the repository's)\n"
         "  --no-curves        do not write curves.csv\n"
         "  --recognition      no runs: recognise each scenario's first view (recognition.csv, recognition.md)\n"
-        "  --no-plots         do not run the plot script\n";
+        "  --no-plots         do not run the plot script\n"
+        "       vispmorph-bench merge --out DIR SHARD_DIR... [--no-plots]\n"
+        "                     the shards of one command as one run (the same files, to the byte, but the timings)\n";
 }
 
 std::vector<std::string> splitList(const std::string &s)
@@ -123,14 +143,15 @@ std::string scenarioRow(const vpMorphBenchScenario &s)
 }
 
 /*
-  CPU time (ms) of one silhouette extraction of the pliers' taught view, the fastest of 5 batches of 20: a yardstick
-  of the machine's speed. The per-set compute times move with it (the development machine's slowed by 1.8 times in
-  one session), so runs on different days or machines are compared through their ratio to it.
+  CPU time (ms) of one silhouette extraction of a fixed view of the pliers (10 mm off the optical axis at 0.5 m,
+  turned by 20 deg, 640 x 480, tag beside it), the fastest of 5 batches of 20: a yardstick of the machine's speed.
+  The per-set compute times move with it (the development machine's slowed by 1.8 times in one session), so runs on
+  different days or machines are compared through their ratio to it.
 */
 double yardstickMs(const std::string &dataDir)
 {
   const vpMorphPlanarScene scene(dataDir + "/objects/pliers.png");
-  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose("pliers");
+  const vpHomogeneousMatrix cdMo(0.010, 0.0, 0.5, 0.0, 0.0, vpMath::rad(20.0));
   vpImage<unsigned char> I;
   scene.render(cdMo, I);
   const std::vector<vpImagePoint> corners = scene.projectedTagCorners(cdMo);
@@ -153,9 +174,7 @@ double yardstickMs(const std::string &dataDir)
 int recognizeStarts(const vpMorphBench &bench, const std::vector<vpMorphBenchScenario> &scenarios,
                     const std::string &out)
 {
-  const vpMorphDatabase &db = bench.database();
-  vpMorphDatabase distanceAlone = db; // the same database without the support, for comparison
-  distanceAlone.setMinimumSupport(std::numeric_limits<double>::infinity());
+  std::map<const vpMorphDatabase *, vpMorphDatabase> alone; // each database without the support, for comparison
   std::ofstream f(out + "/recognition.csv");
   f << "set,scenario,seed,object,recognized,accepted,correct,distance,threshold,support,reranked,runner_up,"
        "distance_alone_recognized,distance_alone_accepted\n";
@@ -166,6 +185,12 @@ int recognizeStarts(const vpMorphBench &bench, const std::vector<vpMorphBenchSce
   std::vector<std::pair<std::string, Counts>> perSet;
   for (std::size_t k = 0; k < scenarios.size(); ++k) {
     const vpMorphBenchScenario &sc = scenarios[k];
+    const vpMorphDatabase &db = bench.database(sc.variant, sc.set);
+    if (!alone.count(&db)) {
+      alone[&db] = db;
+      alone[&db].setMinimumSupport(std::numeric_limits<double>::infinity());
+    }
+    const vpMorphDatabase &distanceAlone = alone[&db];
     vpMorphContour c;
     const vpMorphRecognition r = bench.recognizeStart(sc, &c);
     const vpMorphRecognition a = c.empty() ? vpMorphRecognition() : distanceAlone.recognize(c);
@@ -192,8 +217,8 @@ int recognizeStarts(const vpMorphBench &bench, const std::vector<vpMorphBenchSce
       std::cerr << "[" << k + 1 << "/" << scenarios.size() << "] first views recognised" << std::endl;
   }
   std::ostringstream md;
-  md << "| set | first views | right tool | another tool | rejected | re-ranked | no silhouette | distance alone: "
-        "right / another tool |\n|---|---|---|---|---|---|---|---|\n";
+  md << "| set | first views | right object | another object | rejected | re-ranked | no silhouette | distance alone: "
+        "right / another object |\n|---|---|---|---|---|---|---|---|\n";
   for (const auto &p : perSet)
     md << "| " << p.first << " | " << p.second.views << " | " << p.second.right << " | " << p.second.wrong << " | "
        << p.second.rejected << " | " << p.second.reranked << " | " << p.second.empty << " | " << p.second.aloneRight
@@ -201,6 +226,244 @@ int recognizeStarts(const vpMorphBench &bench, const std::vector<vpMorphBenchSce
   std::ofstream(out + "/recognition.md") << md.str();
   std::cout << md.str() << "results in " << out << "/recognition.csv" << std::endl;
   return EXIT_SUCCESS;
+}
+//! The command's deterministic settings (summary.json's meta): the same for one run and for its merged shards.
+std::map<std::string, std::string> settingsMeta(const std::vector<std::string> &sets,
+                                                const std::vector<std::string> &controllers, const std::string &robot,
+                                                unsigned int seed, unsigned int count, const std::string &objects,
+                                                const vpMorphBench::Settings &settings)
+{
+  std::map<std::string, std::string> meta;
+  std::string s, c;
+  for (const std::string &x : sets)
+    s += (s.empty() ? "" : ",") + x;
+  for (const std::string &x : controllers)
+    c += (c.empty() ? "" : ",") + x;
+  meta["sets"] = s;
+  meta["controllers"] = c;
+  meta["robot"] = robot;
+  meta["seed"] = std::to_string(seed);
+  meta["seed_class"] = seed >= 1000 ? "evaluation" : seed >= 100 ? "development" : "outside the split's seeds";
+  meta["scenarios_per_set"] = std::to_string(count);
+  meta["objects"] = objects;
+  std::ostringstream budget;
+  budget << settings.maxIterations << " periods of " << settings.samplingTime << " s";
+  meta["budget"] = budget.str();
+  meta["lambda_per_s"] = std::to_string(settings.lambda);
+  meta["success"] = "final truth error under " + std::to_string(1000 * settings.successTranslation).substr(0, 4) +
+                    " mm and " + std::to_string(settings.successRotationDeg).substr(0, 4) +
+                    " deg, target never out of view, within the budget";
+  return meta;
+}
+
+//! Lines of a text file (its header first), or none when it is missing.
+std::vector<std::string> readLines(const std::string &path)
+{
+  std::vector<std::string> lines;
+  std::ifstream f(path);
+  std::string line;
+  while (std::getline(f, line))
+    if (!line.empty())
+      lines.push_back(line);
+  return lines;
+}
+
+void writeLines(const std::string &path, const std::string &header, const std::vector<std::string> &rows)
+{
+  std::ofstream f(path);
+  f << header << "\n";
+  for (const std::string &r : rows)
+    f << r << "\n";
+}
+
+//! scenarios.csv rows in the canonical order (set, index); rows that are not scenarios kept last.
+void sortScenarioRows(std::vector<std::string> &rows)
+{
+  const std::vector<std::string> sets = vpMorphBenchScenario::setNames();
+  auto key = [&](const std::string &r) {
+    const std::size_t a = r.find(','), b = r.find(',', a + 1);
+    const std::string set = r.substr(0, a);
+    return std::make_pair(static_cast<long>(std::find(sets.begin(), sets.end(), set) - sets.begin()),
+                          std::atol(r.substr(a + 1, b - a - 1).c_str()));
+  };
+  std::stable_sort(rows.begin(), rows.end(),
+                   [&](const std::string &x, const std::string &y) { return key(x) < key(y); });
+}
+
+const char *const kScenariosHeader =
+    "set,scenario,seed,object,start_rotation_deg,start_translation_mm,start_tilt_deg,start_depth_change,noise_sigma,"
+    "blur_sigma,gain,offset,occluded_share,focal_scale_x,focal_scale_y,principal_shift_u,principal_shift_v,"
+    "eMc_error_mm,eMc_error_deg,description";
+
+//! The run's results: runs.csv, curves.csv (from the rows finished), summary.*, timings.*, and the plots.
+void writeResults(const std::string &out, vpMorphBenchReport &report, vpMorphBenchTimings &timings,
+                  const std::map<std::string, std::string> &meta, const std::map<std::string, std::string> &machine,
+                  bool curves, bool plots)
+{
+  report.sortRows();
+  writeLines(out + "/runs.csv", vpMorphBenchReport::runsHeader(), report.rows());
+  if (curves) {
+    std::vector<std::string> rows = readLines(out + "/curves.partial.csv");
+    if (!rows.empty())
+      rows.erase(rows.begin()); // header
+    vpMorphBenchReport::sortCurves(rows);
+    writeLines(out + "/curves.csv", vpMorphBenchReport::curvesHeader(), rows);
+  }
+  timings.sortRows();
+  writeLines(out + "/timings.csv", vpMorphBenchTimings::header(), timings.rows());
+  std::ofstream(out + "/summary.json") << report.summaryJson(meta) << "\n";
+  std::ofstream(out + "/summary.md") << report.summaryMarkdown();
+  std::ofstream(out + "/timings.json") << timings.json(machine) << "\n";
+  std::ostringstream t;
+  t << timings.markdown() << "\nMachine yardstick: " << machine.at("yardstick")
+    << ". Compare compute times across runs through their ratio to it.\n";
+  std::ofstream(out + "/timings.md") << t.str();
+  std::cout << report.summaryMarkdown() << "\n" << t.str();
+  fs::remove(out + "/runs.partial.csv");
+  fs::remove(out + "/curves.partial.csv");
+  if (plots) {
+    const std::string script = VISPMORPH_PLOT_SCRIPT;
+    if (!fs::exists(script) || !fs::exists("/usr/bin/python3")) {
+      std::cerr << "vispmorph-bench: plots skipped (" << script << " or /usr/bin/python3 missing)" << std::endl;
+    } else {
+      const std::string c = "MPLBACKEND=Agg /usr/bin/python3 '" + script + "' '" + out + "'";
+      if (std::system(c.c_str()) != 0)
+        std::cerr << "vispmorph-bench: the plot script failed (the CSV files are complete)" << std::endl;
+    }
+  }
+}
+
+/*
+  vispmorph-bench merge --out DIR SHARD_DIR...: the shards of one command (--shard K/N, every K once) as one run:
+  the same objects.csv, scenarios.csv, runs.csv, curves.csv, summary.json and summary.md as the command without
+  --shard, to the byte; timings.csv and timings.* with every shard's times.
+*/
+int merge(int argc, char **argv)
+{
+  std::string out;
+  std::vector<std::string> shards;
+  bool plots = true;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--out" && i + 1 < argc)
+      out = argv[++i];
+    else if (a == "--no-plots")
+      plots = false;
+    else if (!a.empty() && a[0] == '-') {
+      std::cerr << "vispmorph-bench merge: unknown option '" << a << "'\nUsage: vispmorph-bench merge --out DIR "
+                << "SHARD_DIR... [--no-plots]\n";
+      return 2;
+    } else
+      shards.push_back(a);
+  }
+  if (out.empty() || shards.empty()) {
+    std::cerr << "vispmorph-bench merge: --out DIR and at least one shard folder are needed\n";
+    return 2;
+  }
+  try {
+    auto fail = [](const std::string &msg) { throw vpMorphException(vpMorphException::badParameterError, msg); };
+    std::map<std::string, std::string> meta;
+    std::set<unsigned int> seen;
+    unsigned int total = 0;
+    std::vector<std::string> objects, scenarioRows, scenarioJson, curveRows;
+    vpMorphBenchReport report;
+    vpMorphBenchTimings timings;
+    nlohmann::json machines = nlohmann::json::array();
+    for (const std::string &dir : shards) {
+      std::ifstream sf(dir + "/summary.json");
+      if (!sf)
+        fail("cannot read " + dir + "/summary.json (a finished shard?)");
+      nlohmann::json m = nlohmann::json::parse(sf).at("meta");
+      const std::string shard = m.value("shard", "1/1");
+      m.erase("shard");
+      unsigned int k = 0, n = 0;
+      if (std::sscanf(shard.c_str(), "%u/%u", &k, &n) != 2 || k < 1 || k > n)
+        fail(dir + ": bad shard '" + shard + "'");
+      const std::map<std::string, std::string> mm = m.get<std::map<std::string, std::string>>();
+      if (meta.empty()) {
+        meta = mm;
+        total = n;
+      } else if (mm != meta || n != total)
+        fail(dir + ": a shard of another command (its settings differ from " + shards[0] + "'s)");
+      if (!seen.insert(k).second)
+        fail(dir + ": shard " + shard + " given twice");
+      const std::vector<std::string> o = readLines(dir + "/objects.csv");
+      if (objects.empty())
+        objects = o;
+      else if (o != objects)
+        fail(dir + ": its objects differ from " + shards[0] + "'s");
+      std::vector<std::string> rows = readLines(dir + "/scenarios.csv");
+      if (rows.empty() || rows[0] != kScenariosHeader)
+        fail(dir + ": no scenarios.csv of this version");
+      scenarioRows.insert(scenarioRows.end(), rows.begin() + 1, rows.end());
+      std::ifstream js(dir + "/scenarios.json");
+      if (js)
+        for (const nlohmann::json &x : nlohmann::json::parse(js))
+          scenarioJson.push_back(x.dump());
+      std::ifstream runs(dir + "/runs.csv");
+      if (!runs)
+        fail("cannot read " + dir + "/runs.csv");
+      report.readRuns(runs, dir + "/runs.csv");
+      rows = readLines(dir + "/curves.csv");
+      if (!rows.empty())
+        curveRows.insert(curveRows.end(), rows.begin() + 1, rows.end());
+      std::ifstream t(dir + "/timings.csv");
+      if (t)
+        timings.readTimings(t, dir + "/timings.csv");
+      std::ifstream tj(dir + "/timings.json");
+      if (tj)
+        machines.push_back(nlohmann::json::parse(tj).value("meta", nlohmann::json::object()));
+    }
+    for (unsigned int k = 1; k <= total; ++k)
+      if (!seen.count(k))
+        fail("shard " + std::to_string(k) + "/" + std::to_string(total) + " is missing");
+    if (report.hasDuplicates())
+      fail("two shards hold the same run");
+    fs::create_directories(out);
+    {
+      std::ofstream f(out + "/objects.csv");
+      for (const std::string &l : objects)
+        f << l << "\n";
+    }
+    sortScenarioRows(scenarioRows);
+    writeLines(out + "/scenarios.csv", kScenariosHeader, scenarioRows);
+    {
+      std::vector<std::pair<std::pair<long, long>, std::string>> keyed;
+      const std::vector<std::string> sets = vpMorphBenchScenario::setNames();
+      for (const std::string &x : scenarioJson) {
+        const vpMorphBenchScenario sc = vpMorphBenchScenario::fromJson(x);
+        keyed.push_back({{static_cast<long>(std::find(sets.begin(), sets.end(), sc.set) - sets.begin()),
+                          static_cast<long>(sc.index)},
+                         x});
+      }
+      std::stable_sort(keyed.begin(), keyed.end(), [](const auto &a, const auto &b) { return a.first < b.first; });
+      std::ofstream f(out + "/scenarios.json");
+      f << "[";
+      for (std::size_t k = 0; k < keyed.size(); ++k)
+        f << (k ? ",\n" : "\n") << keyed[k].second;
+      f << "\n]\n";
+    }
+    {
+      std::ofstream f(out + "/curves.partial.csv");
+      f << vpMorphBenchReport::curvesHeader() << "\n";
+      for (const std::string &r : curveRows)
+        f << r << "\n";
+    }
+    std::map<std::string, std::string> machine;
+    machine["merged_from"] = std::to_string(shards.size()) + " shards";
+    machine["shards"] = machines.dump();
+    machine["yardstick"] = "each shard's own (timings.csv: yardstick_ms)";
+    writeResults(out, report, timings, meta, machine, !curveRows.empty(), plots);
+    std::cerr << "vispmorph-bench merge: " << report.rows().size() << " runs of " << total << " shards in " << out
+              << std::endl;
+    return EXIT_SUCCESS;
+  } catch (const vpException &e) {
+    std::cerr << "vispmorph-bench merge: " << e.getStringMessage() << std::endl;
+    return EXIT_FAILURE;
+  } catch (const std::exception &e) {
+    std::cerr << "vispmorph-bench merge: " << e.what() << std::endl;
+    return EXIT_FAILURE;
+  }
 }
 } // namespace
 
@@ -210,9 +473,14 @@ int main(int argc, char **argv)
   // threads (findContours() thresholds through it), which oversubscribes the cores and which a run's CPU clock, the
   // calling thread's, does not count. With one OpenCV thread a run's compute time is all its work.
   cv::setNumThreads(1);
+  if (argc > 1 && std::string(argv[1]) == "merge")
+    return merge(argc, argv);
   std::vector<std::string> sets, controllers = vpMorphBenchController::names();
-  std::string out, robotName = "camera", dataDir = VISPMORPH_DATA_DIR;
-  unsigned int count = 10, seed = 1, threads = 0;
+  std::string out, robotName = "camera", dataDir = VISPMORPH_DATA_DIR, datasetsDir = VISPMORPH_DATASETS_DIR;
+  std::string objectsArg, pool;
+  unsigned int count = 10, seed = 100, threads = 0, starts = 0, perClass = 1, shardK = 1, shardN = 1;
+  if (const char *env = std::getenv("VISPMORPH_DATASETS_DIR"))
+    datasetsDir = env;
   std::vector<unsigned int> only;
   vpMorphBench::Settings settings;
   bool curves = true, plots = true, recognitionOnly = false;
@@ -254,7 +522,32 @@ int main(int argc, char **argv)
           throw BadArgs{"unknown robot '" + robotName + "' (camera, viper850, afma6)"};
       } else if (a == "--count")
         count = static_cast<unsigned int>(parseUnsigned(a, value(), 1));
-      else if (a == "--only") {
+      else if (a == "--starts")
+        starts = static_cast<unsigned int>(parseUnsigned(a, value(), 1));
+      else if (a == "--objects")
+        objectsArg = value();
+      else if (a == "--pool") {
+        pool = value();
+        if (pool != "development" && pool != "evaluation")
+          throw BadArgs{"unknown pool '" + pool + "' (development, evaluation)"};
+      } else if (a == "--per-class")
+        perClass = static_cast<unsigned int>(parseUnsigned(a, value(), 1));
+      else if (a == "--datasets")
+        datasetsDir = value();
+      else if (a == "--shard") {
+        const std::string v = value();
+        const std::size_t slash = v.find('/');
+        if (slash == std::string::npos)
+          throw BadArgs{"option --shard needs K/N (1 <= K <= N), got '" + v + "'"};
+        try {
+          shardK = static_cast<unsigned int>(parseUnsigned(a, v.substr(0, slash), 1));
+          shardN = static_cast<unsigned int>(parseUnsigned(a, v.substr(slash + 1), 1));
+        } catch (const BadArgs &) {
+          throw BadArgs{"option --shard needs K/N (1 <= K <= N), got '" + v + "'"};
+        }
+        if (shardK > shardN)
+          throw BadArgs{"option --shard needs K/N (1 <= K <= N), got '" + v + "'"};
+      } else if (a == "--only") {
         for (const std::string &k : splitList(value()))
           only.push_back(static_cast<unsigned int>(parseUnsigned(a, k, 0)));
       } else if (a == "--seed")
@@ -287,9 +580,12 @@ int main(int argc, char **argv)
       throw BadArgs{"--out is required"};
     if (controllers.empty())
       throw BadArgs{"--controllers is empty"};
-    for (unsigned int k : only)
-      if (k >= count)
-        throw BadArgs{"--only: scenario " + std::to_string(k) + " is not below --count " + std::to_string(count)};
+    if (!objectsArg.empty() && !pool.empty())
+      throw BadArgs{"--objects and --pool are exclusive"};
+    if (!starts)
+      for (unsigned int k : only)
+        if (k >= count)
+          throw BadArgs{"--only: scenario " + std::to_string(k) + " is not below --count " + std::to_string(count)};
   } catch (const BadArgs &e) {
     std::cerr << "vispmorph-bench: " << e.msg << "\n";
     usage(std::cerr);
@@ -299,52 +595,127 @@ int main(int argc, char **argv)
   try {
     settings.recordCurves = curves;
     fs::create_directories(out);
-    std::cerr << "vispmorph-bench: teaching the six templates and calibrating recognition..." << std::endl;
-    const vpMorphBench bench(dataDir, settings);
-
-    std::vector<vpMorphBenchScenario> scenarios;
-    for (const std::string &s : sets) {
-      // A scenario depends on (seed, set, index) only: replaying a few of them gives the same starts.
-      for (const vpMorphBenchScenario &sc : vpMorphBenchScenario::generate(s, count, seed, dataDir))
-        if (only.empty() || std::find(only.begin(), only.end(), sc.index) != only.end())
-          scenarios.push_back(sc);
+    std::cerr << "vispmorph-bench: seed " << seed << " ("
+              << (seed >= 1000  ? "evaluation"
+                  : seed >= 100 ? "development"
+                                : "outside the split's seeds")
+              << ")" << std::endl;
+    vpMorphBenchObjectSet objects;
+    std::string source;
+    if (!pool.empty()) {
+      const std::string split = dataDir + "/pools/split.json";
+      std::vector<vpMorphBenchObjectSet::Source> sources;
+      try {
+        sources = vpMorphBenchObjectSet::poolImages(split, datasetsDir, pool, perClass);
+      } catch (const vpMorphException &e) {
+        if (e.getCode() != vpMorphException::notFoundError)
+          throw;
+        std::cerr << "vispmorph-bench: SKIPPED: the " << pool << " pool needs the shape datasets ("
+                  << e.getStringMessage() << "; --datasets DIR gives their folder)" << std::endl;
+        return EXIT_SUCCESS;
+      }
+      objects = vpMorphBenchObjectSet::images(sources, out, seed);
+      source = pool + " pool, " + std::to_string(perClass) + " a class";
+    } else if (!objectsArg.empty()) {
+      objects = vpMorphBenchObjectSet::images(vpMorphBenchObjectSet::listImages(objectsArg), out, seed);
+      source = "images of " + fs::path(objectsArg).filename().string();
+    } else {
+      objects = vpMorphBenchObjectSet::tools(dataDir, out);
+      source = "the six tools";
     }
+    // Paths under the output folder are written relative to it: the shards of a sweep list the same objects.
+    auto relative = [&out](const std::string &path) {
+      const std::string base = fs::path(out).lexically_normal().string() + "/";
+      const std::string p = fs::path(path).lexically_normal().string();
+      return p.compare(0, base.size(), base) == 0 ? p.substr(base.size()) : path;
+    };
     {
-      std::ofstream f(out + "/scenarios.csv");
-      f << "set,scenario,seed,object,start_rotation_deg,start_translation_mm,start_tilt_deg,start_depth_change,"
-           "noise_sigma,blur_sigma,gain,offset,occluded_share,focal_scale_x,focal_scale_y,principal_shift_u,"
-           "principal_shift_v,eMc_error_mm,eMc_error_deg,description\n";
-      for (const vpMorphBenchScenario &s : scenarios)
-        f << scenarioRow(s) << "\n";
+      std::ofstream f(out + "/objects.csv");
+      f << "object,status,image,deformed_image,truth,undeformed_share,reason\n";
+      for (const vpMorphBenchObjectSet::Object &o : objects.objects())
+        f << o.name << ",used," << relative(o.image) << ',' << relative(o.deformedImage) << ','
+          << (o.truth == vpMorphBenchObjectSet::TRUTH_PART      ? "part"
+              : o.truth == vpMorphBenchObjectSet::TRUTH_OVERLAP ? "overlap"
+                                                                : "articulated")
+          << ',' << (o.undeformedShare > 0 ? std::to_string(o.undeformedShare) : std::string()) << ",\n";
+      for (const vpMorphBenchObjectSet::Skipped &k : objects.skipped()) {
+        std::string reason = k.reason;
+        std::replace(reason.begin(), reason.end(), ',', ';');
+        f << fs::path(k.source).stem().string() << ",skipped," << k.source << ",,,," << reason << "\n";
+        std::cerr << "vispmorph-bench: skipped " << k.source << ": " << k.reason << std::endl;
+      }
     }
+    if (objects.empty()) {
+      std::cerr << "vispmorph-bench: no usable object" << std::endl;
+      return EXIT_FAILURE;
+    }
+    if (starts)
+      count = starts * static_cast<unsigned int>(objects.size());
+    for (unsigned int k : only)
+      if (k >= count)
+        throw vpMorphException(vpMorphException::badParameterError,
+                               "--only: scenario " + std::to_string(k) + " is not below " + std::to_string(count));
+    const vpMorphBench bench(objects, seed, settings);
+
+    // Every scenario of the command, then this shard's share: position j of the list when j mod N = K - 1. A
+    // scenario depends on (seed, set, object, start) only: replaying a few of them gives the same starts.
+    std::vector<vpMorphBenchScenario> scenarios;
+    std::size_t position = 0;
+    for (const std::string &s : sets)
+      for (const vpMorphBenchScenario &sc : vpMorphBenchScenario::generate(s, count, seed, objects))
+        if (only.empty() || std::find(only.begin(), only.end(), sc.index) != only.end())
+          if (position++ % shardN == shardK - 1)
+            scenarios.push_back(sc);
+    {
+      std::ofstream f(out + "/scenarios.csv"), j(out + "/scenarios.json");
+      f << kScenariosHeader << "\n";
+      j << "[";
+      for (std::size_t k = 0; k < scenarios.size(); ++k) {
+        f << scenarioRow(scenarios[k]) << "\n";
+        j << (k ? ",\n" : "\n") << scenarios[k].toJson(out);
+      }
+      j << "\n]\n";
+    }
+    std::cerr << "vispmorph-bench: " << objects.size() << " objects (" << source << "); teaching the templates and "
+              << "calibrating recognition..." << std::endl;
+    bench.prepare(scenarios);
 
     if (recognitionOnly)
       return recognizeStarts(bench, scenarios, out);
 
-    std::ofstream runs(out + "/runs.csv");
+    std::ofstream runs(out + "/runs.partial.csv");
     runs << vpMorphBenchReport::runsHeader() << "\n" << std::flush;
     std::ofstream curvesFile;
     if (curves) {
-      curvesFile.open(out + "/curves.csv");
+      curvesFile.open(out + "/curves.partial.csv");
       curvesFile << vpMorphBenchReport::curvesHeader() << "\n";
     }
     const bool tty = isatty(STDERR_FILENO);
     const double yardstickBefore = yardstickMs(dataDir);
     const auto t0 = std::chrono::steady_clock::now();
     std::cerr << "vispmorph-bench: " << scenarios.size() << " scenarios x " << controllers.size() << " controllers on "
-              << robotName << ", seed " << seed << std::endl;
+              << robotName << ", seed " << seed;
+    if (shardN > 1)
+      std::cerr << ", shard " << shardK << "/" << shardN;
+    std::cerr << std::endl;
     vpMorphBenchReport report;
+    std::vector<vpMorphBenchResult> timed;
     auto progress = [&](std::size_t done, std::size_t total, const vpMorphBenchResult &r) {
-      // Called under the runner's lock: rows are written as runs finish.
+      // Called under the runner's lock: rows are written as runs finish (runs.csv is written in order at the end).
       runs << vpMorphBenchReport::runsRow(r) << "\n" << std::flush;
       if (curves)
         curvesFile << vpMorphBenchReport::curvesRows(r);
       report.add(r);
+      vpMorphBenchResult t = r; // its times, without the curves
+      t.curveTranslation.clear();
+      t.curveRotation.clear();
+      timed.push_back(t);
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       std::ostringstream line;
       line << "[" << std::setw(4) << done << "/" << total << ", " << std::fixed << std::setprecision(0) << s << " s] "
            << r.scenario.set << "#" << r.scenario.index << " " << r.scenario.object << " " << r.controller << ": "
-           << (r.success ? "success" : r.failure) << " (" << r.iterations << " it)";
+           << (r.success ? "success" : r.failure) << (r.setup.empty() ? "" : " (" + r.setup + ")") << " ("
+           << r.iterations << " it)";
       if (tty)
         std::cerr << "\r" << std::left << std::setw(100) << line.str() << std::flush;
       else
@@ -353,43 +724,34 @@ int main(int argc, char **argv)
     bench.runAll(scenarios, controllers, threads, progress);
     if (tty)
       std::cerr << "\n";
+    runs.close();
+    curvesFile.close();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double yardstickAfter = yardstickMs(dataDir);
-    std::ostringstream yardstick;
-    yardstick << std::fixed << std::setprecision(3) << "Machine yardstick (CPU time of one silhouette extraction of "
-              << "the taught pliers view, fastest of 5 x 20): " << yardstickBefore << " ms before the runs, "
-              << yardstickAfter << " ms after. Compare compute times across runs through their ratio to it.\n";
+    vpMorphBenchTimings timings;
+    for (const vpMorphBenchResult &r : timed)
+      timings.add(r, 0.5 * (yardstickBefore + yardstickAfter));
 
-    std::map<std::string, std::string> meta;
+    std::map<std::string, std::string> meta = settingsMeta(sets, controllers, robotName, seed, count, source, settings);
+    if (shardN > 1)
+      meta["shard"] = std::to_string(shardK) + "/" + std::to_string(shardN);
+    std::map<std::string, std::string> machine;
     std::ostringstream cmd;
     for (int i = 0; i < argc; ++i)
       cmd << (i ? " " : "") << argv[i];
-    meta["command"] = cmd.str();
-    meta["seed"] = std::to_string(seed);
-    meta["robot"] = robotName;
-    meta["lambda_per_s"] = std::to_string(settings.lambda);
-    meta["sampling_time_s"] = std::to_string(settings.samplingTime);
-    meta["max_iterations"] = std::to_string(settings.maxIterations);
-    meta["wall_time_s"] = std::to_string(wall);
-    meta["hardware_threads"] = std::to_string(std::thread::hardware_concurrency());
-    meta["yardstick_extract_ms_before"] = std::to_string(yardstickBefore);
-    meta["yardstick_extract_ms_after"] = std::to_string(yardstickAfter);
-    std::ofstream(out + "/summary.json") << report.summaryJson(meta) << "\n";
-    const std::string md = report.summaryMarkdown() + "\n" + yardstick.str();
-    std::ofstream(out + "/summary.md") << md;
-    std::cout << md << "wall time " << std::fixed << std::setprecision(1) << wall << " s; results in " << out << "/"
+    machine["command"] = cmd.str();
+    machine["wall_time_s"] = std::to_string(wall);
+    machine["threads"] = std::to_string(threads ? threads : std::thread::hardware_concurrency());
+    machine["hardware_threads"] = std::to_string(std::thread::hardware_concurrency());
+    machine["yardstick_extract_ms_before"] = std::to_string(yardstickBefore);
+    machine["yardstick_extract_ms_after"] = std::to_string(yardstickAfter);
+    std::ostringstream ys;
+    ys << std::fixed << std::setprecision(3) << "CPU time of one silhouette extraction of a fixed pliers view, "
+       << "fastest of 5 x 20: " << yardstickBefore << " ms before the runs, " << yardstickAfter << " ms after";
+    machine["yardstick"] = ys.str();
+    writeResults(out, report, timings, meta, machine, curves, plots);
+    std::cout << "wall time " << std::fixed << std::setprecision(1) << wall << " s; results in " << out << "/"
               << std::endl;
-
-    if (plots) {
-      const std::string script = VISPMORPH_PLOT_SCRIPT;
-      if (!fs::exists(script) || !fs::exists("/usr/bin/python3")) {
-        std::cerr << "vispmorph-bench: plots skipped (" << script << " or /usr/bin/python3 missing)" << std::endl;
-      } else {
-        const std::string c = "MPLBACKEND=Agg /usr/bin/python3 '" + script + "' '" + out + "'";
-        if (std::system(c.c_str()) != 0)
-          std::cerr << "vispmorph-bench: the plot script failed (the CSV files are complete)" << std::endl;
-      }
-    }
     return EXIT_SUCCESS;
   } catch (const vpException &e) {
     std::cerr << "vispmorph-bench: " << e.getStringMessage() << std::endl;

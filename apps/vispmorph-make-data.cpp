@@ -3,6 +3,7 @@
   \brief Generates the project's object silhouettes reproducibly from polygons defined in code.
 
   Usage: vispmorph-make-data OUTDIR
+         vispmorph-make-data --layout SRC_DIR|LIST OUT_DIR [--size PX]   (any silhouettes laid out as bench objects)
 
   Writes OUTDIR/objects/<name>.png and OUTDIR/objects/<name>-deformed.png for the six tool-like objects of the
   paper's experiments (key, pliers, wedge, wrench, screwdriver, hammer), and two demo views
@@ -27,15 +28,19 @@
 #include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph_bench/vpMorphBenchObjectSet.h>
+#include <visp3/morph_sim/vpMorphSilhouetteLayout.h>
 
 namespace
 {
-struct P {
+struct P
+{
   double x, y;
 };
 using Poly = std::vector<P>;
 using Shape = std::vector<Poly>; // union of filled polygons; a polygon marked as hole is drawn in white
-struct Part {
+struct Part
+{
   Poly poly;
   bool hole;
 };
@@ -237,7 +242,7 @@ vpImage<unsigned char> render(const Parts &parts, double u0, double v0, double t
         const P r = rotate({p.x * s, p.y * s}, theta);
         q.emplace_back(cvRound((u0 + r.x) * (1 << shift)), cvRound((v0 + r.y) * (1 << shift)));
       }
-      cv::fillPoly(img, std::vector<std::vector<cv::Point> >{q}, cv::Scalar(holes ? 255 : 0), cv::LINE_8, shift);
+      cv::fillPoly(img, std::vector<std::vector<cv::Point>>{q}, cv::Scalar(holes ? 255 : 0), cv::LINE_8, shift);
     }
   vpImage<unsigned char> I(H, W);
   for (int r = 0; r < H; ++r)
@@ -292,8 +297,8 @@ bool save(const vpImage<unsigned char> &I, const std::filesystem::path &file)
       vmin = std::min(vmin, c.y(k));
       vmax = std::max(vmax, c.y(k));
     }
-    std::cout << file.string() << ": " << c.size() << " vertices, bounding box " << umax - umin << " x "
-              << vmax - vmin << " px" << std::endl;
+    std::cout << file.string() << ": " << c.size() << " vertices, bounding box " << umax - umin << " x " << vmax - vmin
+              << " px" << std::endl;
     return true;
   } catch (const vpException &e) {
     std::cerr << file.string() << ": contour extraction failed: " << e.getMessage() << std::endl;
@@ -302,18 +307,84 @@ bool save(const vpImage<unsigned char> &I, const std::filesystem::path &file)
 }
 } // namespace
 
+/*
+  --layout SRC OUT [--size PX]: every silhouette of folder (or list file) SRC laid out as a bench object in OUT/NAME.png
+  (vpMorphSilhouetteLayout: either polarity and any size in, black on white, PX across, centred, anti-aliased out),
+  its NAME-deformed.png and NAME-deformed-mask.png, when beside it, in its frame. An image that cannot be laid out
+  is named with its reason and skipped; the exit status is 1 if any was.
+*/
+int layout(int argc, char **argv)
+{
+  std::string src, out;
+  unsigned long size = 300;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--size" && i + 1 < argc) {
+      char *end = nullptr;
+      size = std::strtoul(argv[++i], &end, 10);
+      if (*end != '\0' || size < 16 || size > 4000) {
+        std::cerr << "vispmorph-make-data: --size needs an integer in 16..4000\n";
+        return 2;
+      }
+    } else if (src.empty())
+      src = a;
+    else if (out.empty())
+      out = a;
+    else {
+      std::cerr << "Usage: vispmorph-make-data --layout SRC_DIR|LIST OUT_DIR [--size PX]\n";
+      return 2;
+    }
+  }
+  if (src.empty() || out.empty()) {
+    std::cerr << "Usage: vispmorph-make-data --layout SRC_DIR|LIST OUT_DIR [--size PX]\n";
+    return 2;
+  }
+  try {
+    std::filesystem::create_directories(out);
+    bool ok = true;
+    unsigned int done = 0;
+    for (const vpMorphBenchObjectSet::Source &s : vpMorphBenchObjectSet::listImages(src)) {
+      try {
+        const vpMorphSilhouetteLayout l(vpMorphSilhouetteLayout::read(s.path), static_cast<unsigned int>(size));
+        vpImageIo::write(l.image(), out + "/" + s.name + ".png");
+        const std::filesystem::path p(s.path);
+        for (const std::string variant : {"-deformed", "-deformed-mask"}) {
+          const std::filesystem::path v = p.parent_path() / (p.stem().string() + variant + p.extension().string());
+          if (std::filesystem::is_regular_file(v))
+            vpImageIo::write(l.apply(vpMorphSilhouetteLayout::read(v.string())), out + "/" + s.name + variant + ".png");
+        }
+        ++done;
+      } catch (const vpException &e) {
+        std::cerr << "vispmorph-make-data: skipped " << s.path << ": " << e.getStringMessage() << std::endl;
+        ok = false;
+      }
+    }
+    std::cout << done << " objects laid out in " << out << std::endl;
+    return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  } catch (const vpException &e) {
+    std::cerr << "vispmorph-make-data: " << e.getStringMessage() << std::endl;
+    return EXIT_FAILURE;
+  }
+}
+
 int main(int argc, char **argv)
 {
+  if (argc >= 2 && std::string(argv[1]) == "--layout")
+    return layout(argc, argv);
   if (argc != 2 || std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help") {
     std::cerr << "Usage: " << argv[0] << " OUTDIR\n"
-              << "Writes OUTDIR/objects/<name>[-deformed].png, OUTDIR/demo/{key,pliers}-view.png and OUTDIR/joints/.\n";
+              << "Writes OUTDIR/objects/<name>[-deformed].png, OUTDIR/demo/{key,pliers}-view.png and OUTDIR/joints/.\n"
+              << "       " << argv[0] << " --layout SRC_DIR|LIST OUT_DIR [--size PX]\n"
+              << "Lays out any silhouettes (either polarity, any size) as bench objects: OUT_DIR/<name>.png, black on\n"
+              << "white, PX (default 300) across, centred, anti-aliased; <name>-deformed[-mask].png beside one in its "
+                 "frame.\n";
     return argc == 2 ? EXIT_SUCCESS : EXIT_FAILURE;
   }
   const std::filesystem::path out(argv[1]);
   try {
     std::filesystem::create_directories(out / "objects");
     std::filesystem::create_directories(out / "demo");
-    const std::vector<std::pair<std::string, std::function<Parts(bool)> > > objects{
+    const std::vector<std::pair<std::string, std::function<Parts(bool)>>> objects{
         {"key", key},       {"pliers", pliers},           {"wedge", wedge},
         {"wrench", wrench}, {"screwdriver", screwdriver}, {"hammer", hammer}};
     bool ok = true;

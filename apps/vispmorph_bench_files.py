@@ -10,7 +10,11 @@ import os
 
 # Canonical orders of the sets (DESIGN.md, benchmark protocol) and of the controllers (VISPMorph's, then the stock
 # ones); names not listed are appended in order of appearance.
-SETS = ["planar", "planar-hard", "6dof", "calib", "calib-no-tilt", "noise", "occlusion", "deformable", "faults"]
+SETS = ["planar", "planar-hard", "6dof", "calib", "calib-no-tilt", "noise", "occlusion", "deformable", "faults",
+        "calib-wide", "saturated", "low-contrast", "rough", "gradient", "plane-edge", "large-distractor", "res-1280",
+        "res-320"]
+# Columns of timings.csv that read_runs() joins to the runs (they are not in runs.csv: they differ between runs).
+TIMING_COLUMNS = ("yardstick_ms", "measure_ms", "control_ms", "max_control_ms", "period_ms")
 CONTROLLERS = ["morph", "morph-planar", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments",
                "moments-planar"]
 
@@ -62,14 +66,51 @@ def ordered(present, canonical):
     return [n for n in canonical if n in seen] + [n for n in seen if n not in canonical]
 
 
+def read_runs(path, columns):
+    """OUTDIR/runs.csv's rows, each with its compute times from OUTDIR/timings.csv (TIMING_COLUMNS, joined on set,
+    robot, controller and scenario; empty when there is no timings.csv or no row for the run). Only the columns of
+    \\a columns that are not timing columns must be in runs.csv. \\throw BenchFileError as read_csv()."""
+    rows = read_csv(os.path.join(path, "runs.csv"), [c for c in columns if c not in TIMING_COLUMNS])
+    key = ("set", "robot", "controller", "scenario")
+    times = {}
+    timings = os.path.join(path, "timings.csv")
+    if os.path.isfile(timings):
+        for t in read_csv(timings, key + TIMING_COLUMNS):
+            times[tuple(t[k] for k in key)] = t
+    for r in rows:
+        t = times.get(tuple(r.get(k, "") for k in key), {})
+        for c in TIMING_COLUMNS:
+            if c in t or c not in r:
+                r[c] = t.get(c, "")
+    return rows
+
+
 def read_meta(path):
-    """The "meta" object of OUTDIR/summary.json, or {} when the summary is missing or unreadable (an older run)."""
-    try:
-        with open(os.path.join(path, "summary.json")) as f:
-            meta = json.load(f).get("meta", {})
-    except (OSError, ValueError, AttributeError):
-        return {}
-    return meta if isinstance(meta, dict) else {}
+    """The "meta" objects of OUTDIR/summary.json (the settings) and OUTDIR/timings.json (the machine), merged; {} when
+    both are missing or unreadable (an older run)."""
+    meta = {}
+    for name in ("summary.json", "timings.json"):
+        try:
+            with open(os.path.join(path, name)) as f:
+                m = json.load(f).get("meta", {})
+        except (OSError, ValueError, AttributeError):
+            continue
+        if isinstance(m, dict):
+            meta.update(m)
+    return meta
+
+
+def interval(k, n):
+    """The 95 % interval of a rate of k in n, as the bench computes it: Wilson's, [0, 3 / n] for k = 0."""
+    if n == 0:
+        return 0.0, 1.0
+    if k == 0:
+        return 0.0, min(1.0, 3.0 / n)
+    z = 1.959963984540054
+    p, z2n = k / n, z * z / n
+    centre = (p + z2n / 2) / (1 + z2n)
+    half = z * math.sqrt(p * (1 - p) / n + z2n / (4 * n)) / (1 + z2n)
+    return max(0.0, centre - half), min(1.0, centre + half)
 
 
 def yardstick(meta):

@@ -328,8 +328,7 @@ vpMorphCorrespondence vpMorphMatcher::solveRange(int count)
   return toCorrespondence(cells, w);
 }
 
-vpMorphCorrespondence vpMorphMatcher::toCorrespondence(const std::vector<std::pair<int, int>> &cells,
-                                                       double tableWork)
+vpMorphCorrespondence vpMorphMatcher::toCorrespondence(const std::vector<std::pair<int, int>> &cells, double tableWork)
 {
   const std::size_t m = m_m, n = m_n;
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
@@ -515,7 +514,7 @@ vpMorphCorrespondence vpMorphMatcher::matchOnRegions(const vpMorphContour &A, co
     // (vpMorphDatabase::minimumSupport()). Measured first: most views show far less half a turn round, and then the
     // work's side needs no measuring. A view in perspective (tilted, or through wrong intrinsics) is not a similarity
     // of B, and its fits can fall into another basin at either start: a wrench's fit from its right placement showed
-    // 0.18 of its outline once, half a turn round 0.53, and the plan turned it away (calib, seed 2 start 5).
+    // 0.18 of its outline once, half a turn round 0.53, and the plan turned it away (a calib start of development).
     vpMorphRigidTransform Fhalf;
     const double shareHalf = shown.aligned(A, shown.halfTurned(T0), &Fhalf);
     if (!(shareHalf >= kHalfTurnMinShare))

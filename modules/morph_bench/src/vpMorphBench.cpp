@@ -10,6 +10,7 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_bench/vpMorphBenchController.h>
+#include <visp3/morph_bench/vpMorphBenchObservability.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 
@@ -25,30 +26,6 @@ const double kMinDepth = 0.15, kMaxDepth = 1.5; // m: outside, the camera has di
 
 void badParameter(const std::string &msg) { throw vpMorphException(vpMorphException::badParameterError, msg); }
 
-/*!
-  The articulation of an object whose joint vispmorph-make-data describes (DATA/joints/NAME.json: the two parts'
-  images, drawn alone in the object image's frame, the pin and the opening's range in that frame), as the camera at
-  the desired pose sees it (vpMorphPlanarScene::articulation()). Empty for a rigid object.
-*/
-vpMorphArticulation taughtArticulation(const std::string &dataDir, const std::string &name,
-                                       const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cdMo)
-{
-  const std::string file = vpMorphBenchJoint::file(dataDir, name);
-  return file.empty() ? vpMorphArticulation() : scene.articulation(vpMorphBenchJoint::read(file).joint, cdMo);
-}
-
-//! The taught view of an object: rendered at its desired pose, tag masked, silhouette extracted; its articulation.
-vpMorphTemplate teach(const std::string &dataDir, const std::string &name)
-{
-  const std::string image = dataDir + "/objects/" + name + ".png";
-  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose(name);
-  const vpMorphPlanarScene scene(image);
-  vpMorphTemplate t(name, scene.silhouette(cdMo), image, cdMo);
-  t.setArticulation(taughtArticulation(dataDir, name, scene, cdMo));
-  t.setMetadata("source", "rendered at the desired pose, tag masked");
-  return t;
-}
-
 //! Speed of a command in its frame: translation (m/s) and rotation (rad/s) norms; joint commands of the free
 //! camera are end-effector twists, those of the arms are mapped through eJe.
 void commandSpeed(const vpColVector &v, vpRobot::vpControlFrameType frame, const vpMatrix &eJe, double &vt, double &vr)
@@ -61,8 +38,16 @@ void commandSpeed(const vpColVector &v, vpRobot::vpControlFrameType frame, const
 }
 } // namespace
 
-vpMorphBench::vpMorphBench(const std::string &dataDir, const Settings &settings)
-  : m_dataDir(dataDir), m_settings(settings)
+//! One database: the templates of one variant seen by one camera, and the objects that could not be taught.
+struct vpMorphBench::Taught
+{
+  vpMorphDatabase db;
+  std::map<std::string, std::string> untaught;                    // object -> why
+  std::map<std::string, vpMorphBenchObservability> observability; // object -> its taught view's
+};
+
+vpMorphBench::vpMorphBench(const vpMorphBenchObjectSet &objects, unsigned int seed, const Settings &settings)
+  : m_objects(objects), m_seed(seed), m_settings(settings)
 {
   if (!(settings.lambda > 0) || !std::isfinite(settings.lambda))
     badParameter("vpMorphBench: lambda must be finite and > 0");
@@ -72,13 +57,76 @@ vpMorphBench::vpMorphBench(const std::string &dataDir, const Settings &settings)
     badParameter("vpMorphBench: the iteration budget must be > 0");
   if (!(settings.successTranslation > 0) || !(settings.successRotationDeg > 0))
     badParameter("vpMorphBench: success thresholds must be > 0");
-  for (const std::string &name : vpMorphBenchScenario::objectNames())
-    m_db.add(teach(dataDir, name));
-  m_db.calibrate(1);
+  if (objects.empty())
+    badParameter("vpMorphBench: no object");
+}
+
+vpMorphBench::~vpMorphBench() = default;
+
+const vpMorphBench::Taught &vpMorphBench::taught(const std::string &variant, const std::string &set) const
+{
+  vpCameraParameters cam;
+  unsigned int width = 0, height = 0;
+  vpMorphBenchScenario::cameraOf(set, cam, width, height);
+  const std::string key = variant + "|" + std::to_string(width) + "x" + std::to_string(height);
+  std::lock_guard<std::mutex> lock(m_mutex);
+  std::unique_ptr<Taught> &t = m_taught[key];
+  if (t)
+    return *t;
+  t.reset(new Taught);
+  for (const vpMorphBenchObjectSet::Object &o : m_objects.objects()) {
+    // The taught view: rendered at the desired pose, the tag where it fits (out of view when it fits nowhere: that
+    // object's scenarios are set-up failures, but it still takes part in the recognition), masked, extracted.
+    const std::string image = variant == "rough" ? o.roughImage : o.image;
+    const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose(m_seed, o);
+    try {
+      vpMorphPlanarScene scene(image);
+      scene.setCamera(cam, width, height);
+      if (!vpMorphBenchScenario::stage(scene, cdMo).empty())
+        scene.setTagPlacement(10.0, 10.0); // 10 m away
+      vpMorphTemplate tpl(o.name, scene.silhouette(cdMo), image, cdMo);
+      if (variant.empty() && !o.jointFile.empty())
+        tpl.setArticulation(scene.articulation(vpMorphBenchJoint::read(o.jointFile).joint, cdMo));
+      tpl.setMetadata("source", "rendered at the desired pose, tag masked");
+      t->observability.emplace(o.name,
+                               vpMorphBenchObservability(tpl.contour(), cam, cdMo, m_settings.successTranslation,
+                                                         vpMath::rad(m_settings.successRotationDeg)));
+      t->db.add(tpl);
+    } catch (const vpException &e) {
+      t->untaught[o.name] = e.getStringMessage();
+    }
+  }
+  if (!t->db.empty())
+    t->db.calibrate(1);
+  return *t;
+}
+
+const vpMorphDatabase &vpMorphBench::database(const std::string &variant, const std::string &set) const
+{
+  return taught(variant, set).db;
+}
+
+const vpMorphBenchObservability *vpMorphBench::observability(const std::string &object, const std::string &variant,
+                                                             const std::string &set) const
+{
+  const Taught &t = taught(variant, set);
+  const auto it = t.observability.find(object);
+  return it == t.observability.end() ? nullptr : &it->second;
+}
+
+void vpMorphBench::prepare(const std::vector<vpMorphBenchScenario> &scenarios) const
+{
+  for (const vpMorphBenchScenario &sc : scenarios)
+    if (sc.setup.empty())
+      taught(sc.variant, sc.set);
 }
 
 vpMorphRecognition vpMorphBench::recognizeStart(const vpMorphBenchScenario &sc, vpMorphContour *shown) const
 {
+  if (shown)
+    *shown = vpMorphContour();
+  if (!sc.setup.empty())
+    return vpMorphRecognition();
   const vpMorphPlanarScene scene = sc.scene();
   vpImage<unsigned char> I;
   scene.render(sc.cdMc.inverse() * sc.cdMo, I); // frame 0, as a run's first image
@@ -89,7 +137,8 @@ vpMorphRecognition vpMorphBench::recognizeStart(const vpMorphBenchScenario &sc, 
   const vpMorphContour c = vpMorphTagPoseEstimator::silhouette(I, corners);
   if (shown)
     *shown = c;
-  return c.empty() ? vpMorphRecognition() : m_db.recognize(c);
+  const vpMorphDatabase &db = database(sc.variant, sc.set);
+  return c.empty() || db.empty() ? vpMorphRecognition() : db.recognize(c);
 }
 
 vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::string &controllerName) const
@@ -100,10 +149,21 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   res.controller = controllerName;
   res.robot = vpMorphSimRobot::kindName(m_settings.robot);
   res.straightLine = sc.cdMc.getTranslationVector().frobeniusNorm();
+  auto setupFailure = [&res](const std::string &why) {
+    res.failure = "setup";
+    res.setup = why;
+    return res;
+  };
+  if (!sc.setup.empty())
+    return setupFailure(sc.setup);
+  const Taught &taughtViews = taught(sc.variant, sc.set);
+  if (taughtViews.db.find(sc.object) == vpMorphRecognition::npos)
+    return setupFailure("template-not-taught");
 
   vpMorphPlanarScene scene = sc.scene(); // not const: timed faults change it during the run
   const vpCameraParameters camTrue = scene.camera();
   const vpMorphTagPoseEstimator truthTag = scene.tagPoseEstimator();
+  res.tagSize = scene.tagSize();
 
   vpMorphSimRobot robot(m_settings.robot, m_settings.samplingTime);
   // The Afma6's wrist turns the camera by about 100 deg either way from one configuration: the start and the goal
@@ -130,14 +190,16 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
     vpImage<unsigned char> Id;
     taught.render(sc.cdMo, Id);
     if (!taught.tagPoseEstimator().estimate(Id, ctx.taughtTagPose, &ctx.taughtTagCorners))
-      throw vpMorphException(vpMorphException::badImageError,
-                             "vpMorphBench::run: tag not found in the taught view of " + sc.object);
+      return setupFailure("tag-not-found-in-taught-view");
+    // The tag truth's own accuracy, where every run ends.
+    vpMorphTagPoseEstimator::poseDifference(sc.cdMo, ctx.taughtTagPose, res.taughtTagTranslation,
+                                            res.taughtTagRotation);
   }
   ctx.tagCorners3D = scene.tagCorners3D();
   ctx.tagId = scene.tagId();
   ctx.tagSize = scene.tagSize();
   ctx.oMt = scene.oMt();
-  ctx.database = &m_db;
+  ctx.database = &taughtViews.db;
   ctx.expectedObject = sc.object;
   ctx.lambda = m_settings.lambda;
   ctx.samplingTime = m_settings.samplingTime;
@@ -150,6 +212,12 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
 
   const bool tagController = controllerName.find("ibvs") == 0 || controllerName == "pbvs";
   const double rotThr = vpMath::rad(m_settings.successRotationDeg);
+  // Scored modulo the template's symmetry (a rigid view of it): its equally good placements, or for a disc the
+  // desired pose turned to the nearest; a view whose pose cannot be bounded is tallied apart.
+  const vpMorphBenchObservability &obs = taughtViews.observability.at(sc.object);
+  const bool rigidView = sc.objectImage == sc.templateImage;
+  res.symmetry = obs.symmetryOrder();
+  res.unobservable = obs.reason(vpMorphBenchScenario::needsTilt(sc.set));
   std::string failure;
   bool still = false, stopped = false;
   unsigned int lost = 0, stillCount = 0, measuredIterations = 0;
@@ -159,6 +227,14 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   std::vector<vpHomogeneousMatrix> goals{sc.cdMo};
   for (const vpHomogeneousMatrix &W : scene.alternativePlacements())
     goals.push_back(sc.cdMo * W);
+  if (rigidView)
+    for (const vpHomogeneousMatrix &W : obs.symmetricPlacements())
+      goals.push_back(sc.cdMo * W);
+  const bool continuous = rigidView && obs.symmetryOrder() == 0;
+  // The error to goal g: for a continuous symmetry, to the desired pose turned nearest to cMo.
+  auto errorTo = [&](std::size_t g, const vpHomogeneousMatrix &cMo, double &et, double &er) {
+    vpMorphTagPoseEstimator::poseDifference(continuous ? obs.nearestDesiredPose(cMo) : goals[g], cMo, et, er);
+  };
   std::vector<std::vector<double>> curveT(goals.size()), curveR(goals.size());
 
   for (unsigned int it = 0; it < m_settings.maxIterations; ++it) {
@@ -196,7 +272,7 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
     // dropped at the end unless recordCurves.
     for (std::size_t g = 0; g < goals.size(); ++g) {
       double et, er;
-      vpMorphTagPoseEstimator::poseDifference(goals[g], cMo, et, er);
+      errorTo(g, cMo, et, er);
       curveT[g].push_back(et);
       curveR[g].push_back(er);
     }
@@ -244,7 +320,10 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
     sumMeasure += cmd.measureMs;
     sumControl += cmd.controlMs;
     res.maxControlMs = std::max(res.maxControlMs, cmd.controlMs);
+    if (measuredIterations > 1) // the first period's recognition and plan excluded
+      res.periodMs.push_back(cmd.measureMs + cmd.controlMs);
     if (cmd.converged) {
+      res.converged = true;
       still = true;
       break;
     }
@@ -265,11 +344,11 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
   last.objectHidden = false;
   scene.setFaults(last);
   const vpHomogeneousMatrix cMo = robot.get_cMo();
-  // The nearest of the equally good desired poses (one unless the object has several best placements).
-  vpMorphTagPoseEstimator::poseDifference(goals[0], cMo, res.finalTranslation, res.finalRotation);
+  // The nearest of the equally good desired poses (one unless the object has several best placements or a symmetry).
+  errorTo(0, cMo, res.finalTranslation, res.finalRotation);
   for (std::size_t g = 1; g < goals.size(); ++g) {
     double et = 0.0, er = 0.0;
-    vpMorphTagPoseEstimator::poseDifference(goals[g], cMo, et, er);
+    errorTo(g, cMo, et, er);
     if (std::max(et / m_settings.successTranslation, er / rotThr) <
         std::max(res.finalTranslation / m_settings.successTranslation, res.finalRotation / rotThr)) {
       res.finalTranslation = et;
@@ -277,7 +356,7 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
       res.goal = static_cast<unsigned int>(g);
     }
   }
-  const vpHomogeneousMatrix &cdMo = goals[res.goal];
+  const vpHomogeneousMatrix cdMo = continuous ? obs.nearestDesiredPose(cMo) : goals[res.goal];
   res.curveTranslation = curveT[res.goal];
   res.curveRotation = curveR[res.goal];
   if (scene.tagInView(cMo)) {
@@ -306,8 +385,12 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
         break;
     }
   }
+  if (sc.truth == vpMorphBenchObjectSet::TRUTH_PART && sc.objectImage != sc.templateImage)
+    vpMorphTagPoseEstimator::poseDifference(sc.cdMo * sc.overlapPlacement(), cMo, res.finalOverlapTranslation,
+                                            res.finalOverlapRotation);
   const bool fatal = failure == "diverged" || failure == "out-of-view" || failure == "feature-lost";
   res.success = accurate && !fatal;
+  res.falseConverged = res.converged && !accurate;
   if (res.success)
     res.failure = "none";
   else if (!failure.empty())
@@ -345,6 +428,14 @@ std::vector<vpMorphBenchResult> vpMorphBench::runAll(const std::vector<vpMorphBe
       vpMorphBenchResult r;
       try {
         r = run(scenarios[k / controllers.size()], controllers[k % controllers.size()]);
+      } catch (const vpException &e) {
+        // One scenario never stops the others: its runs fail with the bench's own error.
+        r = vpMorphBenchResult();
+        r.scenario = scenarios[k / controllers.size()];
+        r.controller = controllers[k % controllers.size()];
+        r.robot = vpMorphSimRobot::kindName(m_settings.robot);
+        r.failure = "bench-error";
+        r.setup = e.getStringMessage();
       } catch (...) {
         std::lock_guard<std::mutex> lock(mutex);
         if (!error)

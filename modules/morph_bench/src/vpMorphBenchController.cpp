@@ -72,10 +72,50 @@ public:
   {
     m_ctx = ctx;
     m_tag.reset(new vpMorphTagPoseEstimator(ctx.tagId, ctx.tagSize, ctx.oMt, ctx.cam));
+    m_settled = 0;
     reset();
   }
 
 protected:
+  /*!
+    The adapters' stop rule on their own error (Command::converged; vpServoMorph has its own, CONVERGED): the error
+    norm, as the RMS image displacement (px) of the points the feature stands for, within 3 times its own noise on
+    kConvergedPeriods successive measured periods: below that the error is the measurement's noise. Its noise comes
+    from sigma = 0.1 px per edge point (vpMorphBenchObservability's noise model) through the feature's fit:
+    - a fit of a similarity (4 parameters) to n outline points moves them by sigma sqrt(4 / n) RMS (outlineNoisePx());
+    - a tag corner, where two edges of L pixels fitted by least squares meet, by 2 sigma / sqrt(L) (cornerNoisePx()).
+  */
+  static constexpr double kEdgeNoisePx = 0.1;
+  static constexpr unsigned int kConvergedPeriods = 3;
+  static double outlineNoisePx(std::size_t points)
+  {
+    return kEdgeNoisePx * std::sqrt(4.0 / std::max<std::size_t>(points, 4));
+  }
+  static double cornerNoisePx(double edgePx) { return 2.0 * kEdgeNoisePx / std::sqrt(std::max(edgePx, 1.0)); }
+  //! Counts a period whose error norm is \e rmsPx against the noise \e noisePx; true once the rule holds.
+  bool settled(double rmsPx, double noisePx)
+  {
+    m_settled = std::isfinite(rmsPx) && rmsPx <= 3.0 * noisePx ? m_settled + 1 : 0;
+    return m_settled >= kConvergedPeriods;
+  }
+  //! Mean side (px) of the tag's taught corners: the length of the edges its corners are fitted on.
+  double taughtTagSidePx() const
+  {
+    const std::vector<vpImagePoint> &c = m_ctx.taughtTagCorners;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < c.size(); ++i)
+      sum += vpImagePoint::distance(c[i], c[(i + 1) % c.size()]);
+    return c.empty() ? 0.0 : sum / c.size();
+  }
+  //! RMS distance (px) of the contour's points to their centroid: what a rotation or scale error moves them by.
+  static double radiusPx(const vpMorphContour &c)
+  {
+    double cx = 0.0, cy = 0.0, r2 = 0.0;
+    c.centroid(cx, cy);
+    for (std::size_t k = 0; k < c.size(); ++k)
+      r2 += (c.x(k) - cx) * (c.x(k) - cx) + (c.y(k) - cy) * (c.y(k) - cy);
+    return c.size() ? std::sqrt(r2 / c.size()) : 0.0;
+  }
   virtual void reset() = 0;
   //! A stock vpServo set up as ViSP's examples do for a robot arm: eye-in-hand, L cVe eJe, constant gain.
   void setupStockTask(vpServo &task, vpServo::vpServoIteractionMatrixType L) const
@@ -132,6 +172,7 @@ protected:
 
   Context m_ctx;
   std::unique_ptr<vpMorphTagPoseEstimator> m_tag;
+  unsigned int m_settled = 0;
 };
 
 //! Recognition at the first frame, the target check and the re-recognition, shared by the two VISPMorph adapters.
@@ -256,8 +297,8 @@ protected:
 */
 class MorphController : public MorphBase
 {
-  //! The exploration turn (deg). One turn of 60 deg gave 36 of the 40 held-out calib starts on the free camera, 90 deg
-  //! 38: the object's long axis turns further in the image, and the estimate is surer.
+  //! The exploration turn (deg): a quarter turn takes the object's long axis from one image axis to the other, so
+  //! its views show a tilt of the camera on the hand about any in-plane axis.
   static constexpr double kExplorationDeg = 90.0;
 
 public:
@@ -269,7 +310,7 @@ public:
     Command cmd;
     if (!observe(I, c, cmd)) {
       if (cmd.measured || !m_targetSet)
-        return cmd; // a stop, or nothing seen before the first recognition
+        return cmd;                  // a stop, or nothing seen before the first recognition
       Command hold = missingFrame(); // nothing seen: vpServoMorph holds (and stops after too long)
       hold.measureMs = cmd.measureMs;
       return hold;
@@ -326,20 +367,20 @@ private:
     case vpServoMorph::REPLANNED:
       cmd.replanned = true;
       break;
-    case vpServoMorph::LOST_TOO_LONG:
-    case vpServoMorph::TOO_MANY_REPLANS:
-    case vpServoMorph::TARGET_MISMATCH:
-    case vpServoMorph::DEFORMATION_UNRESOLVED:
-    case vpServoMorph::DEGENERATE_CONTOUR:
-    case vpServoMorph::UNRELIABLE_CORRESPONDENCE: {
+    case vpServoMorph::NOT_STARTED:
+    case vpServoMorph::MOVING:
+    case vpServoMorph::SUBGOAL_REACHED:
+    case vpServoMorph::CONVERGED:
+      break;
+    default: {
+      // Every other status is a stop with zero velocity (a fault, or "not sure"): a failure with its reason,
+      // never a convergence.
       cmd.stop = true;
       std::string r = vpServoMorph::statusName(s);
       std::replace(r.begin(), r.end(), ' ', '-');
       cmd.reason = r;
       break;
     }
-    default:
-      break;
     }
     return cmd;
   }
@@ -417,6 +458,13 @@ public:
       if (fitJumped(m_s.lastFit()))
         return stopCommand("feature-jump");
       cmd.v = vpVelocityTwistMatrix(m_ctx.eMc) * vc;
+      // Stop rule: s - s* = (centroid, angle, log scale) as the outline's RMS displacement in pixels.
+      const vpColVector e = m_task->getError();
+      const double r = radiusPx(c);
+      cmd.converged = settled(std::sqrt(e[0] * e[0] * m_ctx.cam.get_px() * m_ctx.cam.get_px() +
+                                        e[1] * e[1] * m_ctx.cam.get_py() * m_ctx.cam.get_py() +
+                                        r * r * (e[2] * e[2] + e[3] * e[3])),
+                              outlineNoisePx(c.outline().size()));
     } catch (const vpException &e) {
       return stopCommand("feature-error");
     }
@@ -489,7 +537,14 @@ public:
       P.track(tag.cMo);
       m_p[i].set_Z(P.get_Z());
     }
-    return stockLaw(*m_task, eJe, msSince(t0));
+    Command cmd = stockLaw(*m_task, eJe, msSince(t0));
+    // Stop rule: the corners' RMS displacement (px) to their taught places.
+    const vpColVector e = m_task->getError();
+    double sum = 0.0;
+    for (unsigned int i = 0; i < 4; ++i)
+      sum += std::pow(e[2 * i] * m_ctx.cam.get_px(), 2) + std::pow(e[2 * i + 1] * m_ctx.cam.get_py(), 2);
+    cmd.converged = !cmd.stop && settled(std::sqrt(sum / 4), cornerNoisePx(taughtTagSidePx()));
+    return cmd;
   }
 
 private:
@@ -529,7 +584,18 @@ public:
     const vpHomogeneousMatrix cdMc = m_ctx.taughtTagPose * tag.cMo.inverse(); // both measured by the detector
     m_t.buildFrom(cdMc);
     m_tu.buildFrom(cdMc);
-    return stockLaw(*m_task, eJe, msSince(t0));
+    Command cmd = stockLaw(*m_task, eJe, msSince(t0));
+    // Stop rule: the pose error as the tag corners' RMS displacement (px) between the current and the taught pose.
+    double sum = 0.0;
+    for (const vpPoint &corner : m_ctx.tagCorners3D) {
+      vpPoint a = corner, b = corner;
+      a.track(tag.cMo);
+      b.track(m_ctx.taughtTagPose);
+      sum += std::pow((a.get_x() - b.get_x()) * m_ctx.cam.get_px(), 2) +
+             std::pow((a.get_y() - b.get_y()) * m_ctx.cam.get_py(), 2);
+    }
+    cmd.converged = !cmd.stop && settled(std::sqrt(sum / m_ctx.tagCorners3D.size()), cornerNoisePx(taughtTagSidePx()));
+    return cmd;
   }
 
 private:
@@ -598,6 +664,14 @@ public:
         cmd.frame = vpRobot::JOINT_STATE;
       }
       cmd.controlMs = msSince(t1);
+      // Stop rule on the planar components (the c-invariants have no image displacement of their own): xn, yn are
+      // the centroid times the depth, an the depth, alpha the orientation.
+      const vpColVector e = m_task->getError();
+      const double Zd = m_ctx.cdMo[2][3], r = radiusPx(c), ealpha = e[e.size() - 1];
+      cmd.converged =
+          settled(std::sqrt(std::pow(e[0] / Zd * m_ctx.cam.get_px(), 2) + std::pow(e[1] / Zd * m_ctx.cam.get_py(), 2) +
+                            r * r * (std::pow(e[2] / Zd, 2) + ealpha * ealpha)),
+                  outlineNoisePx(c.outline().size()));
     } catch (const vpException &) {
       return stopCommand("feature-error");
     }

@@ -24,69 +24,33 @@
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 #include <visp3/morph_vs/vpServoMorph.h>
 
+#include "testMorphBenchFixture.h"
+
 namespace
 {
 const double Zd = 0.5;
 
-// The bench with the default settings on \e robot, built once per test process: its database calibration takes a
-// second, and a test case may run several starts (runs do not depend on one another).
-const vpMorphBench &sharedBench(vpMorphSimRobot::Kind robot)
+// A pinned development start (fixture::start()) servoed by `morph` on \e robot, its result printed.
+vpMorphBenchResult run(const std::string &key, vpMorphSimRobot::Kind robot = vpMorphSimRobot::FREE_CAMERA)
 {
-  static std::map<vpMorphSimRobot::Kind, std::unique_ptr<vpMorphBench>> benches;
-  std::unique_ptr<vpMorphBench> &b = benches[robot];
-  if (!b) {
-    vpMorphBench::Settings st;
-    st.robot = robot;
-    b.reset(new vpMorphBench(VISPMORPH_DATA_DIR, st));
-  }
-  return *b;
-}
-
-// Start \e index of \e set (\e count starts of \e seed) servoed by `morph` on \e robot, its object checked, its
-// result printed.
-vpMorphBenchResult benchRun(const std::string &set, std::size_t count, unsigned int seed, std::size_t index,
-                            const std::string &object, vpMorphSimRobot::Kind robot)
-{
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate(set, count, seed, VISPMORPH_DATA_DIR)[index];
-  REQUIRE(sc.object == object);
-  const vpMorphBenchResult r = sharedBench(robot).run(sc, "morph");
-  std::printf("[%s] %s, seed %u start %zu on the %s: %s, final error %.3f mm %.3f deg, %u re-plans\n", set.c_str(),
-              object.c_str(), seed, index, vpMorphSimRobot::kindName(robot).c_str(),
-              r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation, r.finalRotation * 180 / M_PI,
-              r.replans);
+  const vpMorphBenchResult r = fixture::bench(robot).run(fixture::start(key), "morph");
+  std::printf("[%s] on the %s: %s, final error %.3f mm %.3f deg, %u re-plans\n", key.c_str(),
+              vpMorphSimRobot::kindName(robot).c_str(), r.success ? "success" : r.failure.c_str(),
+              1000 * r.finalTranslation, r.finalRotation * 180 / M_PI, r.replans);
   return r;
 }
-// The development starts: seed 1, 10 per set.
-vpMorphBenchResult benchRun(const std::string &set, std::size_t index, const std::string &object,
-                            vpMorphSimRobot::Kind robot)
-{
-  return benchRun(set, 10, 1, index, object, robot);
-}
-// The held-out starts: 20 per set, on the free camera.
-vpMorphBenchResult heldOutRun(const std::string &set, unsigned int seed, std::size_t index, const std::string &object)
-{
-  return benchRun(set, 20, seed, index, object, vpMorphSimRobot::FREE_CAMERA);
-}
-vpMorphBenchResult viperRun(const std::string &set, std::size_t index, const std::string &object)
-{
-  return benchRun(set, index, object, vpMorphSimRobot::VIPER850);
-}
 
-// The recognition of a held-out start's first image (free camera), printed: whether accepted, as what, the distance,
+// The recognition of a pinned start's first image (free camera), printed: whether accepted, as what, the distance,
 // the support and the distance's own choice.
-vpMorphRecognition heldOutRecognition(const std::string &set, unsigned int seed, std::size_t index,
-                                      const std::string &object)
+vpMorphRecognition recognition(const std::string &key)
 {
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate(set, 20, seed, VISPMORPH_DATA_DIR)[index];
-  REQUIRE(sc.object == object);
-  const vpMorphDatabase &db = sharedBench(vpMorphSimRobot::FREE_CAMERA).database();
-  const vpMorphRecognition rec = sharedBench(vpMorphSimRobot::FREE_CAMERA).recognizeStart(sc);
-  std::printf("[outline] %s %s, seed %u start %zu: %s %s, distance %.2f (threshold %.2f), support %.2f, distance's "
-              "choice %s\n",
-              set.c_str(), object.c_str(), seed, index, rec.accepted ? "accepted" : "rejected",
-              db[rec.index].name().c_str(), rec.distance, rec.threshold, rec.support,
-              rec.secondIndex < db.size() && rec.reranked ? db[rec.secondIndex].name().c_str()
-                                                          : db[rec.index].name().c_str());
+  const vpMorphBenchScenario sc = fixture::start(key);
+  const vpMorphDatabase &db = fixture::bench().database();
+  const vpMorphRecognition rec = fixture::bench().recognizeStart(sc);
+  std::printf(
+      "[outline] %s: %s %s, distance %.2f (threshold %.2f), support %.2f, distance's choice %s\n", key.c_str(),
+      rec.accepted ? "accepted" : "rejected", db[rec.index].name().c_str(), rec.distance, rec.threshold, rec.support,
+      rec.secondIndex < db.size() && rec.reranked ? db[rec.secondIndex].name().c_str() : db[rec.index].name().c_str());
   return rec;
 }
 
@@ -155,18 +119,18 @@ TEST_CASE("vpServoMorph reads the tilt from whole extracted outlines only", "[be
 
 TEST_CASE("vpServoMorph stops following a tilt estimate that its own commands do not bring down", "[bench][tilt]")
 {
-  // Planar-hard set, seed 1, start 0 on the Viper850: the thin pliers, whose tilt about their long axis the outlines
+  // A planar-hard start on the Viper850: the thin pliers, whose tilt about their long axis the outlines
   // barely show. Near the goal the estimate settled at 0.7-1.5 deg beyond its dead zone and stayed there while the
   // camera, turned by it, went from 0.1 to 0.54 deg off (the success threshold is 0.5 deg).
-  CHECK(viperRun("planar-hard", 0, "pliers").success);
+  CHECK(run("planar-hard/pliers/157", vpMorphSimRobot::VIPER850).success);
 }
 
 TEST_CASE("A half turn on the Viper850 is planned the way its wrist can turn", "[bench][roll]")
 {
-  // Planar-hard set, seed 3, start 12 (held out): the pliers turned -179.1 deg, joint 6 at 179.1 deg. Its rotation
+  // A planar-hard start: the pliers turned -179.1 deg, joint 6 at 179.1 deg. Its rotation
   // was measured as a little over half a turn and planned +180.9 deg, which ends on the wrist's 360 deg limit
   // (joint-limit, 0.54 deg short). Told the wrist's room (vpServoMorph::setRollRange()), the servo turns -179.1 deg.
-  const vpMorphBenchResult r = benchRun("planar-hard", 20, 3, 12, "pliers", vpMorphSimRobot::VIPER850);
+  const vpMorphBenchResult r = run("planar-hard/pliers/-179", vpMorphSimRobot::VIPER850);
   CHECK(r.success);
   CHECK(r.jointLimitHits == 0);
 }
@@ -174,11 +138,11 @@ TEST_CASE("A half turn on the Viper850 is planned the way its wrist can turn", "
 TEST_CASE("A thin tool bitten by an occluder is not read as tilted by a homography that bends the cut onto it",
           "[bench][tilt]")
 {
-  // Occlusion set, seed 3, start 18 on the Viper850 (held out): a card bites the pliers. Near the goal, a homography
+  // An occluded start on the Viper850: a card bites the pliers. Near the goal, a homography
   // fitted from the polygons explained 99 % of the bitten outline at 0.49-0.50 px RMS with a 38-41 deg tilt, which was
   // commanded: the view jumped, three re-plans, 8.7 mm / 11.8 deg off at the budget. A view whose regions are not
   // alike now needs a quarter of a pixel (whole tilted views fit to 0.11 px at most), so no tilt is read there.
-  const vpMorphBenchResult r = benchRun("occlusion", 20, 3, 18, "pliers", vpMorphSimRobot::VIPER850);
+  const vpMorphBenchResult r = run("occlusion/pliers/-103", vpMorphSimRobot::VIPER850);
   CHECK(r.success);
   CHECK(r.replans == 0);
 }
@@ -186,22 +150,22 @@ TEST_CASE("A thin tool bitten by an occluder is not read as tilted by a homograp
 TEST_CASE("A view judged unlike its target only because it was tilted is judged again once the tilt is corrected",
           "[bench][tilt]")
 {
-  // 6dof set, seed 1, start 8 on the free camera: the key seen 22 deg tilted. Its region's moments are not the
+  // A 6dof start on the free camera: the key seen 22 deg tilted. Its region's moments are not the
   // target's, so the view was taken for a hidden or bent one for the whole run, and the tilt fits held to explain
   // 99 % of the outline: they explained 99.0-99.6 % on the way, then near the goal one fell short and the
   // correction stopped with the camera 2.0 deg off. The outlines' homography explained the whole outline
   // all along, and the regions compare alike again once the tilt is down to a few degrees: then 0.26 deg.
-  CHECK(benchRun("6dof", 8, "key", vpMorphSimRobot::FREE_CAMERA).success);
+  CHECK(run("6dof/key/-38").success);
 }
 
 TEST_CASE("A thin object's tilt estimates are averaged over the final approach", "[bench][tilt]")
 {
-  // Planar-hard set, seed 1, starts 0 and 6: the pliers, turned 157 and 175 deg, never tilted. Their tilt about
+  // Two planar-hard starts: the pliers, turned 157 and 175 deg, never tilted. Their tilt about
   // their long axis barely changes their outline, and its estimate jumped by up to 1.4 deg from one view to the next:
   // each jump beyond the dead zone was commanded, and the camera ended 0.44 and 0.32 deg off (0.5 deg fails). With
   // the recent views' estimates averaged and only what both show commanded: 0.20 and 0.21 deg.
-  for (std::size_t k : {0, 6}) {
-    const vpMorphBenchResult r = benchRun("planar-hard", k, "pliers", vpMorphSimRobot::FREE_CAMERA);
+  for (const std::string key : {"planar-hard/pliers/157", "planar-hard/pliers/175"}) {
+    const vpMorphBenchResult r = run(key);
     CHECK(r.success);
     CHECK(r.finalRotation < vpMath::rad(0.3));
   }
@@ -209,19 +173,13 @@ TEST_CASE("A thin object's tilt estimates are averaged over the final approach",
 
 TEST_CASE("A thin object's tilt is commanded only about the axes its outline shows it", "[bench][tilt]")
 {
-  // Planar set, seed 2 (held out), starts 6 and 18: the pliers, never tilted. The mean of their tilt estimates stayed
+  // Two planar starts: the pliers, never tilted. The mean of their tilt estimates stayed
   // 0.5-0.8 deg off about their long axis for 40 periods (one period's deviation there 0.33 deg, about the short axis
   // 0.04 deg): near the goal the views barely change and their errors do not average out. Under one dead zone for
   // both axes, from the mean's deviation, that was commanded and the camera ended 0.54 and 0.52 deg off; with a dead
   // zone per axis from one period's deviation, 0.13 and 0.19 deg.
-  const std::string data = VISPMORPH_DATA_DIR;
-  const std::vector<vpMorphBenchScenario> scs = vpMorphBenchScenario::generate("planar", 20, 2, data);
-  const vpMorphBench &bench = sharedBench(vpMorphSimRobot::FREE_CAMERA);
-  for (std::size_t k : {6, 18}) {
-    REQUIRE(scs[k].object == "pliers");
-    const vpMorphBenchResult r = bench.run(scs[k], "morph");
-    std::printf("[tilt] pliers, planar seed 2 start %zu: %s, final error %.3f mm %.3f deg\n", k,
-                r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation, r.finalRotation * 180 / M_PI);
+  for (const std::string key : {"planar/pliers/-108", "planar/pliers/-56"}) {
+    const vpMorphBenchResult r = run(key);
     CHECK(r.success);
     CHECK(r.finalRotation < vpMath::rad(0.3));
   }
@@ -251,7 +209,7 @@ Exploration explore(const vpHomogeneousMatrix &eMcBelieved, const vpHomogeneousM
   const std::string data = VISPMORPH_DATA_DIR;
   const vpMorphPlanarScene scene(data + "/objects/screwdriver.png");
   const vpMorphPlanarScene view(data + "/objects/" + seen + ".png");
-  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose("screwdriver");
+  const vpHomogeneousMatrix cdMo = fixture::desiredPose("screwdriver");
   vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA);
   robot.setDesiredPose(cdMo);
   REQUIRE(robot.initialiseCameraRelativeToDesired(cdMc));
@@ -285,7 +243,7 @@ Exploration explore(const vpHomogeneousMatrix &eMcBelieved, const vpHomogeneousM
 TEST_CASE("The exploration turn reads the tilt of the camera on the hand and corrects eMc",
           "[bench][tilt][calibration]")
 {
-  // A screwdriver, thin: the final approach cannot read its tilt about its long axis (calib set, seed 2, start 10: a
+  // A screwdriver, thin: the final approach cannot read its tilt about its long axis (a development calib start: a
   // 13.5 deg turn with the mount 3.8 deg off tilted the camera by 0.81 deg, which it kept). Turned 90 deg and back,
   // its long axis turns in the image and every view reads the tilt about its short axis.
   vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA);
@@ -330,7 +288,7 @@ TEST_CASE("The exploration turn is skipped near the image border or a joint limi
   // of room, the turn needs pi / 2 (eJe the identity, eMc the identity: joint 5 is that turn).
   const std::string data = VISPMORPH_DATA_DIR;
   const vpMorphPlanarScene scene(data + "/objects/screwdriver.png");
-  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose("screwdriver");
+  const vpHomogeneousMatrix cdMo = fixture::desiredPose("screwdriver");
   const vpColVector q(6, 0.0);
   vpColVector qMin(6, -INFINITY), qMax(6, INFINITY);
   for (double room : {0.5, 2.0}) {
@@ -354,15 +312,12 @@ TEST_CASE("The exploration turn is skipped near the image border or a joint limi
 
 TEST_CASE("An occluded object's depth at the goal comes from its edge outline", "[bench][outline]")
 {
-  // Occlusion set, seed 1, start 5 (the wrench, 12 % of its outline under a card): the regions are not alike, so
-  // the scale comes from the outline fit; on the polygons it stopped 1.19 mm deep (the success threshold is 1 mm).
-  const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("occlusion", 10, 1, data)[5];
-  REQUIRE(sc.object == "wrench");
+  // An occluded start (the wrench, 12 % of its outline under a card): the regions are not alike, so the scale comes
+  // from the outline fit; on the polygons it stopped 1.19 mm deep (the success threshold is 1 mm).
+  const vpMorphBenchScenario sc = fixture::start("occlusion/wrench/-121");
   vpMorphBench::Settings st;
   st.maxIterations = 300;
-  const vpMorphBench bench(data, st);
-  const vpMorphBenchResult r = bench.run(sc, "morph");
+  const vpMorphBenchResult r = fixture::makeBench(st)->run(sc, "morph");
   std::printf("[outline] occluded wrench: final error %.3f mm %.3f deg\n", 1000 * r.finalTranslation,
               r.finalRotation * 180 / M_PI);
   CHECK(r.success);
@@ -371,20 +326,13 @@ TEST_CASE("An occluded object's depth at the goal comes from its edge outline", 
 
 TEST_CASE("A small occluder that leaves the regions alike is found by the outline", "[bench][outline]")
 {
-  // Held-out occlusion starts where a card bites a little off one end (its moments barely change, so the regions
-  // were found alike and the pose laid by areas and centroids): seed 2 start 5, a wrench's jaw, and seed 3 start 8,
-  // a key's tip. Laid off by the missing area, the view stuck out of its target and was taken for a bent one, scaled
-  // by its outline's length, which the cut changed: 14.6 and 17.2 mm deep. Laid by its outline, it lies inside its
-  // target: occluded. Seed 2 start 10, a screwdriver's tip: converged by the pixel thresholds with its scale 0.22 %
-  // off (1.18 mm), now held to 0.05 % by the bench's final scale threshold.
-  struct Start
-  {
-    unsigned int seed;
-    std::size_t index;
-    const char *object;
-  };
-  for (const Start &st : {Start{2, 5, "wrench"}, Start{3, 8, "key"}, Start{2, 10, "screwdriver"}}) {
-    const vpMorphBenchResult r = heldOutRun("occlusion", st.seed, st.index, st.object);
+  // Occluded starts where a card bites a little off one end (its moments barely change, so the regions were found
+  // alike and the pose laid by areas and centroids): a wrench's jaw and a key's tip. Laid off by the missing area, the
+  // view stuck out of its target and was taken for a bent one, scaled by its outline's length, which the cut changed:
+  // 14.6 and 17.2 mm deep. Laid by its outline, it lies inside its target: occluded. A screwdriver's tip: converged by
+  // the pixel thresholds with its scale 0.22 % off (1.18 mm), now held to 0.05 % by the bench's final scale threshold.
+  for (const std::string key : {"occlusion/wrench/-100", "occlusion/key/100", "occlusion/screwdriver/-176"}) {
+    const vpMorphBenchResult r = run(key);
     CHECK(r.success);
     CHECK(r.finalTranslation < 0.5e-3);
   }
@@ -392,33 +340,33 @@ TEST_CASE("A small occluder that leaves the regions alike is found by the outlin
 
 TEST_CASE("One occluded view measured wrong does not corrupt the online calibration", "[bench][outline]")
 {
-  // Held-out occlusion set, seed 2, start 0: a card over the pliers' handle. For one period the silhouette came out
+  // An occluded start: a card over the pliers' handle. For one period the silhouette came out
   // 11 % smaller and 12 px off; the image motions to and from that view (8 and 10 mm of camera motion against
   // 0.3 mm commanded) pulled the hand-eye estimator's translation scale from 0.96 to 0.009, after which the servo
   // barely translated and stopped 103 deg and 40 mm off the goal with a residual of 6 px it could no longer command.
-  CHECK(heldOutRun("occlusion", 2, 0, "pliers").success);
+  CHECK(run("occlusion/pliers/-171").success);
 }
 
 TEST_CASE("A tilted view does not pull the online calibration's translation scale to zero", "[bench][outline]")
 {
-  // Held-out 6dof set, seed 3, start 0: a pliers seen 21 deg tilted and turned 161 deg, the hand-eye estimate exact.
+  // A 6dof start: a pliers seen 21 deg tilted and turned 161 deg, the hand-eye estimate exact.
   // Read by the planar hand-eye model, its image motions were a camera moving tens of times further than commanded:
   // the translation scale went from 1 to 0.02 in 80 periods, every translation command shrank with it, and the camera
   // stopped 4.4 mm off after 419 iterations (7.9 mm after 586 on the Viper850). The scale is now kept within a factor
   // of 2 (vpMorphHandEyeEstimator::translationScale()): 230 iterations, 311 with the 81 of the hand-eye tilt
   // exploration's turn first.
-  const vpMorphBenchResult r = heldOutRun("6dof", 3, 0, "pliers");
+  const vpMorphBenchResult r = run("6dof/pliers/-161");
   CHECK(r.success);
   CHECK(r.iterations < 380);
 }
 
 TEST_CASE("A tool cut in two by an occluder is not taken for a jump at its target", "[bench][outline]")
 {
-  // Held-out occlusion set, seed 2, start 17: a card across the wrench's handle. At the first fit to the target, the
+  // An occluded start: a card across the wrench's handle. At the first fit to the target, the
   // outline fit started from the tracked correspondence fell into another basin (21 % off in scale, 20 px away),
   // which the servo took for a jump of the view: re-planned from sub-goal 0, the same again, three times, then
   // TOO_MANY_REPLANS. Refined from the last fit as well, it keeps the right basin.
-  const vpMorphBenchResult r = heldOutRun("occlusion", 2, 17, "wrench");
+  const vpMorphBenchResult r = run("occlusion/wrench/104");
   CHECK(r.replans == 0);
   CHECK(r.success);
 }
@@ -426,45 +374,44 @@ TEST_CASE("A tool cut in two by an occluder is not taken for a jump at its targe
 TEST_CASE("A background lifted past 255 on sharp edges biases the measured area, and vpServoMorph takes the band back",
           "[bench][outline]")
 {
-  // Held-out noise set, seed 3: starts 0 and 18 (pliers) ended 1.5 mm off, all along the optical axis. Their
+  // Two noise starts of the pliers ended 1.5 mm off, all along the optical axis. Their
   // illumination gain lifts the background to 275-278 grey levels, clipped at 255, on edges blurred by 0.12-0.33 px
   // only. At the goal, the silhouette's measured area is exact under the same noise and blur without the illumination
   // change, and off by about half a percent with it (the depth by a quarter: 1.5 mm): the clipped-edge model
   // (vpMorphContourExtractor) needs a blurred edge to find where the unclipped step's middle is. The extractor cannot
   // tell, so the bias is checked here; vpServoMorph measures the band as the offset of the target's edges that the
-  // current ones lie on and adds it back to the area (then 0.35 and 0.06 mm). Start 3 (hammer) ended 1.9 mm off too,
+  // current ones lie on and adds it back to the area (then 0.35 and 0.06 mm). A hammer's start ended 1.9 mm off too,
   // its background at 252 with a third of its pixels clipped by noise 5: taken for a clipped level, and read against
   // the median of a clipped noise (vpMorphContourExtractor's levels are now means near the median, and a level is
   // clipped when most of it is). It must now be exact, and the run succeed.
-  const std::string data = VISPMORPH_DATA_DIR;
-  const std::vector<vpMorphBenchScenario> scs = vpMorphBenchScenario::generate("noise", 20, 3, data);
-  for (std::size_t k : {std::size_t(0), std::size_t(18), std::size_t(3)}) {
-    vpMorphPlanarScene scene = scs[k].scene();
+  for (const std::string key : {"noise/pliers/124", "noise/pliers/-74", "noise/hammer/116"}) {
+    const vpMorphBenchScenario sc = fixture::start(key);
+    const bool hammer = sc.object == "hammer";
+    vpMorphPlanarScene scene = sc.scene();
     const vpMorphPlanarScene::Faults faults = scene.faults();
     scene.setFaults(vpMorphPlanarScene::Faults());
-    const double clean = silhouette(scene, scs[k].cdMo).regionArea();
+    const double clean = silhouette(scene, sc.cdMo).regionArea();
     vpMorphPlanarScene::Faults unlit = faults;
     unlit.gain = 1.0;
     unlit.offset = 0.0;
     scene.setFaults(unlit);
-    const double noisy = silhouette(scene, scs[k].cdMo).regionArea();
+    const double noisy = silhouette(scene, sc.cdMo).regionArea();
     scene.setFaults(faults);
-    const double lit = silhouette(scene, scs[k].cdMo).regionArea();
-    std::printf("[outline] noise seed 3 start %zu (%s, gain %.3f, offset %.1f): area %+.3f %% under noise and blur, "
+    const double lit = silhouette(scene, sc.cdMo).regionArea();
+    std::printf("[outline] %s (gain %.3f, offset %.1f): area %+.3f %% under noise and blur, "
                 "%+.3f %% with the illumination change\n",
-                k, scs[k].object.c_str(), faults.gain, faults.offset, 100.0 * (noisy / clean - 1.0),
-                100.0 * (lit / clean - 1.0));
+                key.c_str(), faults.gain, faults.offset, 100.0 * (noisy / clean - 1.0), 100.0 * (lit / clean - 1.0));
     CHECK(std::fabs(noisy / clean - 1.0) < 1e-3);
-    if (k == 3)
+    if (hammer)
       CHECK(std::fabs(lit / clean - 1.0) < 1e-3);
     else
       CHECK(lit / clean - 1.0 < -3e-3); // the bias the runs below must not take for depth
   }
-  const vpMorphBenchResult r = heldOutRun("noise", 3, 3, "hammer");
+  const vpMorphBenchResult r = run("noise/hammer/116");
   CHECK(r.success);
-  for (std::size_t k : {std::size_t(0), std::size_t(18)}) {
-    const vpMorphBenchResult p = heldOutRun("noise", 3, k, "pliers");
-    INFO("start " << k);
+  for (const std::string key : {"noise/pliers/124", "noise/pliers/-74"}) {
+    const vpMorphBenchResult p = run(key);
+    INFO(key);
     CHECK(p.success);
     CHECK(p.finalTranslation < 0.5e-3);
   }
@@ -473,10 +420,10 @@ TEST_CASE("A background lifted past 255 on sharp edges biases the measured area,
 TEST_CASE("A bent view nearer another template by the distance keeps the template that explains more of it",
           "[bench][deformed]")
 {
-  // Deformable set, seed 2 (held out), start 10: a bent screwdriver at its goal is 0.89 from its template and 0.70
+  // A deformable start: a bent screwdriver at its goal is 0.89 from its template and 0.70
   // from the pliers by D_morph, but shows 0.65 of its own outline and 0.40 of theirs. The target check took it for a
   // mismatch, the adapter re-recognised it as the pliers and servoed 17 cm away.
-  const vpMorphBenchResult r = heldOutRun("deformable", 2, 10, "screwdriver");
+  const vpMorphBenchResult r = run("deformable/screwdriver/124");
   CHECK(r.recognized == "screwdriver");
   CHECK(r.rerecognitions == 0);
   CHECK(r.success);
@@ -485,17 +432,15 @@ TEST_CASE("A bent view nearer another template by the distance keeps the templat
 TEST_CASE("An occluded wedge that its distance rejects is recognised by the share of its outline it shows",
           "[bench][outline]")
 {
-  // Occlusion set, seed 1, start 7: a card bites a notch into the wedge's long side (14 % of its outline). D_morph
+  // An occluded start: a card bites a notch into the wedge's long side (14 % of its outline). D_morph
   // to its template is 1.70, beyond its threshold (1.15; the runner-up, the wrench, is at 1.95): the run stopped at
   // the first image ("recognition"). The view still shows 81 % of the wedge's outline where it should be.
-  const std::string data = VISPMORPH_DATA_DIR;
-  const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("occlusion", 10, 1, data)[7];
+  const vpMorphBenchScenario sc = fixture::start("occlusion/wedge/118");
   const vpMorphPlanarScene scene = sc.scene();
   const vpHomogeneousMatrix cMo = sc.cdMc.inverse() * sc.cdMo;
   vpImage<unsigned char> I;
   scene.render(cMo, I);
-  const vpMorphBench &bench = sharedBench(vpMorphSimRobot::FREE_CAMERA);
-  const vpMorphDatabase &db = bench.database();
+  const vpMorphDatabase &db = fixture::bench().database();
   const vpMorphRecognition rec = db.recognize(vpMorphTagPoseEstimator::silhouette(I, scene.projectedTagCorners(cMo)));
   std::printf("[outline] occluded wedge: distance %.2f (threshold %.2f), support %.2f\n", rec.distance, rec.threshold,
               rec.support);
@@ -503,7 +448,7 @@ TEST_CASE("An occluded wedge that its distance rejects is recognised by the shar
   CHECK(rec.distance > rec.threshold);
   CHECK(rec.support >= db.minimumSupport());
   CHECK(rec.accepted);
-  const vpMorphBenchResult r = benchRun("occlusion", 7, "wedge", vpMorphSimRobot::FREE_CAMERA);
+  const vpMorphBenchResult r = run("occlusion/wedge/118");
   CHECK(r.recognized == "wedge");
   CHECK(r.success);
 }
@@ -511,17 +456,17 @@ TEST_CASE("An occluded wedge that its distance rejects is recognised by the shar
 TEST_CASE("An occluded wedge nearer another tool by the distance, both rejected, is re-ranked by its support",
           "[bench][outline]")
 {
-  // Held-out occlusion set, seed 2, start 1: a card over the wedge's thin end. D_morph puts the screwdriver nearest
+  // An occluded start: a card over the wedge's thin end. D_morph puts the screwdriver nearest
   // (2.05, beyond its threshold 1.23; the wedge at 2.35), so the view was rejected at the first image although it
   // shows 0.90 of the wedge's outline and 0.38 of the screwdriver's.
-  const vpMorphDatabase &db = sharedBench(vpMorphSimRobot::FREE_CAMERA).database();
-  const vpMorphRecognition rec = heldOutRecognition("occlusion", 2, 1, "wedge");
+  const vpMorphDatabase &db = fixture::bench().database();
+  const vpMorphRecognition rec = recognition("occlusion/wedge/-53");
   CHECK(db[rec.index].name() == "wedge");
   CHECK(rec.accepted);
   CHECK(rec.reranked);
   CHECK(db[rec.secondIndex].name() == "screwdriver");
   CHECK(rec.distance > rec.threshold);
-  const vpMorphBenchResult r = heldOutRun("occlusion", 2, 1, "wedge");
+  const vpMorphBenchResult r = run("occlusion/wedge/-53");
   CHECK(r.recognized == "wedge");
   CHECK(r.success);
 }
@@ -529,33 +474,32 @@ TEST_CASE("An occluded wedge nearer another tool by the distance, both rejected,
 TEST_CASE("An occluded wedge whose card edge runs along its top is aligned by its template fitted onto it",
           "[bench][outline]")
 {
-  // Held-out occlusion set, seed 3, start 13: a card over the wedge's middle, its edge a few pixels under the wedge's
+  // An occluded start: a card over the wedge's middle, its edge a few pixels under the wedge's
   // top, leaves a sliver joining the two ends. Fitted onto the template, the view's outline along the card's edge is
   // pulled onto the wedge's top and drags the fit (0.32 of the outline shown, rejected at the first image); the
   // template fitted onto the view weighs its hidden stretch out and shows 0.83 of it.
-  const vpMorphDatabase &db = sharedBench(vpMorphSimRobot::FREE_CAMERA).database();
-  const vpMorphRecognition rec = heldOutRecognition("occlusion", 3, 13, "wedge");
+  const vpMorphDatabase &db = fixture::bench().database();
+  const vpMorphRecognition rec = recognition("occlusion/wedge/156");
   CHECK(db[rec.index].name() == "wedge");
   CHECK(rec.distance > rec.threshold);
   CHECK(rec.support >= db.minimumSupport());
   CHECK(rec.accepted);
-  const vpMorphBenchResult r = heldOutRun("occlusion", 3, 13, "wedge");
+  const vpMorphBenchResult r = run("occlusion/wedge/156");
   CHECK(r.recognized == "wedge");
   CHECK(r.success);
 }
 
 TEST_CASE("Occluded wedges matched end for end are planned the way the outline they show lies", "[bench][outline]")
 {
-  // Held-out occlusion set, seed 3, starts 13 and 19: with a card over the wedge, nearly symmetric end for end, the
+  // Two occluded starts: with a card over the wedge, nearly symmetric end for end, the
   // least work matched the view half a turn round (planned 156 and 186 deg off the start's rotation), and the regions,
   // the card's bite in one, did not tell (neither placement won on them). The servo turned the wrong way, then back: on
   // the Viper850 the first ended 0.69 deg off, the second at the wrist's joint limit. Half a turn round, the wedge's
   // outline lies on the view's (0.83-0.86 of it, against 0.23-0.24).
-  const vpMorphDatabase &db = sharedBench(vpMorphSimRobot::FREE_CAMERA).database();
+  const vpMorphDatabase &db = fixture::bench().database();
   const vpMorphContour &wedge = db[db.find("wedge")].contour();
-  for (std::size_t k : {std::size_t(13), std::size_t(19)}) {
-    const vpMorphBenchScenario sc = vpMorphBenchScenario::generate("occlusion", 20, 3, VISPMORPH_DATA_DIR)[k];
-    REQUIRE(sc.object == "wedge");
+  for (const std::string key : {"occlusion/wedge/156", "occlusion/wedge/-88"}) {
+    const vpMorphBenchScenario sc = fixture::start(key);
     const vpHomogeneousMatrix cMo = sc.cdMc.inverse() * sc.cdMo;
     vpImage<unsigned char> I;
     const vpMorphPlanarScene scene = sc.scene();
@@ -569,35 +513,31 @@ TEST_CASE("Occluded wedges matched end for end are planned the way the outline t
       const double theta = vpMorphRigidTransform::fitLeastSquares(view, wedge, c, true).theta();
       return std::fabs(vpMath::deg(std::remainder(theta - vpMath::rad(sc.startRotationDeg), 2.0 * M_PI)));
     };
-    INFO("start " << k << ": by the work " << offStart(byWork) << " deg off, planned " << offStart(planned)
-                  << " deg off, won by " << gain);
+    INFO(key << ": by the work " << offStart(byWork) << " deg off, planned " << offStart(planned) << " deg off, won by "
+             << gain);
     CHECK(offStart(byWork) > 135.0);
     CHECK(offStart(planned) < 45.0);
     CHECK(gain > 0.1);
-    const vpMorphBenchResult r = benchRun("occlusion", 20, 3, k, "wedge", vpMorphSimRobot::VIPER850);
+    const vpMorphBenchResult r = run(key, vpMorphSimRobot::VIPER850);
     CHECK(r.success);
   }
 }
 
 TEST_CASE("An occluded view is planned on the outline it shows", "[bench][outline]")
 {
-  // Held-out occlusion set, seed 2: start 0, a card over the pliers' jaws; start 3, over the hammer's head. Planned
+  // Occluded starts: a card over the pliers' jaws, and over the hammer's head. Planned
   // on the least squares over the corresponded vertices, whose scale carries the hidden part (the pliers 20 % large),
   // the rigid frames drove the camera towards the object and the deformation frames back: paths 5.2 and 7.4 times
-  // the straight line. Start 15 (a hammer): with the outline's plan, a correspondence that drifted near the goal was
+  // the straight line. Another hammer: with the outline's plan, a correspondence that drifted near the goal was
   // fitted to a point, which lay inside the goal and won over the fit from the last period; re-planned from there,
   // the camera went 40 cm away and back (path 21.6 times the straight line).
-  // Seed 3 start 19, a wedge: planned on its outline, its deformation frames grew the card's bite into the hidden
+  // A wedge: planned on its outline, its deformation frames grew the card's bite into the hidden
   // stretch, and the view fitted to them was 17 % small, then 10 % large: the camera went 10 cm off the way and back
   // (path 19 times its 12 mm straight line). They are left out of an occluded view's plan.
-  const std::pair<unsigned int, std::size_t> starts[] = {{2, 0}, {2, 3}, {2, 15}, {3, 19}};
-  for (const auto &st : starts) {
-    const std::size_t k = st.second;
-    const vpMorphBenchResult r = heldOutRun("occlusion", st.first, k,
-                                            st.first == 3 ? "wedge"
-                                            : k == 0      ? "pliers"
-                                                          : "hammer");
-    INFO("seed " << st.first << " start " << k << ": path ratio " << r.pathRatio());
+  for (const std::string key :
+       {"occlusion/pliers/-171", "occlusion/hammer/53", "occlusion/hammer/-129", "occlusion/wedge/-88"}) {
+    const vpMorphBenchResult r = run(key);
+    INFO(key << ": path ratio " << r.pathRatio());
     CHECK(r.success);
     CHECK(r.pathRatio() < 2.0);
   }
@@ -605,15 +545,14 @@ TEST_CASE("An occluded view is planned on the outline it shows", "[bench][outlin
 
 TEST_CASE("An outline joined across an occluder's cut is laid on the goal by its measured edges", "[bench][outline]")
 {
-  // Occlusion set, seed 1: start 4, a card over the screwdriver's ferrule, cuts the shaft from the handle; start 3,
-  // a card over the hammer's neck, cuts the handle from the head. The silhouette joins the pieces back (no measured
+  // Occluded starts: a card over the screwdriver's ferrule cuts the shaft from the handle; a card over the hammer's
+  // neck cuts the handle from the head. The silhouette joins the pieces back (no measured
   // region). Their polygon's area and centroid carry the bridge: judged "alike" by the polygon areas, the
   // screwdriver settled 8.2 mm off, and on the polygons alone 2.2 mm deep. Their edges, measured with the levels
   // of the bridge's pixels, were 0.6 px out all round (the hammer: 3.3 mm deep).
   const std::string data = VISPMORPH_DATA_DIR;
-  const std::vector<vpMorphBenchScenario> set = vpMorphBenchScenario::generate("occlusion", 10, 1, data);
-  for (std::size_t k : {3, 4}) {
-    const vpMorphBenchScenario &sc = set[k];
+  for (const std::string key : {"occlusion/hammer/-178", "occlusion/screwdriver/49"}) {
+    const vpMorphBenchScenario sc = fixture::start(key);
     const vpMorphPlanarScene scene = sc.scene();
     const vpMorphContour target = silhouette(vpMorphPlanarScene(data + "/objects/" + sc.object + ".png"), sc.cdMo);
     vpImage<unsigned char> I;
@@ -640,7 +579,7 @@ TEST_CASE("An outline joined across an occluder's cut is laid on the goal by its
 
   vpMorphBench::Settings st;
   st.maxIterations = 300;
-  const vpMorphBenchResult r = vpMorphBench(data, st).run(set[4], "morph");
+  const vpMorphBenchResult r = fixture::makeBench(st)->run(fixture::start("occlusion/screwdriver/49"), "morph");
   std::printf("[outline] joined screwdriver: final error %.3f mm %.3f deg\n", 1000 * r.finalTranslation,
               r.finalRotation * 180 / M_PI);
   CHECK(r.success);
@@ -656,7 +595,7 @@ TEST_CASE("vpServoMorph lays a deformed view on its template by the largest over
   // matched half a turn round: the correspondence must follow its region (vpMorphMatcher::matchOnRegions).
   const std::string data = VISPMORPH_DATA_DIR;
   for (const std::string name : {"screwdriver", "hammer", "key", "wrench", "wedge"}) {
-    const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose(name);
+    const vpHomogeneousMatrix cdMo = fixture::desiredPose(name);
     const vpMorphPlanarScene taught(data + "/objects/" + name + ".png");
     vpMorphPlanarScene bent(data + "/objects/" + name + "-deformed.png");
     bent.setReferenceImage(data + "/objects/" + name + ".png", vpMorphPlanarScene::BEST_OVERLAP);
@@ -688,7 +627,7 @@ TEST_CASE("vpServoMorph lays a deformed view on its template by the largest over
     CHECK(vpMath::deg(turned.history().back().rotationResidual) == Approx(3.0).margin(0.25));
   }
   // The template itself is not deformed: the fits are the outline's and area's as before.
-  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose("wrench");
+  const vpHomogeneousMatrix cdMo = fixture::desiredPose("wrench");
   const vpMorphPlanarScene taught(data + "/objects/wrench.png");
   vpServoMorph servo;
   servo.setCameraParameters(taught.camera());
@@ -708,7 +647,7 @@ TEST_CASE("vpServoMorph takes a bent tool's depth from its undeformed part, seen
   // 0.1-0.2 px between two images. Mean scale residual before: 0.185 px (key), 0.335 px (wrench); now 0.05-0.06.
   const std::string data = VISPMORPH_DATA_DIR;
   for (const std::string name : {"key", "wrench"}) {
-    const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose(name);
+    const vpHomogeneousMatrix cdMo = fixture::desiredPose(name);
     const vpMorphPlanarScene taught(data + "/objects/" + name + ".png");
     vpMorphPlanarScene bent(data + "/objects/" + name + "-deformed.png");
     bent.setReferenceImage(data + "/objects/" + name + ".png", vpMorphPlanarScene::BEST_OVERLAP);
@@ -734,18 +673,18 @@ TEST_CASE("vpServoMorph takes a bent tool's depth from its undeformed part, seen
 
 TEST_CASE("A bent key servoed on the Viper850 ends at its undeformed part's depth", "[bench][deformed]")
 {
-  // Deformable set, seed 1, start 8 on the Viper850: the bent key ended 2.2 mm deep (its part's scale measured once,
+  // A deformable start on the Viper850: the bent key ended 2.2 mm deep (its part's scale measured once,
   // far from the goal, and carried by the outlines' unsteady lengths); followed every period, 0.19 mm.
-  CHECK(viperRun("deformable", 8, "key").success);
+  CHECK(run("deformable/key/29", vpMorphSimRobot::VIPER850).success);
 }
 
 TEST_CASE("A bent view's overlap placement is not carried off by one outline fit off by degrees", "[bench][deformed]")
 {
-  // Deformable set, seed 2 (held out), start 3 on the Viper850: the bent hammer's outline fit at its switch to the
+  // A deformable start on the Viper850: the bent hammer's outline fit at its switch to the
   // target was 10 deg off the next period's, so the overlap's warm start (its offset to that fit) put the next
   // placement 10 deg away, in another basin: taken for a jump, re-planned, then stopped as unreliable after 67
   // iterations. Started from the last placement instead when the fit turned by more than a period's step, it converges.
-  const vpMorphBenchResult r = benchRun("deformable", 20, 2, 3, "hammer", vpMorphSimRobot::VIPER850);
+  const vpMorphBenchResult r = run("deformable/hammer/-74", vpMorphSimRobot::VIPER850);
   CHECK(r.success);
   CHECK(r.replans == 0);
 }
@@ -753,12 +692,12 @@ TEST_CASE("A bent view's overlap placement is not carried off by one outline fit
 TEST_CASE("A sagging wedge's part is followed from where it was found when the edge fit changes basin",
           "[bench][deformed]")
 {
-  // Deformable set, seed 3 (held out), start 19 on the free camera: the edge fit of the sagging wedge has two basins,
+  // A deformable start on the free camera: the edge fit of the sagging wedge has two basins,
   // 1.6 % apart in scale, and the polygon's correspondence picked one or the other from one period to the next. The
   // part, followed from its offset to the edge fit, was lost at each change, and the fallback's scale kicked the
   // depth every few periods: 0.5-2 mm off for 500 periods, out of budget at 1.37 mm. Followed from where it was last
   // found, the run converges in about a hundred periods.
-  const vpMorphBenchResult r = heldOutRun("deformable", 3, 19, "wedge");
+  const vpMorphBenchResult r = run("deformable/wedge/69");
   CHECK(r.success);
   CHECK(r.iterations < 200);
   CHECK(r.replans == 0);
@@ -767,18 +706,13 @@ TEST_CASE("A sagging wedge's part is followed from where it was found when the e
 TEST_CASE("A wedge whose top sags is laid on its template by the part of its outline that lies on it",
           "[bench][deformed]")
 {
-  // Deformable set, seed 2 (held out), the bent wedge's four starts: its bend only takes area away, so it is not
+  // Four deformable starts of the bent wedge: its bend only takes area away, so it is not
   // found deformed (nothing of it lies outside the template) and the edge fit, pulled by the sagging top, put it
   // 1.6 % off in scale: the four runs wandered 5-7 mm off until the budget ran out. Laid by the largest part of its
   // outline that lies on the template's (its base and ends), they converge.
-  const std::string data = VISPMORPH_DATA_DIR;
-  const std::vector<vpMorphBenchScenario> scs = vpMorphBenchScenario::generate("deformable", 20, 2, data);
-  const vpMorphBench &bench = sharedBench(vpMorphSimRobot::FREE_CAMERA);
-  for (std::size_t k : {1, 7, 13, 19}) {
-    REQUIRE(scs[k].object == "wedge");
-    const vpMorphBenchResult r = bench.run(scs[k], "morph");
-    std::printf("[deformed] sagging wedge, seed 2 start %zu: %s, final error %.3f mm %.3f deg\n", k,
-                r.success ? "success" : r.failure.c_str(), 1000 * r.finalTranslation, r.finalRotation * 180 / M_PI);
+  for (const std::string key :
+       {"deformable/wedge/102", "deformable/wedge/-122", "deformable/wedge/-37", "deformable/wedge/-166"}) {
+    const vpMorphBenchResult r = run(key);
     CHECK(r.success);
   }
 }
@@ -790,7 +724,7 @@ TEST_CASE("vpServoMorph stops on opened pliers that no rigid placement lays on t
   // view and more), where a bent tool leaves at most 11 % out. Its outline is 1.6 times the template's, so the depth
   // taken from it put the camera 286 mm off, reported converged. Now a stop, whatever the sub-goals did before.
   const std::string data = VISPMORPH_DATA_DIR;
-  const vpHomogeneousMatrix cdMo = vpMorphBenchScenario::desiredPose("pliers");
+  const vpHomogeneousMatrix cdMo = fixture::desiredPose("pliers");
   const vpMorphPlanarScene taught(data + "/objects/pliers.png");
   vpMorphPlanarScene opened(data + "/objects/pliers-deformed.png");
   opened.setReferenceImage(data + "/objects/pliers.png", vpMorphPlanarScene::BEST_OVERLAP);

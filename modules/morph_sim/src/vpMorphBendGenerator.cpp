@@ -10,6 +10,8 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/morph/vpMorphException.h>
 
+#include "vpMorphCoverage.h"
+
 namespace
 {
 const int K = 4;                               // supersampling of the outline's mapping
@@ -18,14 +20,6 @@ const double kMinAngleDeg = 10.0, kMaxAngleDeg = 25.0;
 
 void badImage(const std::string &msg) { throw vpMorphException(vpMorphException::badImageError, msg); }
 
-vpImage<unsigned char> fromCoverage(const cv::Mat1f &c)
-{
-  vpImage<unsigned char> I(static_cast<unsigned int>(c.rows), static_cast<unsigned int>(c.cols));
-  for (int y = 0; y < c.rows; ++y)
-    for (int x = 0; x < c.cols; ++x)
-      I[y][x] = static_cast<unsigned char>(std::lround(255.0 * (1.0 - std::min(1.0f, std::max(0.0f, c(y, x))))));
-  return I;
-}
 } // namespace
 
 vpMorphBendGenerator::Bend vpMorphBendGenerator::generate(const vpImage<unsigned char> &object, unsigned int seed)
@@ -33,10 +27,7 @@ vpMorphBendGenerator::Bend vpMorphBendGenerator::generate(const vpImage<unsigned
   const int W = static_cast<int>(object.getWidth()), H = static_cast<int>(object.getHeight());
   if (W < 8 || H < 8)
     badImage("vpMorphBendGenerator: the image is empty");
-  cv::Mat1f coverage(H, W);
-  for (int y = 0; y < H; ++y)
-    for (int x = 0; x < W; ++x)
-      coverage(y, x) = 1.0f - object[y][x] / 255.0f;
+  const cv::Mat1f coverage = vpMorphCoverage::fromImage(object);
   cv::Mat1f up;
   cv::resize(coverage, up, cv::Size(W * K, H * K), 0, 0, cv::INTER_LINEAR);
   cv::Mat1b hi = up > 0.5f;
@@ -126,10 +117,10 @@ vpMorphBendGenerator::Bend vpMorphBendGenerator::generate(const vpImage<unsigned
       if ((X - cx) * dx + (Y - cy) * dy < x0 - 2 * K)
         c(y, x) = coverage(y, x);
     }
-  out.image = fromCoverage(c);
+  out.image = vpMorphCoverage::toImage(c);
   partHi.convertTo(f, CV_32F);
   cv::resize(f, c, cv::Size(W, H), 0, 0, cv::INTER_AREA);
-  out.undeformedMask = fromCoverage(c);
+  out.undeformedMask = vpMorphCoverage::toImage(c);
   out.undeformedShare = static_cast<double>(part) / all;
   out.angleDeg = vpMath::deg(theta);
   return out;

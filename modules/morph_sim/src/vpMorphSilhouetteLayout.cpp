@@ -10,6 +10,8 @@
 #include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphException.h>
 
+#include "vpMorphCoverage.h"
+
 namespace
 {
 const int kSupersampling = 4; // the shape is cut at 4 x the output resolution, then averaged down
@@ -54,25 +56,6 @@ cv::Mat1b objectMask(const vpImage<unsigned char> &I, cv::Rect &box)
   return out / 255;
 }
 
-//! Grey image (black object on white) of a coverage map in [0, 1].
-vpImage<unsigned char> fromCoverage(const cv::Mat1f &coverage)
-{
-  vpImage<unsigned char> I(static_cast<unsigned int>(coverage.rows), static_cast<unsigned int>(coverage.cols));
-  for (int y = 0; y < coverage.rows; ++y)
-    for (int x = 0; x < coverage.cols; ++x)
-      I[y][x] = static_cast<unsigned char>(std::lround(255.0 * (1.0 - std::min(1.0f, std::max(0.0f, coverage(y, x))))));
-  return I;
-}
-
-//! Coverage map in [0, 1] of a black-on-white image.
-cv::Mat1f toCoverage(const vpImage<unsigned char> &I)
-{
-  cv::Mat1f c(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()));
-  for (int y = 0; y < c.rows; ++y)
-    for (int x = 0; x < c.cols; ++x)
-      c(y, x) = 1.0f - I[y][x] / 255.0f;
-  return c;
-}
 } // namespace
 
 vpMorphSilhouetteLayout::vpMorphSilhouetteLayout(const vpImage<unsigned char> &source, unsigned int objectPixels,
@@ -123,7 +106,7 @@ vpImage<unsigned char> vpMorphSilhouetteLayout::apply(const vpImage<unsigned cha
   cv::threshold(hi, cut, 0.5, 1.0, cv::THRESH_BINARY);
   cv::Mat1f coverage;
   cv::resize(cut, coverage, cv::Size(side, side), 0, 0, cv::INTER_AREA);
-  return fromCoverage(coverage);
+  return vpMorphCoverage::toImage(coverage);
 }
 
 vpImage<unsigned char> vpMorphSilhouetteLayout::roughened(const vpImage<unsigned char> &image, unsigned int lowPixels)
@@ -131,7 +114,7 @@ vpImage<unsigned char> vpMorphSilhouetteLayout::roughened(const vpImage<unsigned
   if (lowPixels < 4)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphSilhouetteLayout::roughened: the low resolution must be at least 4 pixels");
-  const cv::Mat1f coverage = toCoverage(image);
+  const cv::Mat1f coverage = vpMorphCoverage::fromImage(image);
   const cv::Mat1b inside = coverage > 0.5f;
   const cv::Rect box = inside.empty() ? cv::Rect() : cv::boundingRect(inside);
   if (static_cast<unsigned int>(std::max(box.width, box.height)) <= lowPixels)
@@ -141,7 +124,7 @@ vpImage<unsigned char> vpMorphSilhouetteLayout::roughened(const vpImage<unsigned
   cv::resize(coverage, low, cv::Size(), r, r, cv::INTER_AREA);
   cv::threshold(low, cut, 0.5, 1.0, cv::THRESH_BINARY);
   cv::resize(cut, back, coverage.size(), 0, 0, cv::INTER_NEAREST);
-  return fromCoverage(back);
+  return vpMorphCoverage::toImage(back);
 }
 
 vpImage<unsigned char> vpMorphSilhouetteLayout::read(const std::string &path)

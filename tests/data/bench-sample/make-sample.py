@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Writes the synthetic sample of vispmorph-bench output used by the ctest "app: vispmorph-bench-plots":
-runs.csv and curves.csv in the format of apps/vispmorph-bench-plots.py, into the folder given (default: this
+"""Writes the synthetic sample of vispmorph-bench output used by the ctests of the bench's Python tools:
+runs.csv, curves.csv and timings.csv in vispmorph-bench's format, into the folder given (default: this
 script's folder). The numbers are made up (a fixed seed), not measured: they only exercise the plots, with every
 set and controller, failures of every kind, empty path_ratio and final_tag_* fields, a controller absent from a
 set (pbvs on deformable), a set where every run of a controller failed (ibvs-current on planar-hard) and a run
@@ -18,13 +18,17 @@ FAILURES = ["out-of-view", "feature-lost", "joint-limit", "budget", "final-error
 RUN_HEADER = ("set,robot,controller,scenario,seed,object,start_rotation_deg,start_translation_mm,start_tilt_deg,"
               "start_depth_change,success,failure,iterations,converged_iteration,path_length_m,straight_line_m,"
               "path_ratio,final_t_mm,final_r_deg,final_tag_t_mm,final_tag_r_deg,recognized,recognition_correct,"
-              "measure_ms,control_ms")
+              "faults,holds,replans,rerecognitions,max_speed_mps,max_rotation_speed_degps,goal,setup,converged,"
+              "false_converged,truth,tag_size_mm,taught_tag_t_mm,taught_tag_r_deg,final_overlap_t_mm,"
+              "final_overlap_r_deg,symmetry,unobservable")
+TIMINGS_HEADER = "set,robot,controller,scenario,object,yardstick_ms,measure_ms,control_ms,max_control_ms,period_ms"
 
 
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
     rng = random.Random(4)
     runs, curves = [RUN_HEADER], ["set,robot,controller,scenario,iteration,t_mm,r_deg"]
+    timings = [TIMINGS_HEADER]
     for s in SETS:
         for c in CONTROLLERS:
             if s == "deformable" and c == "pbvs":
@@ -45,12 +49,23 @@ def main():
                 tag = ("%.3f" % (ft + rng.uniform(0, 0.3)), "%.3f" % (fr + rng.uniform(0, 0.05)))
                 if rng.random() < 0.15:
                     tag = ("", "")  # tag not detected
-                runs.append(",".join(str(v) for v in [
-                    s, "viper850" if s == "6dof" else "free", c, scenario, 1000 + k, "pliers", "%.2f" % rot,
+                robot = "viper850" if s == "6dof" else "free"
+                fields = [
+                    s, robot, c, scenario, 1000 + k, "pliers", "%.2f" % rot,
                     "%.1f" % trans, "%.1f" % (rng.uniform(0, 30) if s == "6dof" else 0.0),
                     "%.2f" % (rng.uniform(-0.4, 0.4) if s == "6dof" else 0.0), int(ok), failure, iters,
                     iters if ok else "", "%.4f" % path, "%.4f" % straight, ratio, "%.3f" % ft, "%.3f" % fr, tag[0],
-                    tag[1], 1, int(rng.random() < 0.95), "%.2f" % rng.uniform(1, 6), "%.3f" % rng.uniform(0.01, 0.5)]))
+                    tag[1], 1, int(rng.random() < 0.95)]
+                measure, control = "%.2f" % rng.uniform(1, 6), "%.3f" % rng.uniform(0.01, 0.5)
+                # A run that stopped as converged away from the goal is a false convergence.
+                false_converged = int(failure == "final-error")
+                fields += ["", 0, 0, 0, "", "", 0, "", int(ok or false_converged), false_converged, "rigid", 80, "",
+                           "", "", "", 1, ""]
+                runs.append(",".join(str(v) for v in fields))
+                period = float(measure) + float(control)
+                timings.append(",".join(str(v) for v in [
+                    s, robot, c, scenario, "pliers", 0.8, measure, control, control,
+                    " ".join("%.4g" % (period * f) for f in (0.9, 1.0, 1.1))]))
                 if s == "noise" and c == "moments":
                     continue  # a run without curve
                 t0, r0 = max(trans, 1.0), max(abs(rot), 1.0)
@@ -64,6 +79,8 @@ def main():
         f.write("\n".join(runs) + "\n")
     with open(os.path.join(out, "curves.csv"), "w") as f:
         f.write("\n".join(curves) + "\n")
+    with open(os.path.join(out, "timings.csv"), "w") as f:
+        f.write("\n".join(timings) + "\n")
 
 
 if __name__ == "__main__":

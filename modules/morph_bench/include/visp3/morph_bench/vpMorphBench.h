@@ -6,10 +6,15 @@
 #define VP_MORPH_BENCH_H
 
 #include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/morph_bench/vpMorphBenchObjectSet.h>
+#include <visp3/morph_bench/vpMorphBenchObservability.h>
 #include <visp3/morph_bench/vpMorphBenchResult.h>
 #include <visp3/morph_bench/vpMorphBenchScenario.h>
 #include <visp3/morph_sim/vpMorphSimRobot.h>
@@ -19,17 +24,22 @@
   \ingroup group_morph_bench
   \brief The benchmark loop: identical starts for every controller, the truth kept apart from what they see.
 
-  <b>Templates.</b> The taught view of each object is rendered at its desired pose (no fault), the tag masked
-  and the silhouette extracted, exactly as at run time; the database of the six templates is calibrated for
-  rejection (vpMorphDatabase::calibrate()). VISPMorph controllers recognise the object in their first image.
+  <b>Templates.</b> The taught view of each object is rendered at its desired pose
+  (vpMorphBenchScenario::desiredPose(), from the set seed) by the scenario's camera, the tag placed where it fits
+  and masked, the silhouette extracted, exactly as at run time; the database of all the objects' templates is
+  calibrated for rejection (vpMorphDatabase::calibrate()). One database per template variant (the objects', the
+  rough set's) and camera, taught on first use (prepare() does it ahead). VISPMorph controllers recognise the
+  object in their first image.
 
-  <b>One run</b> (run()): the robot places the object so that its reference configuration sees it at cdMo,
-  moves to the start cdMc (UNREACHABLE is a failure of every controller alike), then at each iteration: the
-  truth error is recorded, the scene is rendered from the true camera (with the scenario's faults, a new noise
-  realisation per frame), the controller computes a velocity from the image alone, and the robot executes it
-  for one sampling period. The run ends when the controller reports convergence or gives up, when the commanded
-  velocity stays below 1 mm/s and 0.1 deg/s for 10 iterations (with the default gain, errors of 0.4 mm and
-  0.04 deg: the success thresholds are 1 mm and 0.5 deg), on a failure, or at the iteration budget.
+  <b>One run</b> (run()): a scenario that could not be set up is a "setup" failure of every controller, with its
+  reason (vpMorphBenchResult::setup); so is a taught view whose tag the detector does not find. Otherwise the robot
+  places the object so that its reference configuration sees it at cdMo, moves to the start cdMc (UNREACHABLE is a
+  failure of every controller alike), then at each iteration: the truth error is recorded, the scene is rendered
+  from the true camera (with the scenario's faults, a new noise realisation per frame), the controller computes a
+  velocity from the image alone, and the robot executes it for one sampling period. The run ends when the
+  controller reports convergence (Command::converged) or gives up, when the commanded velocity stays below 1 mm/s
+  and 0.1 deg/s for 10 iterations (with the default gain, errors of 0.4 mm and 0.04 deg: the success thresholds are
+  1 mm and 0.5 deg), on a failure, or at the iteration budget (600 periods of 40 ms: 24 s).
 
   <b>Timed faults</b> (vpMorphBenchScenario::events, see vpMorphBenchEvent) are applied at the start of their
   iteration, before the truth is recorded and the image rendered: the scene's faults are switched (object hidden,
@@ -37,7 +47,7 @@
   (vpMorphBenchController::missingFrame()); a wrong template is handed to the controller at the start. Iterations
   without features count as holds (vpMorphBenchResult::holds), re-plans and re-recognitions are counted too.
 
-  Thread safety: run() is const and builds everything it changes, so runs can go on several threads.
+  Thread safety: run() is const; the databases are taught under a lock, so runs can go on several threads.
 */
 class vpMorphBench
 {
@@ -56,23 +66,41 @@ public:
   using Progress = std::function<void(std::size_t, std::size_t, const vpMorphBenchResult &)>;
 
   /*!
-    \param dataDir : the repository's data/ folder (data/objects/<name>.png and the deformed variants).
-    \throw vpMorphException for bad settings or missing images.
+    \param objects : the objects (their templates are taught from their images).
+    \param seed : the set seed of the scenarios (it fixes the desired poses, so the taught views).
+    \throw vpMorphException for bad settings or an empty object set.
   */
-  vpMorphBench(const std::string &dataDir, const Settings &settings);
+  vpMorphBench(const vpMorphBenchObjectSet &objects, unsigned int seed, const Settings &settings);
+  ~vpMorphBench();
 
   const Settings &settings() const { return m_settings; }
-  const vpMorphDatabase &database() const { return m_db; }
+  const vpMorphBenchObjectSet &objects() const { return m_objects; }
+  unsigned int seed() const { return m_seed; }
+  /*!
+    The calibrated database of the templates of \e variant ("" or "rough") taught with the camera of set \e set
+    (taught on first use).
+  */
+  const vpMorphDatabase &database(const std::string &variant = "", const std::string &set = "planar") const;
+  /*!
+    What the taught view of \e object (of \e variant, with the camera of \e set) lets a servo know of its pose
+    (vpMorphBenchObservability; the runs are scored modulo its symmetry and tallied apart when it is unobservable);
+    null when the object could not be taught.
+  */
+  const vpMorphBenchObservability *observability(const std::string &object, const std::string &variant = "",
+                                                 const std::string &set = "planar") const;
+  //! Teaches the databases \e scenarios need, ahead of the runs.
+  void prepare(const std::vector<vpMorphBenchScenario> &scenarios) const;
 
   /*!
     The recognition of a scenario's first view, as the controllers see it before they move: its scene rendered from
     the start pose (the free camera's), the tag found and masked, the silhouette extracted and recognised by
-    database(). \e shown, if not null, receives the silhouette (empty when there is none; then the recognition has no
-    template, index npos). A check of the recognition on many starts without servoing them.
+    its database. \e shown, if not null, receives the silhouette (empty when there is none; then the recognition
+    has no template, index npos). A check of the recognition on many starts without servoing them.
   */
   vpMorphRecognition recognizeStart(const vpMorphBenchScenario &scenario, vpMorphContour *shown = nullptr) const;
 
-  //! One run; never throws for a controller's failure (it is the result), only for bad arguments.
+  //! One run; never throws for a controller's failure or a scenario's set-up (it is the result), only for bad
+  //! arguments.
   vpMorphBenchResult run(const vpMorphBenchScenario &scenario, const std::string &controller) const;
   /*!
     Every controller on every scenario, on \e threads threads (0: all cores). Results are in the order
@@ -83,9 +111,14 @@ public:
                                          const Progress &progress = Progress()) const;
 
 private:
-  std::string m_dataDir;
+  struct Taught;
+  const Taught &taught(const std::string &variant, const std::string &set) const;
+
+  vpMorphBenchObjectSet m_objects;
+  unsigned int m_seed;
   Settings m_settings;
-  vpMorphDatabase m_db;
+  mutable std::mutex m_mutex;
+  mutable std::map<std::string, std::unique_ptr<Taught>> m_taught;
 };
 
 #endif

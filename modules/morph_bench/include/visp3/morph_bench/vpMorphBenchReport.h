@@ -5,6 +5,7 @@
 #ifndef VP_MORPH_BENCH_REPORT_H
 #define VP_MORPH_BENCH_REPORT_H
 
+#include <istream>
 #include <map>
 #include <string>
 #include <vector>
@@ -14,13 +15,20 @@
 /*!
   \class vpMorphBenchReport
   \ingroup group_morph_bench
-  \brief Collects results and summarises them the way the comparison is read.
+  \brief Collects results as runs.csv rows and summarises them the way the comparison is read.
 
-  CSV: runsHeader()/runsRow() (one row per run, written as runs finish so that an interrupted bench keeps what it
-  did) and curvesRows() (truth error per iteration). The summary groups by (set, robot, controller), runs with
-  timed faults by fault kind as well (set "faults/pose-jump", ...): success rate,
-  median settling iteration, median camera path and path ratio of the successful runs, median final errors
-  (truth and tag) of all runs, mean and worst compute times, and the failure reasons with their counts.
+  runs.csv holds one row per run and nothing that depends on the machine (the compute times are
+  vpMorphBenchTimings'): a sweep split into shards and merged (readRuns(), sortRows()) gives the same rows, the
+  same summaries and the same files as one run, to the byte. The summaries are computed from the rows as written
+  (add() formats the result, then reads the row back), so that a merge cannot round differently.
+
+  Groups: (set, robot, controller), the set named with the run's fault kinds ("faults/pose-jump") and apart for a
+  view with a rotational symmetry ("planar/symmetric", scored modulo it) or whose pose cannot be bounded at pixel
+  noise ("planar/unobservable"; vpMorphBenchObservability). Per group: the runs, the set-up failures (scenarios that
+  could not be set up: no run, left out of the rates), the successes and the false convergences with their 95 %
+  intervals (Wilson's; for a count of 0 the upper bound is 3 / n), the median settling iteration, camera path and
+  path ratio of the successful runs, the median final errors (truth, tag, largest overlap) of the runs that started,
+  and the failure reasons with their counts.
 */
 class vpMorphBenchReport
 {
@@ -28,21 +36,43 @@ public:
   struct Summary
   {
     std::string set, robot, controller;
-    unsigned int runs = 0, successes = 0;
-    double medianIterations = 0; //!< settling iteration of the successful runs (NaN if none)
-    double medianPathLength = 0; //!< m, successful runs
-    double medianPathRatio = 0;  //!< successful runs with a defined ratio (NaN if none)
+    unsigned int runs = 0;   //!< rows
+    unsigned int setups = 0; //!< rows that could not be set up (failure "setup"): out of the rates
+    unsigned int successes = 0;
+    unsigned int falseConverged = 0;
+    double successLow = 0, successHigh = 0; //!< 95 % interval of the success rate
+    double falseConvergedHigh = 0;          //!< upper end of the false-convergence rate's 95 % interval
+    double medianIterations = 0;            //!< settling iteration of the successful runs (NaN if none)
+    double medianPathLength = 0;            //!< m, successful runs
+    double medianPathRatio = 0;             //!< successful runs with a defined ratio (NaN if none)
     double medianFinalTranslation = 0, medianFinalRotation = 0;       //!< truth, runs that started (m, rad)
     double medianFinalTagTranslation = 0, medianFinalTagRotation = 0; //!< tag, runs that started where it was seen
-    //! Means over the runs that started (an unreachable start runs no iteration; NaN when none did), and the worst.
-    double meanMeasureMs = 0, meanControlMs = 0, maxControlMs = 0;
-    std::map<std::string, unsigned int> failures; //!< reason -> count (without "none")
-    unsigned int holds = 0, replans = 0, rerecognitions = 0; //!< sums over the runs (timed faults)
-    double successRate() const { return runs ? double(successes) / runs : 0.0; }
+    double medianFinalOverlapTranslation = 0, medianFinalOverlapRotation = 0; //!< largest overlap (part truth)
+    std::map<std::string, unsigned int> failures;                             //!< reason -> count (without "none")
+    unsigned int holds = 0, replans = 0, rerecognitions = 0;                  //!< sums over the runs (timed faults)
+    //! Runs that could be set up.
+    unsigned int attempted() const { return runs - setups; }
+    double successRate() const { return attempted() ? double(successes) / attempted() : 0.0; }
   };
 
+  vpMorphBenchReport();
+  ~vpMorphBenchReport();
+  vpMorphBenchReport(const vpMorphBenchReport &other);
+  vpMorphBenchReport &operator=(const vpMorphBenchReport &other);
+
+  //! Adds a run (its row).
   void add(const vpMorphBenchResult &r);
-  const std::vector<vpMorphBenchResult> &results() const { return m_results; }
+  /*!
+    Adds the rows of a runs.csv text (header first). \throw vpMorphException::ioError for another header or a row
+    that does not match it.
+  */
+  void readRuns(std::istream &in, const std::string &what = "runs.csv");
+  //! Puts the rows in the canonical order: set (setNames()), scenario index, robot, controller (names()).
+  void sortRows();
+  //! The rows, without the header.
+  const std::vector<std::string> &rows() const { return m_rows; }
+  //! True when two rows are of the same run (set, scenario, robot, controller): a merge of shards that overlap.
+  bool hasDuplicates() const;
   //! Summaries in the order: set, robot (first seen), controller (vpMorphBenchController::names() order).
   std::vector<Summary> summarize() const;
 
@@ -50,13 +80,25 @@ public:
   static std::string runsRow(const vpMorphBenchResult &r);
   static std::string curvesHeader();
   static std::string curvesRows(const vpMorphBenchResult &r);
-  //! JSON object: \e meta (free key/values: command, seed, machine...) and the summaries.
+  /*!
+    Sorts curves.csv rows (without header) into the canonical order of sortRows(), iterations ascending.
+    Rows that do not parse are kept at the end, in their order.
+  */
+  static void sortCurves(std::vector<std::string> &rows);
+  //! JSON object: \e meta (free key/values: the command's deterministic settings) and the summaries.
   std::string summaryJson(const std::map<std::string, std::string> &meta) const;
   //! A markdown table, one line per summary.
   std::string summaryMarkdown() const;
+  /*!
+    The 95 % interval of a rate of \e k in \e n: Wilson's score interval, but [0, 3 / n] for k = 0 (the rule of
+    three). [0, 1] for n = 0.
+  */
+  static void interval(unsigned int k, unsigned int n, double &low, double &high);
 
 private:
-  std::vector<vpMorphBenchResult> m_results;
+  struct Record;
+  std::vector<std::string> m_rows;
+  std::vector<Record> m_records;
 };
 
 #endif

@@ -5,6 +5,7 @@
 #ifndef VP_MORPH_BENCH_RESULT_H
 #define VP_MORPH_BENCH_RESULT_H
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,11 +19,16 @@
   Success: the final pose error against the simulator's truth is below the thresholds (1 mm and 0.5 deg by
   default), the controller's target (the object for silhouette controllers, the tag for tag controllers) never
   left the view, and the run ended within the iteration budget. Otherwise \e failure says why, the first
-  event that applies in this order: unreachable (start out of the robot's reach), out-of-view, diverged (the
-  camera left 0.15-1.5 m from the plane), feature-lost (features not measured in 10 successive images),
-  recognition (the object was rejected or taken for another), a controller's own stop (its status, e.g.
-  unreliable-correspondence, lost-too-long, too-many-replans, target-mismatch, deformation-unresolved), joint-limit
-  (a joint limit was hit), budget (still moving at the last iteration), final-error (stopped away from the goal).
+  event that applies in this order: setup (the scenario could not be set up, see \e setup), unreachable (start out
+  of the robot's reach), out-of-view, diverged (the camera left 0.15-1.5 m from the plane), feature-lost (features
+  not measured in 10 successive images), recognition (the object was rejected or taken for another), a controller's
+  own stop (its status, e.g. unreliable-correspondence, lost-too-long, too-many-replans, target-mismatch,
+  deformation-unresolved), joint-limit (a joint limit was hit), budget (still moving at the last iteration),
+  final-error (stopped away from the goal).
+
+  False convergence (\e falseConverged): the controller declared itself done (vpMorphBenchController::Command::
+  converged) while the truth is out of tolerance. A stop that is not a convergence is a failure, never a false
+  convergence.
 */
 class vpMorphBenchResult
 {
@@ -31,13 +37,21 @@ public:
   std::string robot;      //!< robot kind name
   std::string controller; //!< controller name
   bool success = false;
-  std::string failure = "none";   //!< see the class description
-  unsigned int iterations = 0;    //!< iterations run
-  int convergedIteration = -1;    //!< first iteration after which the truth error stayed below the thresholds
-  double pathLength = 0;          //!< camera centre path, m
-  double straightLine = 0;        //!< distance between start and desired camera centres, m
-  double finalTranslation = 0;    //!< final error (simulator truth), m, measured at the object
-  double finalRotation = 0;       //!< final error (simulator truth), rad
+  std::string failure = "none"; //!< see the class description
+  std::string setup;            //!< failure "setup": why (vpMorphBenchScenario::setup, or the taught view's tag)
+  bool converged = false;       //!< the controller declared itself done
+  bool falseConverged = false;  //!< converged with the truth out of tolerance
+  //! The taught view's symmetry (vpMorphBenchObservability::symmetryOrder(): 1 none, 0 continuous); the errors are
+  //! measured modulo it.
+  unsigned int symmetry = 1;
+  //! Why the view's pose cannot be bounded at pixel noise (vpMorphBenchObservability::reason()), empty when it can.
+  std::string unobservable;
+  unsigned int iterations = 0; //!< iterations run
+  int convergedIteration = -1; //!< first iteration after which the truth error stayed below the thresholds
+  double pathLength = 0;       //!< camera centre path, m
+  double straightLine = 0;     //!< distance between start and desired camera centres, m
+  double finalTranslation = 0; //!< final error (simulator truth), m, measured at the object
+  double finalRotation = 0;    //!< final error (simulator truth), rad
   //! The desired pose the final errors are measured against: 0 the scenario's, k its k-th equally good placement
   //! (vpMorphPlanarScene::alternativePlacements(): an opened pliers laid by its other arm), the nearest.
   unsigned int goal = 0;
@@ -48,12 +62,20 @@ public:
   double measureMs = 0;           //!< mean feature measurement time per iteration (CPU time of the run's thread)
   double controlMs = 0;           //!< mean control-law time per iteration (CPU time of the run's thread)
   double maxControlMs = 0;        //!< worst control-law time
+  //! Compute (measure + control, CPU ms) of each measured period but the first (its recognition and plan).
+  std::vector<double> periodMs;
+  double tagSize = 0;              //!< the scene's tag (black border), m
+  double taughtTagTranslation = 0; //!< the tag pose's error in the taught view (the tag truth's accuracy), m
+  double taughtTagRotation = 0;    //!< rad
+  //! TRUTH_PART deformable runs: the final error against the largest overlap's placement (NaN otherwise).
+  double finalOverlapTranslation = std::numeric_limits<double>::quiet_NaN();
+  double finalOverlapRotation = std::numeric_limits<double>::quiet_NaN();
   unsigned int jointLimitHits = 0;
-  double maxSpeed = 0;             //!< largest commanded translation speed (end-effector twist), m/s
-  double maxRotationSpeed = 0;     //!< largest commanded rotation speed, rad/s
-  unsigned int holds = 0;          //!< iterations without features (missing frames included): zero velocity
-  unsigned int replans = 0;        //!< re-plans after a view jump (VISPMorph)
-  unsigned int rerecognitions = 0; //!< re-recognitions after a wrong target (VISPMorph)
+  double maxSpeed = 0;                  //!< largest commanded translation speed (end-effector twist), m/s
+  double maxRotationSpeed = 0;          //!< largest commanded rotation speed, rad/s
+  unsigned int holds = 0;               //!< iterations without features (missing frames included): zero velocity
+  unsigned int replans = 0;             //!< re-plans after a view jump (VISPMorph)
+  unsigned int rerecognitions = 0;      //!< re-recognitions after a wrong target (VISPMorph)
   std::vector<double> curveTranslation; //!< truth error per iteration (against the goal), m
   std::vector<double> curveRotation;    //!< rad
 

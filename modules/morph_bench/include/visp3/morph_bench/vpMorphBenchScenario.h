@@ -1,6 +1,6 @@
 /*!
   \file vpMorphBenchScenario.h
-  \brief One start of the benchmark: object, desired pose, start pose, image faults and calibration errors.
+  \brief One start of the benchmark: object, desired pose, start pose, scene look, image faults and calibration errors.
 */
 #ifndef VP_MORPH_BENCH_SCENARIO_H
 #define VP_MORPH_BENCH_SCENARIO_H
@@ -11,6 +11,7 @@
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/morph_bench/vpMorphBenchEvent.h>
+#include <visp3/morph_bench/vpMorphBenchObjectSet.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 
 /*!
@@ -22,7 +23,15 @@
   (cdMc) so that it does not depend on the robot; the robot places the object so that its reference
   configuration sees it at cdMo (vpMorphSimRobot::setDesiredPose()).
 
-  <b>Sets</b> (generate(); the protocol of DESIGN.md):
+  <b>Identity and seeds.</b> Start \e k of object \e NAME in a set is drawn from a stream seeded by (set seed, the
+  set whose starts it draws, NAME, k) only; generate() gives index i to object i mod n, start i / n (n objects), so
+  adding an object, drawing more starts or sharding changes no other scenario. Each object's desired pose comes from
+  (set seed, NAME) alone (desiredPose()): optical axis normal to the plane at 0.5 m, in-plane rotation uniform in
+  [-180, 180] deg, offset uniform in the 20 mm disc. In the taught view the object must be entirely in view and the
+  AprilTag is placed where it fits (vpMorphPlanarScene::placeTagInView(): any side, 8, 6, 5 then 4 cm); when neither
+  fits, or no start shows object and tag, the scenario is a \e setup failure (its runs fail "setup", nothing else).
+
+  <b>Sets</b> (generate(); DESIGN.md's protocol; setNames() order seeds them, new sets go at the end):
   - planar: in-plane rotation uniform in [-180, 180] deg about the desired optical axis, translation in the
     image plane of norm uniform in [0, 80] mm, same depth;
   - planar-hard: the same with |rotation| in [150, 180] deg (the classical IBVS camera retreat);
@@ -30,43 +39,63 @@
     [0, 30] deg about a random in-plane axis, and its depth changes by a factor in [0.6, 1.4];
   - calib: planar, with intrinsics given to the controllers off by up to 20 % (each focal length scaled by
     [0.8, 1.2], principal point shifted by up to 16 px) and a hand-eye estimate off by up to 20 mm and 10 deg;
-  - calib-no-tilt: calib's starts and errors (the same seeds), but the hand-eye rotation error kept about the
-    optical axis only, the part the online estimation observes: it tells a tilt of the camera on the hand, which
-    turns about the optical axis carry into a tilt the thin objects' outlines do not show, from the other errors;
+  - calib-no-tilt: calib's starts and errors, the hand-eye rotation error kept about the optical axis only;
   - noise: planar, with Gaussian noise (sigma in [1, 6] grey levels), blur (sigma in [0, 1.5] px) and an
     illumination change (gain in [0.7, 1.3], offset in [-25, 25]);
   - occlusion: planar, with a card hiding a share in [5, 20] % of the object's outline at a random place;
-  - deformable: planar, the object seen is the deformed variant of its template (e.g. pliers opened wider).
-  - faults: planar, with one timed fault (vpMorphBenchEvent) per start, the kinds in turn (index modulo 5:
-    dropped-frames, no-object, sudden-occluder, pose-jump, wrong-template) so that 5 n starts give n of each:
-    dropped frames for 3-8 iterations or the object absent for 2-6 iterations from iteration 15-40; an occluder
-    of 10-25 % of the outline appearing at iteration 15-40; a jump of 20 mm in a random in-plane direction and
-    10 deg about the optical axis (either sign) at iteration 15-40; recognition forced to another object's
-    template (drawn among the five others) at the first frame. The object in turn comes from the start's index
-    divided by 5, so each fault kind meets different objects.
+  - deformable: planar, the object seen is its deformed variant (vpMorphBenchObjectSet; truth()).
+  - faults: planar, one timed fault (vpMorphBenchEvent) per start, its kind (k + NAME's hash) mod 5, so 5 starts
+    of an object meet every kind: dropped frames for 3-8 iterations or the object absent for 2-6 iterations from
+    iteration 15-40; an occluder of 10-25 % of the outline appearing at iteration 15-40; a jump of 20 mm in a random
+    in-plane direction and 10 deg about the optical axis (either sign) at iteration 15-40; recognition forced to
+    another object's template (drawn among the others: the one exception to the independence above);
+  - calib-wide: planar, the hand-eye rotation about the optical axis off by up to 90 deg either way, its translation
+    by up to 50 mm (any direction), px and py by one factor in [0.7, 1.3], u0 and v0 by up to 10 px;
+  - scene looks, the planar set's starts (the same draws) rendered with a look, from a stream of their own:
+    saturated (gain in [1.3, 1.8], the plane clipped at 255 by 10-60 levels), low-contrast (15-40 grey levels
+    between object and plane about a mean level in [60, 190], the sensor's noise, sigma in [0.5, 1.5], that low
+    contrast exposes), rough (object and template the rough-edged variant), gradient (gain varying by +-[0.3, 0.6]
+    over the image's half diagonal, any direction), plane-edge (the plane ends 1-3 cm beyond object and tag, any
+    side, the edge in view at the start), large-distractor (a dark rectangle of 1.2-1.6 times the object's area,
+    aspect 1-2, fully in view at the start, 1 cm clear of object and tag);
+  - res-1280 and res-320: the planar set's starts seen by a 1280 x 960 camera of focal 1600 px and a 320 x 240 one
+    of focal 400 px (the same field of view, the margins scaled with the image).
 
   A start is redrawn (from the same seeded stream, at most 1000 times) until the object and the tag are
-  entirely in view, 10 px from the border, at the start pose: a start that shows nothing is no comparison.
+  entirely in view, 10 px from the border (at 640 px across), at the start pose.
 */
 class vpMorphBenchScenario
 {
 public:
   std::string set;           //!< name of the scenario set
   unsigned int index = 0;    //!< index in the set
-  unsigned int seed = 0;     //!< seed of this scenario (set seed and index)
-  std::string object;        //!< object name (its template is data/objects/<object>.png)
+  unsigned int seed = 0;     //!< seed of this scenario (its image noise, occluder, distractors)
+  unsigned int setSeed = 0;  //!< the set seed it was drawn with (the desired poses depend on it)
+  std::string object;        //!< object name
   std::string objectImage;   //!< image rendered in the scene (the deformed variant for "deformable")
   std::string templateImage; //!< image of the taught object
-  //! The articulated object's joint (DATA/joints/NAME.json, vispmorph-make-data) when it has one, else empty.
+  std::string variant;       //!< the templates' variant: "" (the objects' images) or "rough"
+  //! The articulated object's joint file (TRUTH_ARTICULATED), else empty.
   std::string jointFile;
-  vpHomogeneousMatrix cdMo;  //!< desired pose of the object in the camera frame
-  vpHomogeneousMatrix cdMc;  //!< start camera pose in the desired camera frame
+  //! When objectImage differs from templateImage: how the truth is held (see scene()).
+  vpMorphBenchObjectSet::Truth truth = vpMorphBenchObjectSet::TRUTH_OVERLAP;
+  //! Why the scenario could not be set up ("tag-fits-nowhere", "object-not-in-view-at-goal", "no-start-in-view",
+  //! "plane-edge-not-in-view", "no-room-for-distractor"); empty when it could.
+  std::string setup;
+  vpHomogeneousMatrix cdMo; //!< desired pose of the object in the camera frame
+  vpHomogeneousMatrix cdMc; //!< start camera pose in the desired camera frame
 
   double startRotationDeg = 0;       //!< in-plane rotation of the start (deg, signed)
   double startTranslationMm = 0;     //!< in-plane translation of the start (mm)
   double startTiltDeg = 0;           //!< tilt of the start (deg)
   double startDepthChange = 0;       //!< relative depth change of the start (Z / Zd - 1)
-  vpMorphPlanarScene::Faults faults; //!< image faults of the scene
+  vpMorphPlanarScene::Faults faults; //!< image faults and scene look
+
+  vpCameraParameters camera = vpMorphPlanarScene::defaultCamera(); //!< the true intrinsics
+  unsigned int width = 640, height = 480;                          //!< image size
+  //! The tag: black-border side (m) and centre in the object frame; tagAuto leaves it to the scene's default.
+  double tagSize = 0.08, tagX = 0, tagY = 0;
+  bool tagAuto = true;
 
   double focalScaleX = 1, focalScaleY = 1;         //!< intrinsics given to the controllers: px, py times these
   double principalShiftU = 0, principalShiftV = 0; //!< and u0, v0 shifted by these (px)
@@ -74,13 +103,18 @@ public:
   std::vector<vpMorphBenchEvent> events;           //!< timed faults of the run (set "faults")
 
   /*!
-    The scene of this scenario: objectImage with the faults, placed against templateImage when the two differ
-    (vpMorphPlanarScene::setReferenceImage(), BEST_OVERLAP): a deformed object is aligned when it overlays its
-    template as well as a rigid placement can, and the truth error is measured to that pose. Not where its part
-    drawn undeformed lies on the template's (SHARED_FRAME): which part of a bent tool stayed still does not show
-    in an image, so no controller could be held to it.
+    The scene of this scenario: objectImage with the faults, its camera and tag. A deformed object is placed against
+    templateImage by truth: TRUTH_PART and TRUTH_ARTICULATED share the template's texture frame (the undeformed part,
+    or a part undone by its joint's turn, lies where the template's does), TRUTH_OVERLAP lays it where it overlaps
+    the template most (vpMorphPlanarScene::BEST_OVERLAP).
   */
   vpMorphPlanarScene scene() const;
+  /*!
+    For TRUTH_PART: the in-plane motion W of the object frame that lays the deformed object where it overlaps its
+    template most (the desired pose cdMo * W is the largest overlap's), reported beside the undeformed part's error.
+    Identity otherwise.
+  */
+  vpHomogeneousMatrix overlapPlacement() const;
   //! The intrinsics the controllers are told, from the true ones.
   vpCameraParameters estimatedCamera(const vpCameraParameters &trueCam) const;
   //! One line describing the start, for logs and CSV files.
@@ -88,21 +122,48 @@ public:
 
   //! The scenario set names, in the order of the protocol.
   static std::vector<std::string> setNames();
-  //! The six objects of data/objects, in a fixed order.
+  //! The set whose starts \e set draws (itself but for calib-no-tilt, the scene looks and the resolutions).
+  static std::string startSet(const std::string &set);
+  //! True for the sets whose start may end tilted (6dof, calib): their pose needs the tilt observable.
+  static bool needsTilt(const std::string &set);
+  //! The six tools of data/objects, in a fixed order.
   static std::vector<std::string> objectNames();
+  //! Desired pose of \e object for set seed \e seed (see the class description).
+  static vpHomogeneousMatrix desiredPose(unsigned int seed, const std::string &object);
+  //! The desired pose of \e object: its own if it has one (vpMorphBenchObjectSet::setDesiredPose()), else the above.
+  static vpHomogeneousMatrix desiredPose(unsigned int seed, const vpMorphBenchObjectSet::Object &object);
   /*!
-    Desired pose of an object: optical axis normal to the plane at 0.5 m, with an in-plane offset and a
-    rotation that differ per object (the taught view of each object is different).
-    \throw vpMorphException::notFoundError for an unknown object.
+    The scenario as JSON, every number to the bit (replays a run anywhere); paths under \e base are written relative
+    to it.
   */
-  static vpHomogeneousMatrix desiredPose(const std::string &object);
+  std::string toJson(const std::string &base = std::string()) const;
   /*!
-    \e count scenarios of set \e set, seeded by \e seed, objects taken in turn from objectNames(), images
-    read from \e dataDir (the repository's data/ folder). The same arguments give the same scenarios.
-    \throw vpMorphException::badParameterError for an unknown set or count 0; notFoundError for missing images.
+    A scenario from toJson()'s text (one object) or from an array of them (the first); relative paths are taken from
+    \e base. \throw vpMorphException::ioError for malformed text.
+  */
+  static vpMorphBenchScenario fromJson(const std::string &json, const std::string &base = std::string());
+  //! Every scenario of a JSON array of toJson() objects. \throw vpMorphException::ioError for malformed text.
+  static std::vector<vpMorphBenchScenario> listFromJson(const std::string &json,
+                                                        const std::string &base = std::string());
+  /*!
+    The camera of \e set: its intrinsics and image size.
+  */
+  static void cameraOf(const std::string &set, vpCameraParameters &cam, unsigned int &width, unsigned int &height);
+  //! The margin (px) that keeps object and tag in view: 10 px at 640 px across, scaled with the width.
+  static double viewMargin(unsigned int width);
+  /*!
+    Stages \e scene at the desired pose \e cdMo: checks that the object is in view there and places the tag where it
+    fits (vpMorphPlanarScene::placeTagInView(), 8, 6, 5 then 4 cm). Returns empty, or why it cannot be set up
+    ("object-not-in-view-at-goal", "tag-fits-nowhere"; the tag then left where it was).
+  */
+  static std::string stage(vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cdMo);
+  /*!
+    \e count scenarios of set \e set, seeded by \e seed, object i mod n of \e objects for index i (see the class
+    description). The same arguments give the same scenarios; a scenario that cannot be set up has setup set.
+    \throw vpMorphException::badParameterError for an unknown set, count 0 or no object.
   */
   static std::vector<vpMorphBenchScenario> generate(const std::string &set, unsigned int count, unsigned int seed,
-                                                    const std::string &dataDir);
+                                                    const vpMorphBenchObjectSet &objects);
 };
 
 #endif

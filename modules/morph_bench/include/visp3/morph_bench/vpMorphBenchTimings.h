@@ -1,0 +1,66 @@
+/*!
+  \file vpMorphBenchTimings.h
+  \brief The benchmark's compute times, apart from its results: per run, per period, and per set with percentiles.
+*/
+#ifndef VP_MORPH_BENCH_TIMINGS_H
+#define VP_MORPH_BENCH_TIMINGS_H
+
+#include <istream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <visp3/morph_bench/vpMorphBenchResult.h>
+
+/*!
+  \class vpMorphBenchTimings
+  \ingroup group_morph_bench
+  \brief Collects the compute times of runs (timings.csv) and summarises them per set, robot and controller.
+
+  The times are the CPU time of each run's thread (vpMorphThreadCpuClock): measure (the silhouette's extraction, or
+  the tag's detection), control (the law). A period's compute is measure + control, for every measured period but the
+  first (its recognition and plan; vpMorphBenchResult::periodMs), rendering excluded. Per group: the median and the
+  95th percentile (nearest rank) of the periods, in ms and as a ratio to the machine yardstick of the run they came
+  from (each row carries its run's), the mean measure and control, the worst control.
+
+  They are kept apart from runs.csv because they differ from one run to the next: merged shards give the results
+  of one run to the byte, and these times as they were measured.
+*/
+class vpMorphBenchTimings
+{
+public:
+  struct Summary
+  {
+    std::string set, robot, controller;
+    unsigned int runs = 0, periods = 0;
+    double medianMs = 0, p95Ms = 0;       //!< per period (NaN without periods)
+    double medianRatio = 0, p95Ratio = 0; //!< per period, over its run's yardstick (NaN without one)
+    double meanMeasureMs = 0, meanControlMs = 0, maxControlMs = 0; //!< over the runs that measured
+  };
+
+  //! Adds a run's times, with the machine yardstick of its run (ms, 0: unknown).
+  void add(const vpMorphBenchResult &r, double yardstickMs);
+  //! Adds the rows of a timings.csv text. \throw vpMorphException::ioError for another header or a bad row.
+  void readTimings(std::istream &in, const std::string &what = "timings.csv");
+  //! Canonical order: set, scenario, robot, controller (as vpMorphBenchReport::sortRows()).
+  void sortRows();
+  std::vector<std::string> rows() const;
+  std::vector<Summary> summarize() const;
+
+  static std::string header();
+  //! JSON: \e meta (the runs' machine, command, wall time, yardsticks) and the summaries.
+  std::string json(const std::map<std::string, std::string> &meta) const;
+  std::string markdown() const;
+
+private:
+  struct Entry
+  {
+    std::string set, robot, controller, object;
+    int scenario = 0;
+    double yardstick = 0, measure = 0, control = 0, maxControl = 0;
+    std::vector<double> periods;
+  };
+  std::vector<Entry> m_entries;
+};
+
+#endif
