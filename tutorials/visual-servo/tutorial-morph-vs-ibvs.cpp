@@ -119,7 +119,6 @@ int main(int argc, char **argv)
     servo.setSubGoalCount(10);
     servo.setGain(gain);
     servo.setSamplingTime(dt);
-    servo.setWorkFloor(0.3); // two extractions of one object differ by up to ~0.4 work: not a jump
     servo.setTarget(goal, cdMo[2][3]);
     //! [Morph]
 
