@@ -29,6 +29,7 @@
 #include <visp3/gui/vpDisplayX.h>
 #include <visp3/gui/vpPlot.h>
 #include <visp3/io/vpImageIo.h>
+#include <visp3/morph/vpMorphDrawing.h>
 
 namespace tutorial
 {
@@ -144,27 +145,16 @@ public:
     vpDisplay::getClick(I);
   }
 
-  /*!
-    Lines of text on a black band at the top-left of \e I, in \e color: the tutorial's caption, where vpServoMorph
-    writes its status (see captionBand()).
-  */
+  //! Lines of text in \e color on a black band at the top-left of \e I (where vpServoMorph writes its status).
   template <typename T>
   static void caption(const vpImage<T> &I, const std::vector<std::string> &lines, const vpColor &color = vpColor::white)
   {
-    const vpRect band = captionBand(lines);
-    vpDisplay::displayRectangle(I, band, vpColor::black, true);
-    for (std::size_t k = 0; k < lines.size(); ++k)
-      vpDisplay::displayText(I, vpImagePoint(band.getTop() + 16.0 * (k + 1) - 3, band.getLeft() + 8), lines[k], color);
+    vpMorphDrawing::displayTextBand(I, lines, vpImagePoint(4, 4), color);
   }
-  //! The caption's band: 16 pixels a line plus one, 8 a character plus two (the widest of the fonts that write it:
-  //! X11's fixed 6 x 13, OpenCV's Hershey plain at 0.8).
+  //! The caption's band.
   static vpRect captionBand(const std::vector<std::string> &lines)
   {
-    std::size_t chars = 0;
-    for (const std::string &l : lines)
-      chars = std::max(chars, l.size());
-    const double h = 16.0 * (lines.size() + 1), w = 8.0 * (chars + 2);
-    return vpRect(4, 4, w, h);
+    return vpMorphDrawing::textBand(lines, vpImagePoint(4, 4));
   }
 
   // What the display test checks in the saved pictures (tutorial-display-check), window by window (by tag).

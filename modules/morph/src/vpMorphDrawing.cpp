@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 
+#include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpFont.h>
 #include <visp3/core/vpImageDraw.h>
 #include <visp3/io/vpImageIo.h>
@@ -18,6 +19,19 @@ const vpColor vpMorphDrawing::inputColor(175, 175, 175);
 
 namespace
 {
+template <typename T>
+vpRect displayBand(const vpImage<T> &I, const std::vector<std::string> &lines, const vpImagePoint &topLeft,
+                   const vpColor &color)
+{
+  const vpRect band = vpMorphDrawing::textBand(lines, topLeft);
+  vpDisplay::displayRectangle(I, band, vpColor::black, true);
+  // X11 writes from the baseline, OpenCV from the top: a baseline 13 pixels below a line's top leaves either inside
+  // the band.
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    vpDisplay::displayText(I, vpImagePoint(band.getTop() + 16.0 * (k + 1) - 3, band.getLeft() + 8), lines[k], color);
+  return band;
+}
+
 // Paints a rectangular frame of the given thickness inside the tile [top, top+size) x [left, left+size).
 void tileBorder(vpImage<vpRGBa> &I, unsigned int top, unsigned int left, unsigned int size, unsigned int thickness,
                 const vpRGBa &c)
@@ -180,4 +194,41 @@ void vpMorphDrawing::drawPolygon(vpImage<vpRGBa> &I, const std::vector<vpImagePo
 {
   for (std::size_t k = 0; k < points.size() && points.size() > 1; ++k)
     drawLine(I, points[k], points[(k + 1) % points.size()], color, thickness);
+}
+
+vpRect vpMorphDrawing::textBand(const std::vector<std::string> &lines, const vpImagePoint &topLeft)
+{
+  std::size_t chars = 0;
+  for (const std::string &l : lines)
+    chars = std::max(chars, l.size());
+  return vpRect(topLeft.get_u(), topLeft.get_v(), 8.0 * (chars + 2), 16.0 * (lines.size() + 1));
+}
+
+vpRect vpMorphDrawing::drawTextBand(vpImage<vpRGBa> &I, const std::vector<std::string> &lines,
+                                    const vpImagePoint &topLeft, const vpColor &color)
+{
+  const vpRect band = textBand(lines, topLeft);
+  // Filled here, within the image (vpImageDraw's rectangle goes through its line drawing).
+  const int u0 = std::max(0, static_cast<int>(band.getLeft())), v0 = std::max(0, static_cast<int>(band.getTop()));
+  const int u1 = std::min(static_cast<int>(I.getWidth()), static_cast<int>(band.getRight()) + 1);
+  const int v1 = std::min(static_cast<int>(I.getHeight()), static_cast<int>(band.getBottom()) + 1);
+  for (int v = v0; v < v1; ++v)
+    for (int u = u0; u < u1; ++u)
+      I[static_cast<unsigned int>(v)][static_cast<unsigned int>(u)] = vpRGBa(0, 0, 0);
+  const vpFont font(14, vpFont::GENERIC_MONOSPACE);
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    font.drawText(I, lines[k], vpImagePoint(band.getTop() + 16.0 * k + 8, band.getLeft() + 8), color);
+  return band;
+}
+
+vpRect vpMorphDrawing::displayTextBand(const vpImage<unsigned char> &I, const std::vector<std::string> &lines,
+                                       const vpImagePoint &topLeft, const vpColor &color)
+{
+  return displayBand(I, lines, topLeft, color);
+}
+
+vpRect vpMorphDrawing::displayTextBand(const vpImage<vpRGBa> &I, const std::vector<std::string> &lines,
+                                       const vpImagePoint &topLeft, const vpColor &color)
+{
+  return displayBand(I, lines, topLeft, color);
 }

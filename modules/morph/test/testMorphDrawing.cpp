@@ -132,3 +132,25 @@ TEST_CASE("vpMorphDrawing::drawLine clips segments to the image", "[morph][drawi
   CHECK(is(K[5][60], vpColor::green));
   CHECK(is(K[20][5], vpColor::green));
 }
+
+TEST_CASE("vpMorphDrawing::drawTextBand writes its lines on a black band, clipped to the image", "[morph][drawing]")
+{
+  vpImage<vpRGBa> I(120, 200, vpRGBa(255, 255, 255));
+  const std::vector<std::string> lines = {"converged", "residual 0.001 rad"};
+  const vpRect band = vpMorphDrawing::drawTextBand(I, lines, vpImagePoint(4, 4), vpColor::yellow);
+  CHECK(band.getWidth() == Approx(8.0 * (18 + 2)));
+  CHECK(band.getHeight() == Approx(16.0 * 3));
+  std::size_t inside = 0, outside = 0, black = 0;
+  for (unsigned int v = 0; v < I.getHeight(); ++v)
+    for (unsigned int u = 0; u < I.getWidth(); ++u) {
+      const bool in = band.isInside(vpImagePoint(v, u));
+      (in ? inside : outside) += is(I[v][u], vpColor::yellow);
+      black += in && is(I[v][u], vpColor::black);
+    }
+  CHECK(inside > 4 * 24); // glyphs: a few pixels a character at least
+  CHECK(outside == 0);
+  CHECK(black > inside);
+  // A band that does not fit: what fits is drawn, nothing beyond the image.
+  CHECK_NOTHROW(vpMorphDrawing::drawTextBand(I, lines, vpImagePoint(110, 150), vpColor::yellow));
+  CHECK(is(I[119][199], vpColor::black));
+}

@@ -30,23 +30,9 @@ public:
   virtual void polygon(const std::vector<vpImagePoint> &ips, const vpColor &color, unsigned int thickness) = 0;
   virtual void line(const vpImagePoint &a, const vpImagePoint &b, const vpColor &color, unsigned int thickness) = 0;
   virtual void cross(const vpImagePoint &p, unsigned int size, const vpColor &color, unsigned int thickness) = 0;
-  //! Lines of text on a filled band in the top-left corner of the image (see textBand()).
-  virtual void text(const std::vector<std::string> &lines, const vpColor &color, const vpColor &band) = 0;
-
-  /*!
-    The band the status text is written on: from (kBandMargin, kBandMargin), kLineHeight per line plus one, and
-    kCharWidth per character of the longest line plus two. Sized for the widest of the fonts that write it (X11's
-    fixed font, 6 x 13; OpenCV's Hershey plain at 0.8, about 8 pixels a character; vpFont's monospace at 14).
-  */
-  static vpRect textBand(const std::vector<std::string> &lines)
-  {
-    std::size_t chars = 0;
-    for (const std::string &l : lines)
-      chars = std::max(chars, l.size());
-    return vpRect(kBandMargin, kBandMargin, static_cast<double>((chars + 2) * kCharWidth),
-                  static_cast<double>((lines.size() + 1) * kLineHeight));
-  }
-  static constexpr unsigned int kBandMargin = 4, kLineHeight = 16, kCharWidth = 8;
+  //! Lines of text in \e color on a black band in the top-left corner of the image (vpMorphDrawing::textBand()).
+  virtual void text(const std::vector<std::string> &lines, const vpColor &color) = 0;
+  static constexpr unsigned int kBandMargin = 4;
 
   //! A contour (normalised or in pixels) as pixel points.
   static std::vector<vpImagePoint> pixels(const vpMorphContour &c, const vpCameraParameters &cam)
@@ -72,15 +58,9 @@ public:
   {
     vpDisplay::displayCross(m_I, p, size, color, thickness);
   }
-  void text(const std::vector<std::string> &lines, const vpColor &color, const vpColor &band) override
+  void text(const std::vector<std::string> &lines, const vpColor &color) override
   {
-    const vpRect r = textBand(lines);
-    vpDisplay::displayRectangle(m_I, r, band, true);
-    // X11 writes from the baseline, OpenCV from the top: a line's baseline a line height below its top leaves
-    // either inside the band.
-    for (std::size_t k = 0; k < lines.size(); ++k)
-      vpDisplay::displayText(m_I, vpImagePoint(r.getTop() + kLineHeight * (k + 1) - 3, r.getLeft() + kCharWidth),
-                             lines[k], color);
+    vpMorphDrawing::displayTextBand(m_I, lines, vpImagePoint(kBandMargin, kBandMargin), color);
   }
 
 private:
@@ -106,14 +86,9 @@ public:
     vpMorphDrawing::drawLine(m_I, p - vpImagePoint(h, 0), p + vpImagePoint(h, 0), color, thickness);
     vpMorphDrawing::drawLine(m_I, p - vpImagePoint(0, h), p + vpImagePoint(0, h), color, thickness);
   }
-  void text(const std::vector<std::string> &lines, const vpColor &color, const vpColor &band) override
+  void text(const std::vector<std::string> &lines, const vpColor &color) override
   {
-    const vpRect r = textBand(lines);
-    vpImageDraw::drawRectangle(m_I, r, band, true);
-    const vpFont font(14, vpFont::GENERIC_MONOSPACE);
-    for (std::size_t k = 0; k < lines.size(); ++k)
-      font.drawText(m_I, lines[k],
-                    vpImagePoint(r.getTop() + kLineHeight * k + kLineHeight / 2, r.getLeft() + kCharWidth), color);
+    vpMorphDrawing::drawTextBand(m_I, lines, vpImagePoint(kBandMargin, kBandMargin), color);
   }
 
 private:

@@ -9,10 +9,9 @@
 
 namespace
 {
-// The correspondence drawn between the current contour and its sub-goal, and the status text on its band.
+// The correspondence drawn between the current contour and its sub-goal, and the status text.
 const vpColor kCorrespondenceColor = vpColor::cyan;
 const vpColor kStatusColor = vpColor::yellow;
-const vpColor kBandColor = vpColor::black;
 
 // Whether the tracker's correspondence is the one from \e current to sub-goal \e goal fitted at the last period: only
 // when the servo fitted it (moving, reached, converged; not on a stop, a re-plan or the exploration turn), and never
@@ -44,7 +43,7 @@ void drawServo(const vpServoMorph &servo, vpMorphOverlay &o, const vpColor &curr
   }
   if (!current.empty())
     o.polygon(current.points(), currentColor, thickness);
-  o.text(servo.statusText(), kStatusColor, kBandColor);
+  o.text(servo.statusText(), kStatusColor);
 }
 } // namespace
 
@@ -59,7 +58,7 @@ std::vector<std::string> vpServoMorph::statusText() const
   else
     std::snprintf(line, sizeof line, "%s", statusName(status()));
   lines.emplace_back(line);
-  if (n > 0) {
+  if (n > 0 && !exploring()) { // the turn measures no residual
     std::snprintf(line, sizeof line, "residual %.3f rad  %.2f px", rotationResidual(), translationResidual());
     std::string l = line;
     if (tiltEstimated()) {

@@ -13,6 +13,7 @@
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpRGBa.h>
+#include <visp3/core/vpRect.h>
 #include <visp3/morph/vpMorph.h>
 #include <visp3/morph/vpMorphContour.h>
 
@@ -63,6 +64,21 @@ public:
   //! A closed polygon, each edge by drawLine().
   static void drawPolygon(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points, const vpColor &color,
                           unsigned int thickness = 1);
+
+  /*!
+    The band that lines of text are written on from \e topLeft: 16 pixels a line and 8 a character, with a line and
+    two characters of margin (the widest of the fonts that write them: vpFont's monospace at 14 pixels, X11's fixed
+    6 x 13, OpenCV's Hershey plain at 0.8).
+  */
+  static vpRect textBand(const std::vector<std::string> &lines, const vpImagePoint &topLeft);
+  //! Lines of text in \e color on their black textBand() (vpFont's monospace), clipped to the image; returns the band.
+  static vpRect drawTextBand(vpImage<vpRGBa> &I, const std::vector<std::string> &lines, const vpImagePoint &topLeft,
+                             const vpColor &color = vpColor::yellow);
+  //! The same on the display attached to \e I (vpDisplay: no-op without one), in the display's font.
+  static vpRect displayTextBand(const vpImage<unsigned char> &I, const std::vector<std::string> &lines,
+                                const vpImagePoint &topLeft, const vpColor &color = vpColor::yellow);
+  static vpRect displayTextBand(const vpImage<vpRGBa> &I, const std::vector<std::string> &lines,
+                                const vpImagePoint &topLeft, const vpColor &color = vpColor::yellow);
 
   /*!
     Writes \e image as PNG (format from the extension, as vpImageIo does), creating parent directories.

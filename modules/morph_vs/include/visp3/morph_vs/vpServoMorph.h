@@ -489,7 +489,7 @@ public:
       while the servo moves or has converged;
     - the last contour given to computeControlLaw() (\e currentColor);
     - the status in yellow on a black band in the top-left corner: statusName(), the sub-goal chased (k / n), the
-      residuals to it (rad, px) and the tilt when it is estimated.
+      residuals to it (rad, px; none during the exploration turn) and the tilt when it is estimated.
     \code
     vpImage<unsigned char> I;                // the camera image
     vpDisplayX d(I, 0, 0, "camera");         // or vpDisplayOpenCV
