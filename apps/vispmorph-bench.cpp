@@ -20,6 +20,9 @@
   With --recognition, no run: the first view of every scenario is recognised (vpMorphBench::recognizeStart()), one
   row each in recognition.csv, and the counts per set (right object, another, rejected, re-ranked) are printed and
   written to recognition.md: the recognition checked on more starts than the servo can afford.
+  With --video, no summary: each run, one at a time, recorded in DIR/video/SET-INDEX-CONTROLLER/ (the camera's frames,
+  the frames with the controller's state drawn and as a video, the templates and the camera) for a person to watch
+  and for vispmorph-replay (vispmorph-bench-video.h).
   Exit status: 0 when the bench ran (whatever the controllers did), 1 on an error, 2 on bad arguments.
 */
 #include <chrono>
@@ -50,6 +53,8 @@
 #include <visp3/morph_bench/vpMorphBenchTimings.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
+
+#include "vispmorph-bench-video.h"
 
 namespace fs = std::filesystem;
 
@@ -85,6 +90,8 @@ void usage(std::ostream &os)
         "  --data DIR         the data/ folder (default: the repository's)\n"
         "  --no-curves        do not write curves.csv\n"
         "  --recognition      no runs: recognise each scenario's first view (recognition.csv, recognition.md)\n"
+        "  --video            no summary: each run recorded in DIR/video/ (frames, overlays, a video; choose the\n"
+        "                     runs with --set, --only and --controllers)\n"
         "  --no-plots         do not run the plot script\n"
         "       vispmorph-bench merge --out DIR SHARD_DIR... [--no-plots]\n"
         "                     the shards of one command as one run (the same files, to the byte, but the timings)\n";
@@ -483,7 +490,7 @@ int main(int argc, char **argv)
     datasetsDir = env;
   std::vector<unsigned int> only;
   vpMorphBench::Settings settings;
-  bool curves = true, plots = true, recognitionOnly = false;
+  bool curves = true, plots = true, recognitionOnly = false, video = false;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -568,6 +575,8 @@ int main(int argc, char **argv)
         plots = false;
       else if (a == "--recognition")
         recognitionOnly = true;
+      else if (a == "--video")
+        video = true;
       else if (a == "--help" || a == "-h") {
         usage(std::cout);
         return EXIT_SUCCESS;
@@ -682,6 +691,8 @@ int main(int argc, char **argv)
 
     if (recognitionOnly)
       return recognizeStarts(bench, scenarios, out);
+    if (video)
+      return recordRuns(bench, scenarios, controllers, out);
 
     std::ofstream runs(out + "/runs.partial.csv");
     runs << vpMorphBenchReport::runsHeader() << "\n" << std::flush;

@@ -31,10 +31,8 @@
 #include <vector>
 
 #include <visp3/core/vpCameraParameters.h>
-#include <visp3/core/vpFont.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImageConvert.h>
-#include <visp3/core/vpImageDraw.h>
 #include <visp3/core/vpIoTools.h>
 #include <visp3/core/vpMeterPixelConversion.h>
 #include <visp3/core/vpXmlParserCamera.h>
@@ -193,18 +191,6 @@ int codecFor(const std::string &file)
   return c[0] | (c[1] << 8) | (c[2] << 16) | (c[3] << 24);
 }
 
-// Lines of text, yellow on a black band in the top-left corner (as vpServoMorph::draw() writes its status).
-void caption(vpImage<vpRGBa> &O, const std::vector<std::string> &lines)
-{
-  const vpFont font(14, vpFont::GENERIC_MONOSPACE);
-  std::size_t chars = 0;
-  for (const std::string &l : lines)
-    chars = std::max(chars, l.size());
-  vpImageDraw::drawRectangle(O, vpRect(4, 4, 8.0 * (chars + 2), 16.0 * (lines.size() + 1)), vpColor::black, true);
-  for (std::size_t k = 0; k < lines.size(); ++k)
-    font.drawText(O, lines[k], vpImagePoint(12 + 16.0 * k, 12), vpColor::yellow);
-}
-
 // The correspondence from s to s* (a line per pair), in pixels.
 void drawCorrespondence(vpImage<vpRGBa> &O, const vpFeatureMorph &s, const vpFeatureMorph &sd,
                         const vpCameraParameters &cam)
@@ -335,7 +321,7 @@ int main(int argc, char **argv)
         csv << (none ? "" : nearest) << "," << (none ? "" : std::to_string(distance)) << ","
             << (none ? "" : std::to_string(threshold)) << ",,,,,,,,,," << c.size() << "\n";
       }
-      caption(O, text);
+      vpMorphDrawing::drawTextBand(O, text, vpImagePoint(4, 4)); // as vpServoMorph::draw() writes its status
       char name[64];
       std::snprintf(name, sizeof name, "/overlay-%04ld.png", index);
       vpImageIo::write(O, o.out + name);

@@ -141,7 +141,8 @@ vpMorphRecognition vpMorphBench::recognizeStart(const vpMorphBenchScenario &sc, 
   return c.empty() || db.empty() ? vpMorphRecognition() : db.recognize(c);
 }
 
-vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::string &controllerName) const
+vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::string &controllerName,
+                                     const FrameObserver &observer) const
 {
   std::unique_ptr<vpMorphBenchController> controller = vpMorphBenchController::create(controllerName);
   vpMorphBenchResult res;
@@ -302,6 +303,8 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
       cmd.stop = true;
       cmd.reason = "controller-error";
     }
+    if (observer && !dropped)
+      observer({it, I, *controller, cmd, cMo});
     if (cmd.stop) {
       failure = cmd.reason;
       stopped = true;

@@ -347,6 +347,7 @@ public:
     cmd.v = m_servo->computeControlLaw(vpMorphContour()); // hold, counted towards the lost limit
     return fromStatus(cmd);
   }
+  const vpServoMorph *servo() const override { return m_servo.get(); }
 
 private:
   void setTarget()
@@ -474,6 +475,7 @@ public:
       return stopCommand("nan");
     return cmd;
   }
+  std::pair<const vpFeatureMorph *, const vpFeatureMorph *> features() const override { return {&m_s, &m_sd}; }
 
 private:
   /*!

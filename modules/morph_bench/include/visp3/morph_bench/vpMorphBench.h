@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/morph_bench/vpMorphBenchController.h>
 #include <visp3/morph_bench/vpMorphBenchObjectSet.h>
 #include <visp3/morph_bench/vpMorphBenchObservability.h>
 #include <visp3/morph_bench/vpMorphBenchResult.h>
@@ -99,9 +100,25 @@ public:
   */
   vpMorphRecognition recognizeStart(const vpMorphBenchScenario &scenario, vpMorphContour *shown = nullptr) const;
 
-  //! One run; never throws for a controller's failure or a scenario's set-up (it is the result), only for bad
-  //! arguments.
-  vpMorphBenchResult run(const vpMorphBenchScenario &scenario, const std::string &controller) const;
+  //! One period of a run as a picture of it needs it (run()'s observer).
+  struct Frame
+  {
+    unsigned int iteration;                   //!< from 0
+    const vpImage<unsigned char> &image;      //!< the camera image the controller was given
+    const vpMorphBenchController &controller; //!< after its step on \e image
+    const vpMorphBenchController::Command &command;
+    vpHomogeneousMatrix cMo; //!< the truth
+  };
+  using FrameObserver = std::function<void(const Frame &)>;
+
+  /*!
+    One run; never throws for a controller's failure or a scenario's set-up (it is the result), only for bad
+    arguments. \e observer, if given, is called at each period the controller was given an image (not on a dropped
+    frame), after its step: a video of the run (vispmorph-bench --video). Its exceptions end the run and reach the
+    caller.
+  */
+  vpMorphBenchResult run(const vpMorphBenchScenario &scenario, const std::string &controller,
+                         const FrameObserver &observer = FrameObserver()) const;
   /*!
     Every controller on every scenario, on \e threads threads (0: all cores). Results are in the order
     (scenario, controller) whatever the threads, so a run is reproducible.

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <visp3/core/vpCameraParameters.h>
@@ -18,6 +19,9 @@
 #include <visp3/core/vpPoint.h>
 #include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/robot/vpRobot.h>
+
+class vpFeatureMorph;
+class vpServoMorph;
 
 /*!
   \class vpMorphBenchController
@@ -113,6 +117,10 @@ public:
   virtual Command missingFrame();
   //! Name of the recognised template (VISPMorph), empty otherwise.
   virtual std::string recognizedObject() const { return std::string(); }
+  //! For pictures of a run (vpMorphBench::FrameObserver): the servo of "morph" and "morph-planar", else null.
+  virtual const vpServoMorph *servo() const { return nullptr; }
+  //! For pictures of a run: the current and desired features (s, s*) of "morph-vpservo", else nulls.
+  virtual std::pair<const vpFeatureMorph *, const vpFeatureMorph *> features() const { return {nullptr, nullptr}; }
 
   //! The names create() accepts, in report order.
   static std::vector<std::string> names();
