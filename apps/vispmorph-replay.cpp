@@ -27,6 +27,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,12 @@ bool number(const char *s, double &v)
 // Returns false (after printing why) when the arguments are not usable.
 bool parse(int argc, char **argv, Options &o)
 {
+  // Options with a text value, options with a number > 0.
+  const std::map<std::string, std::string Options::*> texts = {
+      {"--db", &Options::db},          {"--out", &Options::out},
+      {"--camera-xml", &Options::xml}, {"--camera-name", &Options::cameraName},
+      {"--object", &Options::object},  {"--video", &Options::video}};
+  const std::map<std::string, double Options::*> numbers = {{"--depth", &Options::depth}, {"--fps", &Options::fps}};
   for (int k = 1; k < argc; ++k) {
     const std::string s = argv[k];
     auto value = [&](std::string &v) {
@@ -105,29 +112,11 @@ bool parse(int argc, char **argv, Options &o)
     if (s == "--help" || s == "-h") {
       usage(std::cout);
       std::exit(0);
-    } else if (s == "--db") {
-      if (!value(o.db))
+    } else if (texts.count(s)) {
+      if (!value(o.*texts.at(s)))
         return false;
-    } else if (s == "--out") {
-      if (!value(o.out))
-        return false;
-    } else if (s == "--camera-xml") {
-      if (!value(o.xml))
-        return false;
-    } else if (s == "--camera-name") {
-      if (!value(o.cameraName))
-        return false;
-    } else if (s == "--object") {
-      if (!value(o.object))
-        return false;
-    } else if (s == "--video") {
-      if (!value(o.video))
-        return false;
-    } else if (s == "--depth") {
-      if (!positive(o.depth))
-        return false;
-    } else if (s == "--fps") {
-      if (!positive(o.fps))
+    } else if (numbers.count(s)) {
+      if (!positive(o.*numbers.at(s)))
         return false;
     } else if (s == "--intrinsics") {
       o.intrinsics = true;
