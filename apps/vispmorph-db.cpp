@@ -3,7 +3,7 @@
   \brief Template databases from the command line: build one from a folder of images, inspect it, recognise.
 
   \code
-  vispmorph-db build DIR --out db.json [--model multiscale|paper|polygon] [--threshold T] [--joints JDIR]
+  vispmorph-db build DIR --out db.json [--model rigid|multiscale|paper|polygon] [--threshold T] [--joints JDIR]
   vispmorph-db info db.json
   vispmorph-db recognize db.json IMAGE... [--json] [--exhaustive] [--min-support S|off]
   \endcode
@@ -12,11 +12,11 @@
   JDIR/NAME.json (vpMorphJointFile) articulates template NAME (a joint file naming no template is an error).
   info: templates, vertex counts, calibration (within, nearest other template, threshold), articulations.
   recognize: per image, the template (and the opening a view of an articulated one was recognised at), its distance
-  and threshold, the share of its outline shown
-  (vpMorphDatabase::support()), the runner-up (the distance's choice when the support re-ranked them), the margin,
-  and ACCEPTED (by the distance or by the support) or REJECTED (beyond the threshold and short of the minimum
-  support, or within it but under the support floor); with several images, how many were accepted each way.
-  --min-support replaces the database's minimum support for this query (off: the distance alone).
+  (the default rigid model: the exact check's cost) and, for a D_morph model, its threshold, the share of its outline
+  shown (vpMorphDatabase::support()), the runner-up (the distance's choice when the support re-ranked them), the
+  margin, and ACCEPTED or REJECTED (vpMorphDatabase's rule for the model: rigid, by the check; D_morph, by the
+  distance or by the support); with several images, how many were accepted (for D_morph, each way).
+  --min-support replaces the database's minimum support for this query (off: with D_morph, the distance alone).
   Exit status: 0 on success (also when objects are rejected), 1 on an error (with several images, after recognising
   all the others), 2 on bad arguments.
 */
@@ -46,20 +46,20 @@ namespace
 {
 void usage(std::ostream &os)
 {
-  os << "Usage: vispmorph-db build DIR --out db.json [--model multiscale|paper|polygon] [--threshold T]\n"
+  os << "Usage: vispmorph-db build DIR --out db.json [--model rigid|multiscale|paper|polygon] [--threshold T]\n"
         "                         [--joints JDIR]\n"
         "       vispmorph-db info db.json\n"
         "       vispmorph-db recognize db.json IMAGE... [--json] [--exhaustive] [--min-support S|off]\n"
         "  build      one template per image of DIR, calibrated, written atomically to db.json; JDIR/NAME.json\n"
         "             (parts' images, pivot, range_deg) articulates template NAME\n"
         "  info       templates and calibration of a database\n"
-        "  recognize  the template of the largest object of each IMAGE, accepted (by the distance, or by the share\n"
-        "             of the template's outline it shows: --min-support, off for the distance alone) or rejected\n";
+        "  recognize  the template of the largest object of each IMAGE, accepted or rejected (--min-support: the\n"
+        "             least share of the template's outline it shows; off: with a D_morph model, the distance alone)\n";
 }
 
 struct Args
 {
-  std::string verb, out, model = "multiscale", joints;
+  std::string verb, out, model = vpMorphDatabase().distance().name(), joints;
   std::vector<std::string> positional;
   double threshold = 0.0;
   double minSupport = 0.0; // 0: the database's; +inf: off
@@ -237,17 +237,24 @@ int main(int argc, char **argv)
                   << (cal ? fmt(db.betweenDistances()[k]) : "-") << std::setw(11) << fmt(db.threshold(k)) << "  "
                   << std::left << std::setw(11) << joint(db[k]) << "  " << std::right << db[k].imagePath() << "\n";
       }
-      std::cout << "minimum support (share of a template's outline that accepts a view its distance rejects): "
-                << fmt(db.minimumSupport()) << "\n";
-      std::cout << "support floor (share under which a view its distance accepts is rejected): "
-                << fmt(db.supportFloor()) << "\n";
+      if (db.distance().model() == vpMorphShapeDistance::RIGID) {
+        std::cout << "minimum support (share of a template's outline a view must show): " << fmt(db.minimumSupport())
+                  << "; most outside it: " << fmt(vpMorphDatabase::maximumOutside())
+                  << "; ambiguity (least cost between two acceptable templates): " << fmt(vpMorphDatabase::ambiguity())
+                  << "\n";
+      } else {
+        std::cout << "minimum support (share of a template's outline that accepts a view its distance rejects): "
+                  << fmt(db.minimumSupport()) << "\n";
+        std::cout << "support floor (share under which a view its distance accepts is rejected): "
+                  << fmt(db.supportFloor()) << "\n";
+      }
     } else {
       vpMorphDatabase db = vpMorphDatabase::load(a.positional[0]);
       if (a.minSupport > 0.0)
         db.setMinimumSupport(a.minSupport);
       nlohmann::json all = nlohmann::json::array();
       const std::size_t n = a.positional.size() - 1;
-      std::size_t byDistance = 0, bySupport = 0, errors = 0;
+      std::size_t byDistance = 0, bySupport = 0, byCheck = 0, errors = 0;
       for (std::size_t i = 1; i <= n; ++i) {
         const std::string &path = a.positional[i];
         vpMorphRecognition r;
@@ -271,9 +278,12 @@ int main(int argc, char **argv)
           ++errors;
           continue;
         }
-        // By the support: beyond its threshold, or put in place of the distance's choice (re-ranked).
-        const bool supported = r.accepted && (r.reranked || !(r.distance <= r.threshold));
-        byDistance += r.accepted && !supported ? 1 : 0;
+        // By the support: beyond its threshold, or put in place of the distance's choice (re-ranked). RIGID accepts
+        // by its check alone (counted apart).
+        const bool rigid = db.distance().model() == vpMorphShapeDistance::RIGID;
+        const bool supported = !rigid && r.accepted && (r.reranked || !(r.distance <= r.threshold));
+        byCheck += rigid && r.accepted ? 1 : 0;
+        byDistance += !rigid && r.accepted && !supported ? 1 : 0;
         bySupport += supported ? 1 : 0;
         if (a.json) {
           nlohmann::json j;
@@ -285,7 +295,10 @@ int main(int argc, char **argv)
           j["minimum_support"] =
               std::isfinite(db.minimumSupport()) ? nlohmann::json(db.minimumSupport()) : nlohmann::json(nullptr);
           j["accepted"] = r.accepted;
-          j["accepted_by"] = !r.accepted ? nlohmann::json(nullptr) : nlohmann::json(supported ? "support" : "distance");
+          j["accepted_by"] = !r.accepted ? nlohmann::json(nullptr)
+                                         : nlohmann::json(rigid       ? "rigid check"
+                                                          : supported ? "support"
+                                                                      : "distance");
           j["mirrored"] = r.mirrored;
           j["opening_deg"] = db[r.index].isArticulated() ? nlohmann::json(vpMath::deg(r.articulation)) : nullptr;
           j["reranked"] = r.reranked;
@@ -302,14 +315,16 @@ int main(int argc, char **argv)
           std::cout << (a.positional.size() > 2 ? path + ": " : std::string())
                     << (r.accepted ? (supported ? "ACCEPTED (support) " : "ACCEPTED ") : "REJECTED ")
                     << db[r.index].name() << (r.mirrored ? " (mirrored)" : "")
-                    << (r.articulation != 0.0 ? " opened " + fmt(vpMath::deg(r.articulation), 1) + " deg" : "")
-                    << ": distance " << fmt(r.distance) << " (threshold " << fmt(r.threshold) << ")";
+                    << (r.articulation != 0.0 ? " opened " + fmt(vpMath::deg(r.articulation), 1) + " deg" : "") << ": "
+                    << (rigid ? "cost " : "distance ") << fmt(r.distance);
+          if (!rigid)
+            std::cout << " (threshold " << fmt(r.threshold) << ")";
           if (!std::isnan(r.support))
             std::cout << ", support " << std::setprecision(2) << std::fixed << r.support << " (minimum "
                       << fmt(db.minimumSupport()) << ")";
           if (r.reranked)
             std::cout << ", re-ranked from " << db[r.secondIndex].name();
-          if (!r.accepted && r.distance <= r.threshold)
+          if (!rigid && !r.accepted && r.distance <= r.threshold)
             std::cout << ", under the support floor " << fmt(db.supportFloor());
           std::cout << ", runner-up "
                     << (r.secondIndex == vpMorphRecognition::npos ? std::string("none") : db[r.secondIndex].name())
@@ -320,6 +335,9 @@ int main(int argc, char **argv)
       }
       if (a.json)
         std::cout << (n == 1 ? all[0] : all).dump(2) << std::endl;
+      else if (n > 1 && db.distance().model() == vpMorphShapeDistance::RIGID)
+        std::cout << "accepted " << byCheck << " of " << n
+                  << (errors ? " (" + std::to_string(errors) + " in error)" : std::string()) << "\n";
       else if (n > 1)
         std::cout << "accepted " << byDistance + bySupport << " of " << n << " (" << byDistance << " by the distance, "
                   << bySupport << " by the support" << (errors ? ", " + std::to_string(errors) + " in error" : "")

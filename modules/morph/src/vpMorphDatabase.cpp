@@ -21,6 +21,7 @@
 #include <visp3/morph/vpMorphRigidTransform.h>
 
 #include "vpMorphOutlineShare.h"
+#include "vpMorphRigidSearch.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -31,6 +32,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPoseStep = 3.14159265358979323846 / 45.0; // 4 deg between an articulated template's poses
 const char *kFormat = "vispmorph-template-database";
 constexpr int kVersion = 1;
+constexpr double kRigidSupport = 0.5; // RIGID's minimum support (class description)
 
 vpMorphException ioError(const std::string &msg) { return vpMorphException(vpMorphException::ioError, msg); }
 
@@ -250,7 +252,80 @@ bool isImageFile(const fs::path &p)
 }
 } // namespace
 
-vpMorphDatabase::vpMorphDatabase(const vpMorphShapeDistance &distance) : m_distance(distance), m_threshold(kInf) {}
+vpMorphDatabase::vpMorphDatabase(const vpMorphShapeDistance &distance) : m_distance(distance), m_threshold(kInf)
+{
+  if (distance.model() == vpMorphShapeDistance::RIGID)
+    m_minSupport = kRigidSupport;
+}
+
+bool vpMorphDatabase::rigidAccepted(const vpMorphRigidCheck::Result &r) const
+{
+  return r.fitted && r.targetShare >= m_minSupport && r.outsideShare <= maximumOutside();
+}
+
+std::vector<vpMorphRigidSearch::View> vpMorphDatabase::rigidViews(bool poses, std::size_t skip) const
+{
+  std::vector<vpMorphRigidSearch::View> views;
+  for (std::size_t k = 0; k < m_templates.size(); ++k) {
+    if (k == skip)
+      continue;
+    views.push_back(vpMorphRigidSearch::View{k, vpMorphRecognition::npos, &m_shapes[k].rigid[0]});
+    for (std::size_t p = 0; poses && p < m_poses[k].size(); ++p)
+      views.push_back(vpMorphRigidSearch::View{k, p, &m_poses[k][p].shape.rigid[0]});
+  }
+  return views;
+}
+
+vpMorphRigidCheck::Result vpMorphDatabase::rigidCheck(const vpMorphShapeDistance::Shape &q, std::size_t k,
+                                                      bool mirrored, bool poses) const
+{
+  std::vector<vpMorphRigidSearch::View> views;
+  views.push_back(vpMorphRigidSearch::View{k, vpMorphRecognition::npos, &m_shapes[k].rigid[0]});
+  for (std::size_t p = 0; poses && p < m_poses[k].size(); ++p)
+    views.push_back(vpMorphRigidSearch::View{k, p, &m_poses[k][p].shape.rigid[0]});
+  vpMorphRigidCheck::Result best;
+  for (std::size_t m = 0; m < (mirrored ? q.rigid.size() : 1); ++m) {
+    const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(q.rigid[m], views, 1);
+    if (m == 0 || o.best.cost < best.cost)
+      best = o.best;
+  }
+  return best;
+}
+
+vpMorphRecognition vpMorphDatabase::rigidSearch(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q,
+                                                bool prune, vpMorphMatcher &matcher, bool poses) const
+{
+  const std::vector<vpMorphRigidSearch::View> views = rigidViews(poses);
+  vpMorphRecognition r;
+  // The view as it is, then (mirrors on) its mirror image when that is not accepted: a part turned over.
+  for (std::size_t m = 0; m < q.rigid.size(); ++m) {
+    const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(q.rigid[m], views, prune ? rigidShortlist() : 0);
+    vpMorphRecognition a;
+    a.index = o.index;
+    a.distance = o.best.cost;
+    a.secondIndex = o.second;
+    a.secondDistance = o.second == vpMorphRecognition::npos ? kInf : o.runnerUp.cost;
+    a.margin = o.second == vpMorphRecognition::npos
+                   ? 1.0
+                   : (a.secondDistance > 0.0 ? (a.secondDistance - a.distance) / a.secondDistance : 0.0);
+    a.threshold = threshold(a.index);
+    a.support = o.best.targetShare;
+    a.mirrored = m == 1;
+    a.articulation = o.pose == vpMorphRecognition::npos ? 0.0 : m_poses[a.index][o.pose].angle;
+    a.evaluated = o.compared;
+    // Two templates that both explain the view within the cost's noise: no telling which.
+    const bool ambiguous = o.second != vpMorphRecognition::npos && rigidAccepted(o.runnerUp) &&
+                           o.runnerUp.cost - o.best.cost < ambiguity();
+    a.accepted = rigidAccepted(o.best) && !ambiguous;
+    if (m == 0 || a.accepted) {
+      r = a;
+      r.correspondence = matcher.match(c, templateView(r.index, o.pose));
+    }
+    if (r.accepted)
+      break;
+  }
+  return r;
+}
 
 void vpMorphDatabase::invalidate()
 {
@@ -416,6 +491,7 @@ void vpMorphDatabase::setArticulation(const std::string &name, const vpMorphArti
 void vpMorphDatabase::setDistance(const vpMorphShapeDistance &d)
 {
   m_distance = d;
+  m_minSupport = vpMorphDatabase(d).m_minSupport; // the model's default
   m_shapes.clear();
   for (const vpMorphTemplate &t : m_templates)
     m_shapes.push_back(m_distance.prepare(t.contour()));
@@ -465,6 +541,8 @@ double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mir
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphDatabase::support: the contour's units are not those of template '" +
                                m_templates[k].name() + "'");
+  if (m_distance.model() == vpMorphShapeDistance::RIGID)
+    return rigidCheck(m_distance.prepare(c), k, mirrored, poses).targetShare;
   vpMorphMatcher matcher = m_distance.matcher();
   const double taught = shownEitherWay(c, t, matcher, mirrored, matcher.match(c, t));
   if (!poses || m_poses[k].empty())
@@ -485,6 +563,12 @@ bool vpMorphDatabase::accepts(const vpMorphContour &c, std::size_t k, double sla
   vpMorphMatcher matcher = m_distance.matcher();
   bool mirrored = false;
   const vpMorphShapeDistance::Shape q = m_distance.prepare(c);
+  if (m_distance.model() == vpMorphShapeDistance::RIGID) {
+    const vpMorphRigidCheck::Result r = rigidCheck(q, k, true, true);
+    if (distance)
+      *distance = r.cost;
+    return r.cost <= slack * threshold(k) || rigidAccepted(r);
+  }
   double d = m_distance.distance(q, m_shapes[k], matcher, -1.0, &mirrored);
   if (d > slack * threshold(k)) // an articulated template: its other openings too
     d = poseDistance(q, k, matcher, d, -1.0, mirrored);
@@ -525,6 +609,13 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
         if (k < T) {
           for (const vpMorphContour &p : perturbations(m_templates[k].contour()))
             within[k] = std::max(within[k], m_distance.distance(m_distance.prepare(p), m_shapes[k], matcher));
+        } else if (m_distance.model() == vpMorphShapeDistance::RIGID) {
+          // The nearest other template by the two-stage search (the full matrix would take T^2 exact comparisons).
+          const std::size_t i = k - T;
+          const vpMorphRigidSearch::Outcome o =
+              vpMorphRigidSearch::run(m_shapes[i].rigid[0], rigidViews(false, i), rigidShortlist());
+          if (o.index != vpMorphRecognition::npos)
+            D[i * T + o.index] = o.best.cost;
         } else {
           const std::size_t i = k - T;
           for (std::size_t j = i + 1; j < T; ++j)
@@ -533,9 +624,10 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
       },
       progress);
   std::vector<double> between(T, kInf);
+  const bool rigid = m_distance.model() == vpMorphShapeDistance::RIGID;
   for (std::size_t i = 0; i < T; ++i)
     for (std::size_t j = 0; j < T; ++j)
-      if (i != j)
+      if (i != j && (!rigid || D[i * T + j] > 0.0 || j == i))
         between[i] = std::min(between[i], D[i * T + j]);
   m_within = within;
   m_between = between;
@@ -557,6 +649,8 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
 vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q, bool prune,
                                            vpMorphMatcher &matcher, bool poses) const
 {
+  if (m_distance.model() == vpMorphShapeDistance::RIGID)
+    return rigidSearch(c, q, prune, matcher, poses);
   const std::size_t T = m_templates.size();
   vpMorphRecognition r;
   // Keeps the two best (distance, index) pairs, ordered lexicographically: ties go to the lower index.

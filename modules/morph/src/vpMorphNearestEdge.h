@@ -90,6 +90,33 @@ public:
   }
 
   /*
+    As operator(), when the nearest edge lies within \e reach (> 0) of p; +inf (m = 0) otherwise. Only the cells that
+    the box p +- reach meets are searched: a fit that weighs out whatever lies beyond a cut-off needs no farther edge,
+    and a point far off a dense outline made the rings spread over dozens of cells. Within reach, the result is
+    operator()'s (the box holds every edge within reach: it is bucketed in the cell of its nearest point).
+  */
+  double within(double px, double py, double reach, double &mx, double &my) const
+  {
+    Best b;
+    if (std::isfinite(px) && std::isfinite(py)) {
+      if (m_first.empty()) {
+        for (std::size_t k = 0; k < m_edges.size(); ++k)
+          visit(k, px, py, b);
+      } else {
+        const int i0 = cellX(px - reach), i1 = cellX(px + reach), j0 = cellY(py - reach), j1 = cellY(py + reach);
+        for (int j = j0; j <= j1; ++j)
+          for (int i = i0; i <= i1; ++i)
+            visitCell(i, j, px, py, b);
+      }
+    }
+    if (b.k >= m_edges.size() || b.d2 > reach * reach) {
+      mx = my = 0.0;
+      return std::numeric_limits<double>::infinity();
+    }
+    return finish(b, px, py, mx, my, nullptr);
+  }
+
+  /*
     Whether an edge lies within \e tol (> 0) of p: the nearest point's distance compared with tol, but only the cells
     that the box p +- tol meets are searched, and only until one edge is within (a stretch of an outline that lies on
     the target is searched for over the whole outline at every hypothesis, where its distance is not needed).

@@ -137,6 +137,8 @@ vpMorphShapeDistance::vpMorphShapeDistance(Model model) : m_model(model), m_poin
     m_work = vpMorphWorkModel(1.0, 0.2, 0.5);
     m_scales = {0.01, 0.05, 0.1};
     break;
+  case RIGID:
+    break;
   }
 }
 
@@ -148,8 +150,10 @@ vpMorphShapeDistance vpMorphShapeDistance::fromName(const std::string &name)
     return vpMorphShapeDistance(PAPER);
   if (name == "multiscale")
     return vpMorphShapeDistance(MULTISCALE);
+  if (name == "rigid")
+    return vpMorphShapeDistance(RIGID);
   throw vpMorphException(vpMorphException::badParameterError,
-                         "vpMorphShapeDistance: unknown model '" + name + "' (polygon, paper or multiscale)");
+                         "vpMorphShapeDistance: unknown model '" + name + "' (polygon, paper, multiscale or rigid)");
 }
 
 std::string vpMorphShapeDistance::name() const
@@ -159,6 +163,8 @@ std::string vpMorphShapeDistance::name() const
     return "paper";
   case MULTISCALE:
     return "multiscale";
+  case RIGID:
+    return "rigid";
   default:
     return "polygon";
   }
@@ -166,12 +172,12 @@ std::string vpMorphShapeDistance::name() const
 
 void vpMorphShapeDistance::setPoints(std::size_t n)
 {
-  if (m_model != POLYGON && n < 8) {
+  if (m_model != POLYGON && m_model != RIGID && n < 8) {
     std::ostringstream os;
     os << "vpMorphShapeDistance: " << n << " points per outline is too few (at least 8)";
     throw vpMorphException(vpMorphException::badParameterError, os.str());
   }
-  m_points = m_model == POLYGON ? 0 : n;
+  m_points = m_model == POLYGON || m_model == RIGID ? 0 : n;
 }
 
 void vpMorphShapeDistance::setScales(const std::vector<double> &sigmas)
@@ -190,6 +196,15 @@ vpMorphShapeDistance::Shape vpMorphShapeDistance::prepare(const vpMorphContour &
   if (c.empty())
     throw vpMorphException(vpMorphException::badContourError, "vpMorphShapeDistance: empty contour");
   Shape s;
+  if (m_model == RIGID) {
+    s.forms.push_back(c);
+    s.rigid.emplace_back(c);
+    if (m_mirrors) {
+      s.forms.push_back(c.mirrored());
+      s.rigid.emplace_back(s.forms.back());
+    }
+    return s;
+  }
   const std::vector<double> scales = m_model == POLYGON ? std::vector<double>{0.0} : m_scales;
   for (double sigma : scales) {
     const vpMorphContour f = m_model == POLYGON ? c : smoothed(c, sigma, m_points);
@@ -209,9 +224,29 @@ vpMorphShapeDistance::Shape vpMorphShapeDistance::prepare(const vpMorphContour &
 }
 
 double vpMorphShapeDistance::distance(const Shape &a, const Shape &b, vpMorphMatcher &matcher, double abandonAbove,
-                                      bool *mirrored) const
+                                      bool *mirrored, vpMorphRigidCheck::Result *check) const
 {
   const std::size_t per = m_mirrors ? 2 : 1;
+  if (m_model == RIGID) {
+    if (a.rigid.size() != per || b.rigid.empty())
+      throw vpMorphException(vpMorphException::badParameterError,
+                             "vpMorphShapeDistance: shapes prepared with another distance");
+    vpMorphRigidCheck::Result best;
+    bool bestMirror = false;
+    for (std::size_t m = 0; m < per; ++m) {
+      const vpMorphRigidCheck::Result r =
+          vpMorphRigidCheck::check(a.rigid[m], b.rigid[0], a.rigid[m].alignOn(b.rigid[0]));
+      if (m == 0 || r.cost < best.cost) {
+        best = r;
+        bestMirror = m == 1;
+      }
+    }
+    if (mirrored)
+      *mirrored = bestMirror;
+    if (check)
+      *check = best;
+    return best.cost;
+  }
   const std::size_t nScales = a.len.size();
   if (nScales == 0 || b.len.size() != nScales || a.forms.size() != nScales * per || b.forms.size() != nScales * per)
     throw vpMorphException(vpMorphException::badParameterError,
@@ -244,6 +279,8 @@ double vpMorphShapeDistance::distance(const vpMorphContour &a, const vpMorphCont
 
 double vpMorphShapeDistance::lowerBound(const Shape &a, const Shape &b) const
 {
+  if (m_model == RIGID)
+    return 0.0;
   double sum = 0.0;
   for (std::size_t s = 0; s < a.len.size() && s < b.len.size(); ++s) {
     const double cheap = std::max(rowBound(m_work, a.len[s], a.phi[s], b.lenSort[s], b.phiSort[s]),

@@ -51,11 +51,13 @@ vpMorphContour extract(const cv::Mat &m) { return vpMorphContourExtractor().extr
 // The pieces of an object that an occluder split, joined across the occluder (as the benchmark's silhouettes).
 vpMorphContour extractJoined(const cv::Mat &m) { return vpMorphContourExtractor().extractJoined(toVisp(m)); }
 
-// The database of the six objects, built from their images (default distance, calibrated once per process).
+// The database of the six objects, built from their images (calibrated once per process), with the MULTISCALE
+// distance: these tests pin the D_morph recognition (thresholds, support, re-ranking); RIGID is tested in
+// testMorphRigid.cpp.
 const vpMorphDatabase &objectDatabase()
 {
   static vpMorphDatabase db = [] {
-    vpMorphDatabase d;
+    vpMorphDatabase d(vpMorphShapeDistance(vpMorphShapeDistance::MULTISCALE));
     for (const char *n : kObjects)
       d.add(vpMorphTemplate(n, extract(readGray(objectPath(n))), objectPath(n)));
     d.calibrate();
@@ -190,7 +192,7 @@ TEST_CASE("recognition: objects that are not in the database are rejected", "[re
     CHECK_FALSE(r.accepted);
   }
   // A tool left out of the database is not taken for one of the others.
-  vpMorphDatabase five;
+  vpMorphDatabase five(objectDatabase().distance());
   for (int k = 0; k < 5; ++k)
     five.add(objectDatabase()[static_cast<std::size_t>(k)]);
   five.calibrate();
@@ -501,8 +503,10 @@ TEST_CASE("recognition: batch work on two threads equals serial work and reports
 
 TEST_CASE("recognition: distance models by name, and bad input", "[recognition]")
 {
-  for (const char *n : {"polygon", "paper", "multiscale"})
+  for (const char *n : {"polygon", "paper", "multiscale", "rigid"})
     CHECK(vpMorphShapeDistance::fromName(n).name() == n);
+  CHECK(vpMorphDatabase().distance().name() == "multiscale"); // the default
+  CHECK_FALSE(vpMorphShapeDistance::fromName("rigid").mirrors());
   CHECK(vpMorphShapeDistance::fromName("paper").points() == 64);
   CHECK(vpMorphShapeDistance::fromName("paper").mirrors());
   CHECK_FALSE(vpMorphShapeDistance::fromName("polygon").mirrors());

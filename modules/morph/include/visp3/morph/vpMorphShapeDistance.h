@@ -12,6 +12,8 @@
 
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphMatcher.h>
+#include <visp3/morph/vpMorphRigidCheck.h>
+#include <visp3/morph/vpMorphRigidShape.h>
 #include <visp3/morph/vpMorphWorkModel.h>
 
 /*!
@@ -37,24 +39,32 @@
     features (with no smoothing, D_morph between a key and the same key sampled from another start is 1.3,
     more than the distance to another tool; with 1 % it is 0.05). Widths and kb were chosen on Kimia-99 and
     on a third of the MPEG-7 classes (README).
+  - RIGID (default of vpMorphDatabase): not D_morph. The view laid on the template by a plane homography
+    (vpMorphRigidShape::alignOn() for the start, then vpMorphRigidCheck) and the two-way truncated quadratic cost of
+    what does not coincide, in [0, 1]: a rigid part's view coincides with its own template to the outline's
+    measurement noise wherever it is not hidden, and a look-alike's differences stay uncovered, where the
+    deformation-tolerant D_morph absorbs them. Mirror images off (a part lying on a table shows one side; teach the
+    other side as a template of its own, or turn mirrors on: the mirror image is then tried when the direct one
+    costs more). Not symmetric in general (the first shape is laid on the second), nor a metric.
 
   Every representation is computed once per contour (prepare()), so a matrix over N shapes costs N
   preparations and N(N-1)/2 distances. The distance is symmetric and invariant to translation, rotation and
   scale (the matcher normalises to unit perimeter).
 
-  <b>Lower bound.</b> lowerBound() is a cheap certificate that distance() cannot be smaller: every vertex of
-  each polygon is entered by exactly one step of a correspondence, and every step costs at least as much as
-  the cheapest step that could enter its vertex, so the sum over vertices of those minima (for either polygon,
-  take the larger) bounds D_morph from below; mirror images have the same lengths and turning angles so the
+  <b>Lower bound.</b> (D_morph models; 0 for RIGID) lowerBound() is a cheap certificate that distance() cannot be
+  smaller: every vertex of each polygon is entered by exactly one step of a correspondence, and every step costs at
+  least as much as the cheapest step that could enter its vertex, so the sum over vertices of those minima (for either
+  polygon, take the larger) bounds D_morph from below; mirror images have the same lengths and turning angles so the
   bound holds for them too. Used to skip templates that cannot win a recognition, without changing its result.
 */
 class vpMorphShapeDistance
 {
 public:
   enum Model {
-    POLYGON,   //!< Parameterless polygons as extracted, no mirror.
-    PAPER,     //!< 64 points by arc length, mirrors included.
-    MULTISCALE //!< Sum over Gaussian-smoothed scales, resampled, mirrors included.
+    POLYGON,    //!< Parameterless polygons as extracted, no mirror.
+    PAPER,      //!< 64 points by arc length, mirrors included.
+    MULTISCALE, //!< Sum over Gaussian-smoothed scales, resampled, mirrors included.
+    RIGID       //!< The outlines laid on each other by a homography (vpMorphRigidCheck), no mirror.
   };
 
   //! A contour in the representation(s) of a model, ready for distance() and lowerBound().
@@ -65,6 +75,7 @@ public:
     std::vector<std::vector<double>> phi;     //!< per scale: turning angles (positive traversal)
     std::vector<std::vector<double>> lenSort; //!< per scale: lengths sorted
     std::vector<std::vector<double>> phiSort; //!< per scale: angles sorted
+    std::vector<vpMorphRigidShape> rigid;     //!< RIGID: the contour, then its mirror image if mirrors are used
   };
 
   //! Progress of a batch job: \e done of \e total units; called from the calling thread only.
@@ -72,7 +83,7 @@ public:
 
   //! The model with its default settings (POLYGON: default work model).
   explicit vpMorphShapeDistance(Model model = POLYGON);
-  //! Named models: "polygon", "paper", "multiscale". \throw vpMorphException::badParameterError if unknown.
+  //! Named models: "polygon", "paper", "multiscale", "rigid". \throw vpMorphException::badParameterError if unknown.
   static vpMorphShapeDistance fromName(const std::string &name);
   //! Name of the model, as accepted by fromName().
   std::string name() const;
@@ -97,12 +108,13 @@ public:
   */
   Shape prepare(const vpMorphContour &c) const;
   /*!
-    Distance between two prepared shapes (symmetric); \e abandonAbove: once the partial sum over the scales
-    exceeds it the computation stops and returns a value > abandonAbove (exact otherwise).
-    \e mirrored (if not null) tells whether b's mirror image gave the distance.
+    Distance between two prepared shapes (symmetric for the D_morph models); \e abandonAbove: once the partial sum
+    over the scales exceeds it the computation stops and returns a value > abandonAbove (exact otherwise).
+    \e mirrored (if not null) tells whether b's mirror image gave the distance. RIGID: a laid on b (b's mirror image:
+    a's mirror image laid on b), and \e check (if not null) receives the comparison that gave it.
   */
   double distance(const Shape &a, const Shape &b, vpMorphMatcher &matcher, double abandonAbove = -1.0,
-                  bool *mirrored = nullptr) const;
+                  bool *mirrored = nullptr, vpMorphRigidCheck::Result *check = nullptr) const;
   //! Convenience: distance between two contours.
   double distance(const vpMorphContour &a, const vpMorphContour &b) const;
   /*!

@@ -1,0 +1,96 @@
+/*!
+  \file vpMorphRigidCheck.h
+  \brief Whether a view is a rigid part's template: the two outlines laid on each other by a plane homography.
+*/
+#ifndef VP_MORPH_RIGID_CHECK_H
+#define VP_MORPH_RIGID_CHECK_H
+
+#include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphHomography.h>
+#include <visp3/morph/vpMorphRigidShape.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
+
+/*!
+  \class vpMorphRigidCheck
+  \ingroup group_morph
+  \brief The exact, rigid-aware comparison of a view with a template: the view's outline is laid on the template's
+  by the plane homography that a camera's view of a flat part is, and what coincides within the measurement's
+  tolerance is counted both ways.
+
+  Why: look-alike parts differ by details that a deformation-tolerant distance absorbs (D_morph lets the
+  correspondence slide and bend), while a rigid part's view is its template seen through a homography, to the
+  outline's measurement noise. Laid on each other, the right template's outline coincides with the view's
+  everywhere the view shows it, and a look-alike's leaves its differences uncovered.
+
+  check(input, target, start): from the similarity \e start (input to target, vpMorphRigidShape::alignOn()), the
+  homography is fitted by Gauss-Newton on point-to-edge distances both ways (64 points of each outline onto the
+  other's edges, Tukey weights whose cut-off shrinks from a twentieth of the target's size to twice tolerance(): the
+  parts one outline lacks, hidden or an occluder's edge, drop out). A fit that no camera gives (a view tilted more than
+  45 deg, mirrored, or a perspective that changes the area scale by more than a factor 2 across the outline: a free
+  homography can squash one outline onto a few edges of another) is not fitted. Then 256 points spread evenly along
+  each outline
+  are mapped onto the other and their distance d to it measured. Each side gives the share of its points with
+  d <= tolerance() (the target's: how much of the template the view shows; the input's: how much of the view the
+  template explains, less than 1 where an occluder's edge runs) and the mean of min(d, tolerance)^2 / tolerance^2; the
+  cost is the mean of the two sides', 0 for outlines that coincide, 1 for nothing in common. The curves are the
+  measured (dense, sub-pixel) outlines when the contours have them (vpMorphContour::outline()), else the polygons.
+
+  \code
+  const vpMorphRigidShape t(tmpl), q(view);
+  const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(q, t, q.alignOn(t).transform);
+  // r.targetShare: share of the template's outline the view shows; r.cost: ranks templates
+  \endcode
+*/
+class vpMorphRigidCheck
+{
+public:
+  struct Result
+  {
+    double cost = 1.0;        //!< two-way truncated quadratic mean, in [0, 1]
+    double targetShare = 0.0; //!< share of the target's outline within tolerance of the mapped input
+    double inputShare = 0.0;  //!< share of the input's outline within tolerance of the target
+    //! share of the input's outline outside the target's region by more than twice the tolerance: an occluder only
+    //! takes away, so a view of the target never sticks out of it (0 for an input without a measured region: a
+    //! silhouette joined across its occluder, vpMorphContourExtractor::extractJoined(), has bridges that may)
+    double outsideShare = 0.0;
+    vpMorphHomography homography; //!< input to target, pixels (identity when the fit failed)
+    bool fitted = false;          //!< the fit converged to a possible view (else the shares are 0 and the cost 1)
+  };
+
+  /*!
+    Compares \e input with \e target from the similarity \e start (input pixels to target pixels).
+    \throw vpMorphException::badParameterError on an empty shape or units that differ.
+  */
+  static Result check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                      const vpMorphRigidTransform &start);
+  //! The better (least cost) of check() from the alignment's transform and from its alternative, when it has one.
+  static Result check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                      const vpMorphRigidShape::Alignment &alignment);
+  //! check() of two contours, prepared here.
+  static Result check(const vpMorphContour &input, const vpMorphContour &target, const vpMorphRigidTransform &start);
+
+  /*!
+    Distance within which two points of the outlines coincide, in the target's units: half a pixel between measured
+    outlines (the edge outline's error under the documented noise and blur is a tenth of a pixel, and a homography
+    maps a flat part's views onto each other exactly), 1.5 px when either is a polygon (each vertex is a boundary
+    pixel's centre, up to half a pixel's diagonal off the edge, on either contour). For NORMALIZED contours the same
+    as for a target whose size (square root of its area) is 128 px.
+  */
+  static double tolerance(const vpMorphContour &input, const vpMorphContour &target);
+
+  /*!
+    How far two contours are from being one shape at two sizes: \e input laid on \e target by the similarity that
+    fits their outlines best (started from vpMorphRigidShape::alignOn() both ways, refined point to edge), the
+    \e quantile of the distances of 256 points of each outline to the other, in pixels of the coarser of the two (an
+    input twice smaller than the target has pixels two target pixels wide). Two digitisations of one outline lie within
+    half a pixel's diagonal of it each, so one shape seen at two sizes is within sqrt(2) at every point.
+    \throw vpMorphException::badContourError on an empty or degenerate contour, badParameterError on units that
+    differ or a quantile outside [0, 1].
+  */
+  static double similarityDeviation(const vpMorphContour &input, const vpMorphContour &target, double quantile = 0.99);
+  //! similarityDeviation() of shapes already prepared (many pairs of few shapes).
+  static double similarityDeviation(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                    double quantile = 0.99);
+};
+
+#endif

@@ -1,0 +1,305 @@
+#include <visp3/morph/vpMorphRigidCheck.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include <visp3/morph/vpMorphException.h>
+
+#include "vpMorphRigidShapeData.h"
+
+namespace
+{
+typedef Eigen::Matrix3d Mat3;
+typedef Eigen::Matrix<double, 8, 8> Mat8;
+typedef Eigen::Matrix<double, 8, 1> Vec8;
+
+constexpr int kIterations = 8;        // Gauss-Newton steps
+constexpr std::size_t kFitStride = 4; // the fit uses every 4th fine sample: 64 a side
+constexpr double kFirstCutOff = 0.05; // the Tukey cut-off's start, in target sizes (a coarse alignment's error)
+constexpr double kShrink = 0.6;       // and its decrease a step, down to twice the tolerance
+constexpr double kMaxTilt = 45.0 * M_PI / 180.0; // the steepest view of a part that the check admits
+constexpr double kPolygonBound = 4.0; // tolerances (2 px): a polygon lies within a pixel's diagonal of its outline
+
+// Maps (x, y) by H; false at infinity.
+inline bool project(const Mat3 &H, double x, double y, double &X, double &Y, double &w)
+{
+  w = H(2, 0) * x + H(2, 1) * y + H(2, 2);
+  if (!(std::fabs(w) > 1e-12))
+    return false;
+  X = (H(0, 0) * x + H(0, 1) * y + H(0, 2)) / w;
+  Y = (H(1, 0) * x + H(1, 1) * y + H(1, 2)) / w;
+  return std::isfinite(X) && std::isfinite(Y);
+}
+
+// Tukey's biweight at residual r for cut-off c.
+inline double tukey(double r, double c)
+{
+  const double u = r / c;
+  return std::fabs(u) < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
+}
+
+// Normalised frames: input u = (p - ci) / si, target U = (P - ct) / st; G maps u to U.
+struct Frames
+{
+  double ci_x, ci_y, si, ct_x, ct_y, st;
+  Mat3 toPixels(const Mat3 &G) const
+  {
+    Mat3 A, B;
+    A << 1.0 / si, 0, -ci_x / si, 0, 1.0 / si, -ci_y / si, 0, 0, 1;
+    B << st, 0, ct_x, 0, st, ct_y, 0, 0, 1;
+    return B * G * A;
+  }
+};
+
+/*
+  One Gauss-Newton step of G (h33 = 1) on the point-to-edge distances of the input's samples mapped onto the target
+  and of the target's samples mapped back onto the input, Tukey-weighted at cut-off c (target sizes); false when the
+  system is singular or a point maps to infinity.
+*/
+bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, const Frames &f, Mat3 &G, double c)
+{
+  Mat8 A = Mat8::Zero();
+  Vec8 b = Vec8::Zero();
+  std::size_t used = 0;
+  // Input to target: r = m . (G u - nearest), in target sizes.
+  for (std::size_t i = 0; i < in.fx.size(); i += kFitStride) {
+    const double x = (in.fx[i] - f.ci_x) / f.si, y = (in.fy[i] - f.ci_y) / f.si;
+    double X, Y, w;
+    if (!project(G, x, y, X, Y, w))
+      return false;
+    double mx, my;
+    const double r = tg.fineEdges.within(f.ct_x + X * f.st, f.ct_y + Y * f.st, c * f.st, mx, my) / f.st;
+    const double wt = std::isfinite(r) ? tukey(r, c) : 0.0;
+    if (wt <= 0.0)
+      continue;
+    // d(X, Y) / d(h11 h12 h13 h21 h22 h23 h31 h32)
+    const Vec8 J = (Vec8() << mx * x / w, mx * y / w, mx / w, my * x / w, my * y / w, my / w,
+                    -(mx * X + my * Y) * x / w, -(mx * X + my * Y) * y / w)
+                       .finished();
+    A.noalias() += wt * J * J.transpose();
+    b.noalias() -= wt * r * J;
+    ++used;
+  }
+  // Target to input through G^-1: d(G^-1 U) = -G^-1 dG G^-1 U; r in input sizes.
+  const Mat3 Gi = G.inverse();
+  for (std::size_t i = 0; i < tg.fx.size(); i += kFitStride) {
+    const Eigen::Vector3d U((tg.fx[i] - f.ct_x) / f.st, (tg.fy[i] - f.ct_y) / f.st, 1.0);
+    const Eigen::Vector3d v = Gi * U;
+    if (!(std::fabs(v(2)) > 1e-12))
+      return false;
+    const double x = v(0) / v(2), y = v(1) / v(2);
+    double mx, my;
+    const double r = in.fineEdges.within(f.ci_x + x * f.si, f.ci_y + y * f.si, c * f.si, mx, my) / f.si;
+    const double wt = std::isfinite(r) ? tukey(r, c) : 0.0;
+    if (wt <= 0.0)
+      continue;
+    Vec8 J;
+    for (int k = 0; k < 8; ++k) {
+      const int row = k / 3, col = k % 3; // parameter k is G(row, col)
+      const Eigen::Vector3d dv = -Gi.col(row) * v(col);
+      J(k) = (mx * (dv(0) - x * dv(2)) + my * (dv(1) - y * dv(2))) / v(2);
+    }
+    A.noalias() += wt * J * J.transpose();
+    b.noalias() -= wt * r * J;
+    ++used;
+  }
+  if (used < 8)
+    return false;
+  A.diagonal() *= 1.0 + 1e-6; // Levenberg's damping: directions the outlines do not fix stay put
+  const Vec8 d = A.ldlt().solve(b);
+  if (!d.allFinite())
+    return false;
+  for (int k = 0; k < 8; ++k)
+    G(k / 3, k % 3) += d(k);
+  return true;
+}
+
+/*
+  Whether G (normalised frames) is a view of a flat part at most kMaxTilt from the target's: the local affine map's
+  singular values differ at most by the cosine of the tilt (a disc seen tilted is an ellipse of that aspect), keep the
+  orientation, and its area scale varies across the input by at most a factor 2 (the perspective of a part whose depth
+  varies by a fifth). A homography fitted freely can squash an outline onto a few edges of another, which no camera
+  sees.
+*/
+bool admissible(const Mat3 &G, const vpMorphRigidShapeData &in, const Frames &f)
+{
+  auto jacobian = [&G](double x, double y, double &det, double &ratio) {
+    double X, Y, w;
+    if (!project(G, x, y, X, Y, w))
+      return false;
+    const double a = (G(0, 0) - X * G(2, 0)) / w, b = (G(0, 1) - X * G(2, 1)) / w;
+    const double c = (G(1, 0) - Y * G(2, 0)) / w, d = (G(1, 1) - Y * G(2, 1)) / w;
+    det = a * d - b * c;
+    // Singular values of [a b; c d]: s1 s2 = |det|, s1^2 + s2^2 = |J|_F^2.
+    const double fro = a * a + b * b + c * c + d * d, disc = std::sqrt(std::max(0.0, fro * fro - 4.0 * det * det));
+    const double s1 = std::sqrt(0.5 * (fro + disc)), s2 = std::sqrt(std::max(0.0, 0.5 * (fro - disc)));
+    ratio = s1 > 0.0 ? s2 / s1 : 0.0;
+    return std::isfinite(det) && det > 0.0;
+  };
+  double det0, ratio;
+  if (!jacobian(0.0, 0.0, det0, ratio) || ratio < std::cos(kMaxTilt))
+    return false;
+  for (std::size_t i = 0; i < in.fx.size(); i += kFitStride) {
+    double det;
+    if (!jacobian((in.fx[i] - f.ci_x) / f.si, (in.fy[i] - f.ci_y) / f.si, det, ratio) || det > 2.0 * det0 ||
+        det < 0.5 * det0)
+      return false;
+  }
+  return true;
+}
+
+// Whether (x, y) is inside the closed curve c (even-odd rule).
+bool inside(const vpMorphContour &c, double x, double y)
+{
+  bool in = false;
+  for (std::size_t k = 0, l = c.size() - 1; k < c.size(); l = k++)
+    if ((c.y(k) > y) != (c.y(l) > y) && x < c.x(k) + (y - c.y(k)) / (c.y(l) - c.y(k)) * (c.x(l) - c.x(k)))
+      in = !in;
+  return in;
+}
+
+// Share of \e side's fine samples within tol of the other curve once mapped by H (pixels), their mean truncated
+// quadratic distance, and (when \e outside is given) the share beyond 2 tol outside the other curve.
+void measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &other, const Mat3 &H, double tol,
+             double &share, double &cost, double *outside = nullptr)
+{
+  std::size_t on = 0, out = 0;
+  double sum = 0.0;
+  const bool sign = outside != nullptr;
+  for (std::size_t i = 0; i < side.fx.size(); ++i) {
+    double X, Y, w, mx, my, d = tol;
+    if (project(H, side.fx[i], side.fy[i], X, Y, w)) {
+      const double e = std::fabs(other.fineEdges.within(X, Y, 2.0 * tol, mx, my)); // +inf beyond 2 tol
+      if (e <= tol) {
+        d = e;
+        ++on;
+      } else if (sign && e > 2.0 * tol &&
+                 !inside(other.polygon.size() * 8 < other.fine.size() && other.edges(X, Y, mx, my) > kPolygonBound * tol
+                             ? other.polygon
+                             : other.fine,
+                         X, Y)) {
+        ++out; // the polygon (tens of vertices, not hundreds) decides for a point beyond its approximation's bound
+      }
+    }
+    sum += (d * d) / (tol * tol);
+  }
+  share = static_cast<double>(on) / static_cast<double>(side.fx.size());
+  cost = sum / static_cast<double>(side.fx.size());
+  if (outside)
+    *outside = static_cast<double>(out) / static_cast<double>(side.fx.size());
+}
+} // namespace
+
+double vpMorphRigidCheck::tolerance(const vpMorphContour &input, const vpMorphContour &target)
+{
+  const double px = input.hasOutline() && target.hasOutline() ? 0.5 : 1.5;
+  return target.units() == vpMorphContour::PIXEL ? px : px * std::sqrt(target.regionArea()) / 128.0;
+}
+
+vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                                   const vpMorphRigidTransform &start)
+{
+  if (input.empty() || target.empty())
+    throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck: empty shape");
+  const vpMorphRigidShapeData &in = *input.m_data, &tg = *target.m_data;
+  if (in.contour.units() != tg.contour.units())
+    throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck: the contours' units differ");
+  const Frames f{in.cx, in.cy, in.size, tg.cx, tg.cy, tg.size};
+  // The start in the normalised frames: U = (T(p) - ct) / st with p = ci + si u.
+  double ox, oy;
+  start.apply(in.cx, in.cy, ox, oy);
+  const double k = start.scale() * in.size / tg.size, c = std::cos(start.theta()), s = std::sin(start.theta());
+  Mat3 G;
+  G << k * c, -k * s, (ox - tg.cx) / tg.size, k * s, k * c, (oy - tg.cy) / tg.size, 0, 0, 1;
+  Result r;
+  const double tol = tolerance(in.contour, tg.contour);
+  double cut = kFirstCutOff;
+  for (int it = 0; it < kIterations; ++it, cut = std::max(2.0 * tol / tg.size, cut * kShrink))
+    if (!step(in, tg, f, G, cut))
+      return r;
+  if (!admissible(G, in, f))
+    return r;
+  const Mat3 H = f.toPixels(G);
+  double ci = 1.0, ct = 1.0;
+  // A silhouette joined across its occluder (no measured region) has bridges, which may pass outside the target.
+  measure(in, tg, H, tol, r.inputShare, ci, in.contour.hasRegion() ? &r.outsideShare : nullptr);
+  measure(tg, in, H.inverse(), tol, r.targetShare, ct);
+  r.cost = 0.5 * (ci + ct);
+  vpMatrix M(3, 3);
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      M[i][j] = H(i, j);
+  try {
+    r.homography = vpMorphHomography(M);
+  } catch (const vpException &) {
+    return Result(); // singular: no fit
+  }
+  r.fitted = true;
+  return r;
+}
+
+vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                                   const vpMorphRigidShape::Alignment &alignment)
+{
+  Result r = check(input, target, alignment.transform);
+  if (alignment.hasAlternative) {
+    const Result a = check(input, target, alignment.alternative);
+    if (a.cost < r.cost)
+      r = a;
+  }
+  return r;
+}
+
+vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphContour &input, const vpMorphContour &target,
+                                                   const vpMorphRigidTransform &start)
+{
+  return check(vpMorphRigidShape(input), vpMorphRigidShape(target), start);
+}
+
+double vpMorphRigidCheck::similarityDeviation(const vpMorphContour &input, const vpMorphContour &target,
+                                              double quantile)
+{
+  if (input.units() != target.units())
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphRigidCheck::similarityDeviation: the contours' units differ");
+  return similarityDeviation(vpMorphRigidShape(input), vpMorphRigidShape(target), quantile);
+}
+
+double vpMorphRigidCheck::similarityDeviation(const vpMorphRigidShape &a, const vpMorphRigidShape &b, double quantile)
+{
+  if (!(quantile >= 0.0 && quantile <= 1.0))
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphRigidCheck::similarityDeviation: the quantile must be in [0, 1]");
+  if (a.empty() || b.empty() || a.contour().units() != b.contour().units())
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphRigidCheck::similarityDeviation: empty shapes or units that differ");
+  const vpMorphRigidShapeData &in = *a.m_data, &tg = *b.m_data;
+  double best = std::numeric_limits<double>::infinity();
+  for (const vpMorphRigidTransform &start : {a.alignOn(b).transform, b.alignOn(a).transform.inverse()}) {
+    try {
+      const vpMorphRigidTransform T = vpMorphRigidTransform::refineOnOutline(in.fine, tg.fine, start, true, 0.05, 30);
+      const vpMorphRigidTransform Ti = T.inverse();
+      std::vector<double> d;
+      double mx, my, x, y;
+      for (std::size_t i = 0; i < in.fx.size(); ++i) {
+        T.apply(in.fx[i], in.fy[i], x, y);
+        d.push_back(std::fabs(tg.fineEdges(x, y, mx, my)));
+      }
+      for (std::size_t i = 0; i < tg.fx.size(); ++i) {
+        Ti.apply(tg.fx[i], tg.fy[i], x, y);
+        d.push_back(std::fabs(in.fineEdges(x, y, mx, my)) * T.scale());
+      }
+      const std::size_t k = std::min(d.size() - 1, static_cast<std::size_t>(quantile * d.size()));
+      std::nth_element(d.begin(), d.begin() + static_cast<long>(k), d.end());
+      if (std::isfinite(d[k]))
+        best = std::min(best, d[k] / std::max(1.0, T.scale()));
+    } catch (const vpException &) {
+      // that start degenerated: the other may not have
+    }
+  }
+  return best;
+}

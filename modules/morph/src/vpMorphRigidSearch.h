@@ -1,0 +1,46 @@
+/*
+  \file vpMorphRigidSearch.h
+  \brief Internal to the morph module (not installed): vpMorphDatabase's two-stage search with the RIGID distance.
+*/
+#ifndef VP_MORPH_RIGID_SEARCH_H
+#define VP_MORPH_RIGID_SEARCH_H
+
+#include <cstddef>
+#include <vector>
+
+#include <visp3/morph/vpMorphRigidCheck.h>
+#include <visp3/morph/vpMorphRigidShape.h>
+
+//! A view of template \e index for vpMorphRigidSearch: its taught view (pose npos) or one of its poses.
+struct vpMorphRigidView
+{
+  std::size_t index, pose;
+  const vpMorphRigidShape *shape;
+};
+
+/*
+  The template a view is, by the RIGID distance, in two stages: every template view is aligned coarsely
+  (vpMorphRigidShape::alignOn(), tens of microseconds), and the \e shortlist templates whose coarse cost is least are
+  compared exactly (vpMorphRigidCheck, a few hundred microseconds); the least exact cost wins, ties to the lower index.
+  With shortlist 0 every template is compared exactly: the exhaustive search that the two stages stand for (a test
+  checks they agree). An articulated template has several views (its taught one and its poses): its coarsely best
+  view is the one compared.
+*/
+class vpMorphRigidSearch
+{
+public:
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+  typedef vpMorphRigidView View;
+  struct Outcome
+  {
+    std::size_t index = npos, pose = npos; // the best template and its view
+    vpMorphRigidCheck::Result best;        // its exact comparison
+    std::size_t second = npos;             // the runner-up among those compared exactly
+    vpMorphRigidCheck::Result runnerUp;    // its exact comparison
+    std::size_t compared = 0;              // templates compared exactly
+  };
+
+  static Outcome run(const vpMorphRigidShape &query, const std::vector<View> &views, std::size_t shortlist);
+};
+
+#endif

@@ -1,0 +1,409 @@
+#include <visp3/morph/vpMorphRigidShape.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include <visp3/morph/vpMorphException.h>
+
+#include "vpMorphRigidShapeData.h"
+
+namespace
+{
+constexpr int kBins = vpMorphRigidShapeData::kBins;
+constexpr int kTurns = 4;         // candidate turns (histogram correlation peaks)
+constexpr int kVoteTolerance = 2; // +-2 bins: tangent directions that agree within 12.5 deg vote
+constexpr int kSamples = vpMorphRigidShapeData::kSamples; // a target's votes; an input uses every other sample
+constexpr int kGrid = vpMorphRigidShapeData::kGrid;
+constexpr double kGridMargin = 1.25;
+constexpr int kVoteCells = 32; // shift accumulator cells a side, over [-kVoteRange, kVoteRange] sizes
+constexpr double kVoteRange = 1.2;
+constexpr int kIterations = 6;      // Gauss-Newton steps on the grid at most
+constexpr int kFirstIterations = 2; // of them, for every turn before the two best go on
+constexpr double kTwoPi = 2.0 * M_PI;
+
+vpMorphException badParameter(const std::string &m) { return vpMorphException(vpMorphException::badParameterError, m); }
+
+// A similarity in the shapes' normalised frames: X = a x - b y + tx, Y = b x + a y + ty.
+struct Sim
+{
+  double a = 1.0, b = 0.0, tx = 0.0, ty = 0.0;
+};
+
+int binOf(double angle)
+{
+  double f = angle / kTwoPi * kBins;
+  f -= std::floor(f / kBins) * kBins;
+  return std::min(kBins - 1, static_cast<int>(f));
+}
+
+// Solves the 4x4 symmetric system A x = b in place (Gaussian elimination with partial pivoting); false if singular.
+bool solve4(double A[4][4], double b[4])
+{
+  for (int c = 0; c < 4; ++c) {
+    int p = c;
+    for (int r = c + 1; r < 4; ++r)
+      if (std::fabs(A[r][c]) > std::fabs(A[p][c]))
+        p = r;
+    if (!(std::fabs(A[p][c]) > 1e-300))
+      return false;
+    if (p != c) {
+      std::swap(A[p], A[c]);
+      std::swap(b[p], b[c]);
+    }
+    for (int r = c + 1; r < 4; ++r) {
+      const double f = A[r][c] / A[c][c];
+      for (int k = c; k < 4; ++k)
+        A[r][k] -= f * A[c][k];
+      b[r] -= f * b[c];
+    }
+  }
+  for (int c = 3; c >= 0; --c) {
+    for (int k = c + 1; k < 4; ++k)
+      b[c] -= A[c][k] * b[k];
+    b[c] /= A[c][c];
+  }
+  return true;
+}
+} // namespace
+
+vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
+{
+  if (c.size() < 3 || !(c.area() > 0.0))
+    throw vpMorphException(vpMorphException::badContourError,
+                           "vpMorphRigidShape: a contour of at least 3 vertices and a positive area is needed");
+  auto d = std::make_shared<vpMorphRigidShapeData>(c);
+  c.regionCentroid(d->cx, d->cy);
+  d->size = std::sqrt(c.regionArea());
+  const vpMorphContour &P = d->polygon;
+  // Orientation histogram: each edge's length split between the two bins nearest its direction, smoothed by
+  // [1 2 1] / 4 (a direction measured within a bin's width of another votes for both).
+  std::array<double, kBins> h{};
+  double total = 0.0;
+  for (std::size_t k = 0; k < P.size(); ++k) {
+    const std::size_t l = (k + 1) % P.size();
+    const double dx = P.x(l) - P.x(k), dy = P.y(l) - P.y(k), len = std::hypot(dx, dy);
+    double f = std::atan2(dy, dx) / kTwoPi * kBins;
+    f -= std::floor(f / kBins) * kBins;
+    const int b0 = static_cast<int>(f) % kBins;
+    const double w = f - std::floor(f);
+    h[b0] += (1.0 - w) * len;
+    h[(b0 + 1) % kBins] += w * len;
+    total += len;
+  }
+  for (int k = 0; k < kBins; ++k) {
+    const float v = static_cast<float>((h[(k + kBins - 1) % kBins] + 2.0 * h[k] + h[(k + 1) % kBins]) / (4.0 * total));
+    d->hist[k] = d->hist[k + kBins] = v;
+  }
+  // Samples evenly along the outline (the measured one when there is one), with their tangent directions.
+  const vpMorphContour s = c.outline().counterClockwise().resampled(kSamples);
+  const std::size_t n = s.size();
+  std::vector<int> count(kBins, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t a = (i + n - 1) % n, b = (i + 1) % n;
+    d->x.push_back((s.x(i) - d->cx) / d->size);
+    d->y.push_back((s.y(i) - d->cy) / d->size);
+    d->bin.push_back(binOf(std::atan2(s.y(b) - s.y(a), s.x(b) - s.x(a))));
+    ++count[d->bin.back()];
+  }
+  d->bucketStart.assign(kBins + 1, 0);
+  for (int k = 0; k < kBins; ++k)
+    d->bucketStart[k + 1] = d->bucketStart[k] + count[k];
+  d->bucket.resize(n);
+  std::vector<int> fill(d->bucketStart.begin(), d->bucketStart.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+    d->bucket[fill[d->bin[i]]++] = static_cast<int>(i);
+  {
+    // Signed distance to the polygon (negative inside: the sign from the even-odd rule along each row), over 1.25 times
+    // the largest radius, so that an input laid a little off still falls on the grid.
+    double r = 0.0;
+    for (std::size_t k = 0; k < P.size(); ++k)
+      r = std::max(r, std::hypot(P.x(k) - d->cx, P.y(k) - d->cy));
+    r = kGridMargin * r / d->size;
+    d->lo = -r;
+    d->step = 2.0 * r / (kGrid - 1);
+    d->grid.resize(static_cast<std::size_t>(kGrid * kGrid));
+    std::vector<double> xs;
+    for (int j = 0; j < kGrid; ++j) {
+      const double py = d->cy + (d->lo + j * d->step) * d->size;
+      xs.clear();
+      for (std::size_t k = 0; k < P.size(); ++k) {
+        const std::size_t l = (k + 1) % P.size();
+        const double y0 = P.y(k), y1 = P.y(l);
+        if ((y0 <= py) != (y1 <= py))
+          xs.push_back(P.x(k) + (py - y0) / (y1 - y0) * (P.x(l) - P.x(k)));
+      }
+      std::sort(xs.begin(), xs.end());
+      for (int i = 0; i < kGrid; ++i) {
+        const double px = d->cx + (d->lo + i * d->step) * d->size;
+        double mx, my;
+        const double dist = std::fabs(d->edges(px, py, mx, my)) / d->size;
+        const bool inside = (std::upper_bound(xs.begin(), xs.end(), px) - xs.begin()) % 2 == 1;
+        d->grid[static_cast<std::size_t>(j * kGrid + i)] = static_cast<float>(inside ? -dist : dist);
+      }
+    }
+  }
+  m_data = d;
+}
+
+const vpMorphContour &vpMorphRigidShape::contour() const
+{
+  static const vpMorphContour none;
+  return m_data ? m_data->contour : none;
+}
+
+namespace
+{
+// Mean truncated distance of the input's samples (every other one) to the target's grid, for \e s.
+double inputCost(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const Sim &s, double tau)
+{
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < in.x.size(); i += 2, ++n) {
+    const double X = s.a * in.x[i] - s.b * in.y[i] + s.tx, Y = s.b * in.x[i] + s.a * in.y[i] + s.ty;
+    double d = tau, gx, gy;
+    if (t.distanceAt(X, Y, d, gx, gy))
+      d = std::min(std::fabs(d), tau);
+    sum += d / tau;
+  }
+  return sum / static_cast<double>(n);
+}
+
+// Mean truncated distance of the target's samples (every other one), mapped back by \e s, to the input's polygon,
+// in the target's sizes.
+double targetCost(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const Sim &s, double tau)
+{
+  const double s2 = s.a * s.a + s.b * s.b, scale = std::sqrt(s2);
+  if (!(s2 > 0.0) || !std::isfinite(s2))
+    return 1.0;
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < t.x.size(); i += 2, ++n) {
+    const double X = t.x[i] - s.tx, Y = t.y[i] - s.ty;
+    double d = tau, gx, gy;
+    if (in.distanceAt((s.a * X + s.b * Y) / s2, (-s.b * X + s.a * Y) / s2, d, gx, gy))
+      d = std::min(std::fabs(d) * scale, tau); // input sizes to the target's
+    sum += d / tau;
+  }
+  return sum / static_cast<double>(n);
+}
+
+/*
+  The cost of hypothesis \e s both ways, or 2 (nothing in common) when its scale leaves [0.5, 2] sizes: a view of the
+  same part has the template's size up to what an occluder hides or a tilt shrinks (a fit that shrinks the input to a
+  point lays all its samples on one edge).
+*/
+double hypothesisCost(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const Sim &s)
+{
+  const double k = std::hypot(s.a, s.b);
+  if (!(k >= 0.5 && k <= 2.0))
+    return 2.0;
+  return inputCost(in, t, s, vpMorphRigidShape::tau()) + targetCost(in, t, s, vpMorphRigidShape::tau());
+}
+
+// Gauss-Newton on the target's grid from \e s: the input's samples within tau pull their point onto the zero level.
+Sim refine(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, Sim s, double tau, int iterations)
+{
+  for (int it = 0; it < iterations; ++it) {
+    double A[4][4] = {}, b[4] = {};
+    std::size_t used = 0;
+    for (std::size_t i = 0; i < in.x.size(); i += 2) {
+      const double x = in.x[i], y = in.y[i];
+      const double X = s.a * x - s.b * y + s.tx, Y = s.b * x + s.a * y + s.ty;
+      double r, gx, gy;
+      if (!t.distanceAt(X, Y, r, gx, gy) || std::fabs(r) > tau)
+        continue;
+      const double J[4] = {gx * x + gy * y, gy * x - gx * y, gx, gy};
+      for (int p = 0; p < 4; ++p) {
+        b[p] -= J[p] * r;
+        for (int q = p; q < 4; ++q)
+          A[p][q] += J[p] * J[q];
+      }
+      ++used;
+    }
+    if (used < 4)
+      break;
+    for (int p = 1; p < 4; ++p)
+      for (int q = 0; q < p; ++q)
+        A[p][q] = A[q][p];
+    for (int p = 0; p < 4; ++p)
+      A[p][p] *= 1.0 + 1e-6; // Levenberg's damping: a flat direction (a straight edge) stays put
+    if (!solve4(A, b))
+      break;
+    s.a += b[0];
+    s.b += b[1];
+    s.tx += b[2];
+    s.ty += b[3];
+    if (std::fabs(b[0]) + std::fabs(b[1]) + std::fabs(b[2]) + std::fabs(b[3]) < 1e-4)
+      break; // converged: a ten-thousandth of a size
+  }
+  return s;
+}
+
+// Shift votes at turn \e bins (in 72ths of a turn), at the scales kScales (one pass over the compatible pairs): per
+// scale, the 3 x 3 cells with the most votes (centred on a cell with two votes at least), their number and mean shift.
+struct Vote
+{
+  int votes = 0;
+  Sim sim;
+};
+constexpr int kNScales = 3;
+constexpr double kScales[kNScales] = {1.05, 0.92, 0.8};
+void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, int bins, Vote out[kNScales])
+{
+  constexpr double cell = 2.0 * kVoteRange / kVoteCells;
+  constexpr float inv = static_cast<float>(1.0 / cell), off = static_cast<float>(kVoteRange / cell);
+  constexpr int W = kVoteCells + 2; // a cell of margin all round: the 3 x 3 sums need no bounds
+  std::array<std::array<std::uint8_t, W * W>, kNScales> acc{};
+  std::array<std::array<int, kVoteCells * kVoteCells>, kNScales> seeds; // cells that reached two votes
+  int nSeeds[kNScales] = {};
+  const double th = bins * kTwoPi / kBins, c = std::cos(th), sn = std::sin(th);
+  for (std::size_t i = 0; i < in.x.size(); i += 2) {
+    const float rx = static_cast<float>((c * in.x[i] - sn * in.y[i]) / cell),
+                ry = static_cast<float>((sn * in.x[i] + c * in.y[i]) / cell);
+    for (int e = -kVoteTolerance; e <= kVoteTolerance; ++e) {
+      int b = in.bin[i] + bins + e; // in [-kVoteTolerance, 2 kBins + kVoteTolerance)
+      b = b < 0 ? b + kBins : (b >= 2 * kBins ? b - 2 * kBins : (b >= kBins ? b - kBins : b));
+      for (int k = t.bucketStart[b]; k < t.bucketStart[b + 1]; ++k) {
+        const int j = t.bucket[k];
+        const float tx = static_cast<float>(t.x[j]) * inv + off, ty = static_cast<float>(t.y[j]) * inv + off;
+        for (int s = 0; s < kNScales; ++s) {
+          const float fx = tx - static_cast<float>(kScales[s]) * rx, fy = ty - static_cast<float>(kScales[s]) * ry;
+          if (!(fx >= 0.0f && fy >= 0.0f && fx < kVoteCells && fy < kVoteCells))
+            continue;
+          const int g = (static_cast<int>(fy) + 1) * W + static_cast<int>(fx) + 1;
+          if (++acc[s][g] == 2) // a cell gets one vote per input sample and direction bin at most: < 255
+            seeds[s][nSeeds[s]++] = g;
+        }
+      }
+    }
+  }
+  for (int s = 0; s < kNScales; ++s) {
+    out[s] = Vote();
+    int bestSeed = -1;
+    const std::uint8_t *a = acc[s].data();
+    for (int k = 0; k < nSeeds[s]; ++k) {
+      const int g = seeds[s][k];
+      const int sum =
+          a[g - W - 1] + a[g - W] + a[g - W + 1] + a[g - 1] + a[g] + a[g + 1] + a[g + W - 1] + a[g + W] + a[g + W + 1];
+      if (sum > out[s].votes) {
+        out[s].votes = sum;
+        bestSeed = g;
+      }
+    }
+    if (bestSeed < 0)
+      continue;
+    double mx = 0.0, my = 0.0;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int v = a[bestSeed + dy * W + dx];
+        mx += v * (bestSeed % W + dx - 0.5); // accumulator column g % W is cell g % W - 1, centred at + 0.5
+        my += v * (bestSeed / W + dy - 0.5);
+      }
+    out[s].sim = Sim{kScales[s] * c, kScales[s] * sn, mx / out[s].votes * cell - kVoteRange,
+                     my / out[s].votes * cell - kVoteRange};
+  }
+}
+
+Sim toSim(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const vpMorphRigidTransform &T)
+{
+  // T: x' = s R (x - c) + c + t in pixels; normalised: X = (s in.size / t.size) R x + (T(in.c) - t.c) / t.size.
+  double ox, oy;
+  T.apply(in.cx, in.cy, ox, oy);
+  const double k = T.scale() * in.size / t.size;
+  return Sim{k * std::cos(T.theta()), k * std::sin(T.theta()), (ox - t.cx) / t.size, (oy - t.cy) / t.size};
+}
+
+vpMorphRigidTransform toPixels(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const Sim &s)
+{
+  const double k = std::hypot(s.a, s.b);
+  return vpMorphRigidTransform(std::atan2(s.b, s.a), t.cx - in.cx + s.tx * t.size, t.cy - in.cy + s.ty * t.size,
+                               k * t.size / in.size, in.cx, in.cy);
+}
+
+void check(const vpMorphRigidShape &in, const vpMorphRigidShape &t)
+{
+  if (in.empty() || t.empty())
+    throw badParameter("vpMorphRigidShape: an empty shape cannot be aligned");
+}
+} // namespace
+
+vpMorphRigidShape::Alignment vpMorphRigidShape::alignOn(const vpMorphRigidShape &target) const
+{
+  check(*this, target);
+  const vpMorphRigidShapeData &in = *m_data, &t = *target.m_data;
+  // Turns: the highest local maxima of the circular correlation of the orientation histograms.
+  std::array<std::pair<float, int>, kBins> peaks;
+  std::array<float, kBins> corr;
+  for (int d = 0; d < kBins; ++d) {
+    float s[8] = {}; // independent partial sums: the products pipeline (kBins is a multiple of 8)
+    for (int k = 0; k < kBins; k += 8)
+      for (int l = 0; l < 8; ++l)
+        s[l] += in.hist[k + l] * t.hist[k + l + d];
+    corr[d] = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+  }
+  int nPeaks = 0;
+  for (int d = 0; d < kBins; ++d)
+    if (corr[d] >= corr[(d + 1) % kBins] && corr[d] > corr[(d + kBins - 1) % kBins])
+      peaks[nPeaks++] = {-corr[d], d};
+  std::sort(peaks.begin(), peaks.begin() + nPeaks);
+  // Shifts: per turn, the votes at both scales; the better-voted scale of each turn is refined.
+  Alignment best;
+  Sim sims[kTurns];
+  double costs[kTurns];
+  int n = 0;
+  for (int p = 0; p < std::min(nPeaks, kTurns); ++p) {
+    Vote v[kNScales];
+    houghShift(in, t, peaks[p].second, v);
+    const Vote *w = &v[0];
+    for (int k = 1; k < kNScales; ++k)
+      if (v[k].votes > w->votes)
+        w = &v[k];
+    if (w->votes == 0)
+      continue;
+    sims[n] = refine(in, t, w->sim, tau(), kFirstIterations);
+    costs[n] = hypothesisCost(in, t, sims[n]);
+    ++n;
+  }
+  if (n == 0)
+    return best; // no vote: nothing in common
+  // The two best go on to convergence (the others stay where their first steps left them).
+  for (int round = 0; round < std::min(n, 2); ++round) {
+    int k = round;
+    for (int j = round + 1; j < n; ++j)
+      if (costs[j] < costs[k])
+        k = j;
+    std::swap(sims[round], sims[k]);
+    std::swap(costs[round], costs[k]);
+    sims[round] = refine(in, t, sims[round], tau(), kIterations - kFirstIterations);
+    costs[round] = hypothesisCost(in, t, sims[round]);
+  }
+  int b = 0, c = -1; // the best and the best that turns elsewhere
+  for (int k = 1; k < n; ++k)
+    if (costs[k] < costs[b])
+      b = k;
+  const double turn = std::atan2(sims[b].b, sims[b].a);
+  for (int k = 0; k < n; ++k)
+    if (k != b && std::fabs(std::remainder(std::atan2(sims[k].b, sims[k].a) - turn, kTwoPi)) > 2.0 * kTwoPi / kBins &&
+        (c < 0 || costs[k] < costs[c]))
+      c = k;
+  if (!(costs[b] < 2.0))
+    return best; // every hypothesis left the plausible scales
+  best.transform = toPixels(in, t, sims[b]);
+  best.cost = costs[b];
+  // The best that turns elsewhere: a nearly symmetric outline lies almost as well on its template turned by its
+  // symmetry, which the samples cannot tell apart and the outlines can (vpMorphRigidCheck).
+  if (c >= 0) {
+    best.alternative = toPixels(in, t, sims[c]);
+    best.hasAlternative = true;
+  }
+  return best;
+}
+
+double vpMorphRigidShape::cost(const vpMorphRigidShape &target, const vpMorphRigidTransform &transform) const
+{
+  check(*this, target);
+  const Sim s = toSim(*m_data, *target.m_data, transform);
+  return inputCost(*m_data, *target.m_data, s, tau()) + targetCost(*m_data, *target.m_data, s, tau());
+}

@@ -1,0 +1,70 @@
+/*
+  \file vpMorphRigidShapeData.h
+  \brief Internal to the morph module (not installed): what vpMorphRigidShape prepares, shared with vpMorphRigidCheck.
+*/
+#ifndef VP_MORPH_RIGID_SHAPE_DATA_H
+#define VP_MORPH_RIGID_SHAPE_DATA_H
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include <visp3/morph/vpMorphContour.h>
+
+#include "vpMorphNearestEdge.h"
+
+/*
+  A contour prepared for alignment. The coarse stage (vpMorphRigidShape) uses the normalised frame (region centroid,
+  size = square root of the region's area), the orientation histogram, the samples with their tangent directions
+  bucketed by direction, the polygon's edges and, for a target, the signed distance grid. The fine stage
+  (vpMorphRigidCheck) uses the fine curve (the measured outline when there is one, else the polygon), its edges and
+  samples along it.
+*/
+struct vpMorphRigidShapeData
+{
+  static constexpr int kBins = 72;                 // orientation histogram: 5 deg a bin
+  static constexpr int kSamples = 64;              // coarse samples along the outline
+  static constexpr int kGrid = 64;                 // signed distance grid cells a side
+  static constexpr std::size_t kFineSamples = 256; // fine samples along the fine curve
+
+  vpMorphContour contour, polygon; // as given; its polygon, counter-clockwise
+  double cx = 0.0, cy = 0.0, size = 1.0;
+  std::array<float, 2 * kBins> hist{};  // orientation histogram, twice over (for the circular correlation)
+  std::vector<double> x, y;             // kSamples samples, normalised
+  std::vector<int> bin;                 // their tangent directions' bins
+  std::vector<int> bucketStart, bucket; // samples per direction bin (bucketStart[kBins] = kSamples)
+  vpMorphNearestEdge edges;             // on the polygon, pixels
+  std::vector<float> grid;              // signed distance, normalised, kGrid x kGrid (empty: none)
+  double lo = 0.0, step = 1.0;
+  bool measured;                // the fine curve is a measured outline
+  vpMorphContour fine;          // the fine curve, counter-clockwise
+  vpMorphNearestEdge fineEdges; // on it
+  std::vector<double> fx, fy;   // kFineSamples samples along it, pixels
+
+  explicit vpMorphRigidShapeData(const vpMorphContour &c)
+    : contour(c), polygon(c.counterClockwise()), edges(polygon), measured(c.hasOutline()),
+      fine(c.outline().counterClockwise()), fineEdges(fine)
+  {
+    const vpMorphContour s = fine.resampled(kFineSamples);
+    fx = s.xs();
+    fy = s.ys();
+  }
+
+  // Signed distance (sizes) at normalised (X, Y) and its gradient; false outside the grid.
+  bool distanceAt(double X, double Y, double &d, double &gx, double &gy) const
+  {
+    const double fx_ = (X - lo) / step, fy_ = (Y - lo) / step;
+    if (!(fx_ >= 0.0 && fy_ >= 0.0 && fx_ < kGrid - 1 && fy_ < kGrid - 1))
+      return false;
+    const int i = static_cast<int>(fx_), j = static_cast<int>(fy_);
+    const double u = fx_ - i, v = fy_ - j;
+    const float *r0 = &grid[static_cast<std::size_t>(j * kGrid + i)], *r1 = r0 + kGrid;
+    const double p = r0[0], q = r0[1], r = r1[0], s = r1[1];
+    d = (p * (1 - u) + q * u) * (1 - v) + (r * (1 - u) + s * u) * v;
+    gx = ((q - p) * (1 - v) + (s - r) * v) / step;
+    gy = ((r - p) * (1 - u) + (s - q) * u) / step;
+    return true;
+  }
+};
+
+#endif
