@@ -1,0 +1,123 @@
+/*!
+  \file vpMorphViewAligner.h
+  \brief The one measurement of the morph servo: the similarity from the current view to a goal view.
+*/
+#ifndef VP_MORPH_VIEW_ALIGNER_H
+#define VP_MORPH_VIEW_ALIGNER_H
+
+#include <algorithm>
+#include <optional>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphOutlineFit.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
+#include <visp3/morph_vs/vpMorphCorrespondenceTracker.h>
+#include <visp3/morph_vs/vpMorphViewAlignment.h>
+
+/*!
+  \class vpMorphViewAligner
+  \ingroup group_morph_vs
+  \brief Measures the similarity (rotation about the optical axis, translation, scale) that lays the current view of
+  a planar object on a goal view: a sub-goal of the morph or the target. vpServoMorph and vpFeatureMorph both
+  measure through it.
+
+  <b>Method (OUTLINE, default).</b> The view's outline is laid on the goal's by vpMorphOutlineFit: a robust
+  point-to-edge fit of the similarity and of one common edge offset (a lighting that grows or shrinks a measured
+  outline all round is not a depth). The fit starts from the last alignment to the same goal (the camera moved by a
+  fraction of it since), or from setStart(); without one, or when that start has lost the view (fewer than half of
+  its samples on the goal), from the minimal-work correspondence (vpMorphCorrespondenceTracker) and its robust
+  vertex fit, which finds the rotation at any angle; when both ran, the lower robust cost at one scale wins.
+  Hidden, bent and articulated parts are the robust fit's outliers: the part of the view that lies on the goal fixes
+  the pose (up to half of the view may be anything else), and vpMorphViewAlignment::model says which model explains
+  the residuals. Measured outlines (vpMorphContourExtractor) are fitted as they are; polygons without them are fitted
+  edge to edge, their robust scale floored at half a pixel (vertices on the pixel grid).
+
+  <b>Method (PAPER).</b> The paper's rectification: the rotation and translation between the elongation vectors of the
+  corresponded vertex sets (vpMorphRigidTransform::fitElongation) over the correspondence of every period, and the
+  scale of their spreads. The model is then RIGID with an unknown covariance (infinite).
+
+  Units: contours in pixels, converted with setCameraParameters(); transforms in normalised coordinates.
+
+  \code
+  vpMorphViewAligner aligner;
+  aligner.setCameraParameters(cam);
+  aligner.setGoal(target);                              // pixels, e.g. a template's contour
+  vpMorphViewAlignment a = aligner.align(current);      // current view, pixels
+  if (a.explained()) { double depthRatio = a.transform.scale(); }   // Z / Zd for the target
+  \endcode
+  \sa vpMorphOutlineFit, vpMorphViewAlignment
+*/
+class vpMorphViewAligner
+{
+public:
+  enum Method {
+    OUTLINE, //!< robust outline fit (default)
+    PAPER    //!< the paper's elongation vectors over the correspondence
+  };
+
+  vpMorphViewAligner();
+
+  void setCameraParameters(const vpCameraParameters &cam);
+  const vpCameraParameters &getCameraParameters() const { return m_cam; }
+  /*!
+    The goal view, in pixels. Forgets the last alignment (the next align() starts from the correspondence or from
+    setStart()).
+    \throw vpMorphException::badParameterError on an empty contour or one not in pixels.
+  */
+  void setGoal(const vpMorphContour &goal);
+  //! The goal in pixels.
+  const vpMorphContour &getGoal() const { return m_goalPx; }
+  //! The goal in normalised coordinates.
+  const vpMorphContour &getGoalNormalized() const { return m_goalN; }
+  bool hasGoal() const { return !m_goalPx.empty(); }
+  //! The start of the next align() (normalised coordinates, current -> goal), in place of the last alignment.
+  void setStart(const vpMorphRigidTransform &currentToGoal);
+  //! Forgets the last alignment and the correspondence (after a jump of the view).
+  void reset();
+  void setMethod(Method m);
+  Method getMethod() const { return m_method; }
+
+  /*!
+    Aligns \e current (pixels) on the goal. Never throws for a view it cannot align: the result is then UNEXPLAINED.
+    \throw vpMorphException::badParameterError without a goal, or for a contour not in pixels.
+  */
+  vpMorphViewAlignment align(const vpMorphContour &current);
+  //! The last alignment (UNEXPLAINED before any).
+  const vpMorphViewAlignment &getLastAlignment() const { return m_last; }
+  //! The correspondence tracker of the cold starts (and of every period with PAPER).
+  const vpMorphCorrespondenceTracker &getTracker() const { return m_tracker; }
+
+  //! Floor of the outline fit's robust scale on measured outlines (pixels, default 0.02: their accuracy on
+  //! noise-free edges).
+  static double outlineSigmaFloorPx() { return 0.02; }
+  //! Floor on polygons without measured outlines (pixels, 0.5: their vertices lie on the pixel grid).
+  static double polygonSigmaFloorPx() { return 0.5; }
+  /*!
+    Robust scale beyond which measured outlines are not the same edges seen twice (pixels, 0.5: two measurements of
+    one edge each lie within a few tenths of a pixel, under the quantisation of a boundary at whole pixels).
+  */
+  static double outlineSigmaLimitPx() { return 0.5; }
+  //! The same for polygons (pixels, 1.5: two polygonisations place their vertices up to a pixel apart, on the grid).
+  static double polygonSigmaLimitPx() { return 1.5; }
+
+private:
+  double normalisedPixels(double px) const { return px / std::max(m_cam.get_px(), m_cam.get_py()); }
+  vpMorphViewAlignment fromFit(const vpMorphRigidTransform &T, const vpMorphOutlineFit &fit,
+                               const vpMorphContour &currentN, bool cold, bool measured) const;
+  //! Share of the view's region (normalised) that lies in the goal's once laid by T.
+  double overlapShare(const vpMorphRigidTransform &T, const vpMorphContour &currentN) const;
+  vpMorphRigidTransform correspondenceStart(const vpMorphContour &currentN, vpMorphViewAlignment &a);
+
+  vpCameraParameters m_cam;
+  Method m_method = OUTLINE;
+  vpMorphContour m_goalPx, m_goalN, m_goalRegion;
+  std::optional<vpMorphOutlineFit> m_fit; // on the goal's normalised outline
+  vpMorphCorrespondenceTracker m_tracker;
+  bool m_haveStart = false;
+  vpMorphRigidTransform m_start;
+  double m_startSigma = 0.0; // the residuals' scale at the start (normalised; 0: unknown)
+  vpMorphViewAlignment m_last;
+};
+
+#endif
