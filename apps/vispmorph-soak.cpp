@@ -152,8 +152,7 @@ struct TaskResult
   std::uint64_t fingerprint = 0;
 };
 
-TaskResult runTask(vpServoMorph &servo, const Objects &obj, unsigned int task, unsigned int seed,
-                   unsigned int length)
+TaskResult runTask(vpServoMorph &servo, const Objects &obj, unsigned int task, unsigned int seed, unsigned int length)
 {
   std::mt19937 rng(seed * 1000003u + task);
   auto uni = [&rng](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
@@ -186,9 +185,9 @@ TaskResult runTask(vpServoMorph &servo, const Objects &obj, unsigned int task, u
     ++res.iterations;
     for (unsigned int i = 0; i < ve.size(); ++i)
       fp.add(ve[i]);
-    res.status = servo.status();
-    if (servo.converged() || servo.halted() || res.status == vpServoMorph::DEGENERATE_CONTOUR ||
-        res.status == vpServoMorph::UNRELIABLE_CORRESPONDENCE)
+    res.status = servo.getStatus();
+    if (vpServoMorph::isStop(res.status) || res.status == vpServoMorph::DEGENERATE_CONTOUR ||
+        res.status == vpServoMorph::UNEXPLAINED_VIEW)
       break;
     robot.setVelocity(vpRobot::END_EFFECTOR_FRAME, ve);
   }
@@ -297,7 +296,7 @@ int main(int argc, char **argv)
 
     vpServoMorph servo;
     servo.setCameraParameters(vpMorphPlanarScene::defaultCamera());
-    servo.setSubGoalCount(10);
+    servo.getPlanner().setSubGoalCount(10);
     servo.setSamplingTime(0.04);
     servo.setGain(0.5);
     servo.setFinalThresholds(0.004, 0.6); // above the 0.2 px vertex noise
@@ -369,9 +368,8 @@ int main(int argc, char **argv)
                  " a round's end):";
     for (const auto &o : outcomes)
       std::cout << " " << o.first << " " << o.second << ";";
-    std::cout << "\nrecognition: " << rec << " queries, " << recCorrect << " correct ("
-              << std::setprecision(4) << 100.0 * recCorrect / std::max(1UL, rec) << " %), " << recAccepted
-              << " accepted\n";
+    std::cout << "\nrecognition: " << rec << " queries, " << recCorrect << " correct (" << std::setprecision(4)
+              << 100.0 * recCorrect / std::max(1UL, rec) << " %), " << recAccepted << " accepted\n";
     std::cout << "RSS: start " << mb(startRss) << ", after warm-up " << mb(warmRss) << ", peak after warm-up "
               << mb(peakRss) << ", end " << mb(endRss) << "; growth after warm-up " << growth << " KiB (peak "
               << peakGrowth << " KiB; bound " << maxGrowthKb << " KiB): " << (memoryOk ? "OK" : "EXCEEDED")

@@ -105,7 +105,7 @@ Recording record(const std::string &objectImage, const std::string &templateImag
   servo.set_eMc(robot.eMcTrue());
   servo.setSamplingTime(0.04);
   servo.setTarget(r.target, r.Zd);
-  for (int it = 0; it < 400 && !servo.converged(); ++it) {
+  for (int it = 0; it < 400 && servo.getStatus() != vpServoMorph::CONVERGED; ++it) {
     scene.render(robot.get_cMo(), I, it);
     corners.clear();
     tag.estimate(I, cMt, &corners);
@@ -117,10 +117,10 @@ Recording record(const std::string &objectImage, const std::string &templateImag
     }
     r.contours.push_back(c);
     robot.setVelocity(vpRobot::END_EFFECTOR_FRAME, servo.computeControlLaw(c));
-    if (servo.subGoalIndex() + 1 < servo.subGoals().size())
+    if (servo.getSubGoalIndex() + 1 < servo.getSubGoals().size())
       r.finalApproach = r.contours.size(); // not yet on the last sub-goal
   }
-  if (!servo.converged())
+  if (servo.getStatus() != vpServoMorph::CONVERGED)
     throw vpException(vpException::fatalError, "vispmorph-perf-servo: the recorded run did not converge");
   return r;
 }
@@ -255,8 +255,7 @@ void BM_morphIterationTilt(benchmark::State &state)
 }
 
 // The recorded run of the bent hammer from its iteration \e first on (the ones before it made again, untimed, at each
-// pass), to the end: its final approach, where the view is found deformed and laid on its template by the largest
-// overlap.
+// pass), to the end: its final approach, where the view's bent part is left out of the fit.
 void deformedIterations(benchmark::State &state, std::size_t first)
 {
   const Recording &r = deformedRecording();
@@ -274,18 +273,17 @@ void deformedIterations(benchmark::State &state, std::size_t first)
     benchmark::DoNotOptimize(servo.computeControlLaw(r.contours[k++])[0]);
   }
   state.counters["contours"] = static_cast<double>(r.contours.size() - first);
-  state.counters["overlap"] = servo.history().empty() || servo.history().back().overlapBased ? 1.0 : 0.0;
+  state.counters["bent"] =
+      !servo.getHistory().empty() && servo.getHistory().back().model == vpMorphViewAlignment::PART_BENT ? 1.0 : 0.0;
 }
 
-// The whole final approach: the overlap searched from starts over +-10 deg (its first iteration), then refined from
-// the last offset.
+// The whole final approach (its first iteration a fit to the target from the last sub-goal's).
 void BM_morphIterationDeformed(benchmark::State &state)
 {
   deformedIterations(state, deformedRecording().finalApproach);
 }
 
-// The same without its first iteration (the overlap's search, once per run): the periods that follow the overlap and
-// the part from the previous one, with the part's search every 8th period (one of these 9), as in a run.
+// The same without its first iteration: the periods that follow the last one's fit.
 void BM_morphIterationDeformedFollow(benchmark::State &state)
 {
   deformedIterations(state, deformedRecording().finalApproach + 1);
@@ -366,11 +364,10 @@ vpMorphContour pliersView(const std::string &image)
 // The pliers' articulated template, taught from the first pose, and the opened pliers seen from there.
 const vpMorphArticulation &pliersArticulation()
 {
-  static const vpMorphArticulation a(
-      pliersView("/joints/pliers-part0.png"), pliersView("/joints/pliers-part1.png"),
-      vpMorphPlanarScene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png")
-          .projectedTexel(320, 240, recording().firstcMo),
-      vpMath::rad(-8.0), vpMath::rad(60.0));
+  static const vpMorphArticulation a(pliersView("/joints/pliers-part0.png"), pliersView("/joints/pliers-part1.png"),
+                                     vpMorphPlanarScene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png")
+                                         .projectedTexel(320, 240, recording().firstcMo),
+                                     vpMath::rad(-8.0), vpMath::rad(60.0));
   return a;
 }
 

@@ -8,7 +8,7 @@
   similarity (any rotation, translation, scale 0.5-2.5) with optional per-vertex jitter, as a real loop sees it.
   A vpException from a setter or from a contour constructor is a correct outcome. The documented contract of
   vpServoMorph must hold at every iteration: a 6-vector, finite ("zero, never NaN"), zero whenever the status
-  is CONVERGED, TARGET_LOST, DEGENERATE_CONTOUR or UNRELIABLE_CORRESPONDENCE, and a finite hand-eye estimate.
+  is not MOVING or SUBGOAL_REACHED (a hold or a stop), and a finite hand-eye estimate.
   vpFeatureMorph built on the same contours must give a finite 4-vector error and a finite 4x6 interaction
   matrix, or refuse the contour with an exception.
 */
@@ -80,7 +80,7 @@ void checkFeature(const vpMorphContour &current, const vpFeatureMorph &sd, const
   }
   if (e.getRows() == 4 && !allFinite(e))
     std::fprintf(stderr, "error (%g, %g, %g, %g), fit theta %g scale %g\n", e[0], e[1], e[2], e[3],
-                 s.lastFit().theta(), s.lastFit().scale());
+                 s.getAlignment().transform.theta(), s.getAlignment().transform.scale());
   VP_FUZZ_CHECK(e.getRows() == 4 && allFinite(e), "vpFeatureMorph::error() is a finite 4-vector");
   VP_FUZZ_CHECK(L.getRows() == 4 && L.getCols() == 6 && allFinite(L),
                 "vpFeatureMorph::interaction() is a finite 4x6 matrix");
@@ -106,9 +106,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   servo.setCameraParameters(cam);
   servo.set_eMc(vpHomogeneousMatrix(0.01, -0.02, 0.1, 0.0, 0.0, 0.1));
   servo.setControlLaw((flags & 1) ? vpServoMorph::STOCK_VPSERVO : vpServoMorph::HOMOGENEOUS_TRANSFORMS);
-  servo.setRigidPath((flags & 2) ? vpServoMorph::ABOUT_OBJECT_CENTROID : vpServoMorph::CAMERA_STRAIGHT_LINE);
+  servo.getPlanner().setRigidPath((flags & 2) ? vpMorphSubGoalPlanner::ABOUT_OBJECT_CENTROID
+                                              : vpMorphSubGoalPlanner::CAMERA_STRAIGHT_LINE);
   servo.setOnlineCalibration((flags & 4) == 0);
-  servo.setSubGoalCount(nSub);
+  servo.getPlanner().setSubGoalCount(nSub);
   servo.setGain(gain);
   try {
     servo.setTarget(target, Zd);
@@ -152,10 +153,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const vpColVector v = servo.computeControlLaw(current);
     VP_FUZZ_CHECK(v.getRows() == 6, "the velocity has 6 components");
     VP_FUZZ_CHECK(allFinite(v), "vpServoMorph never returns a non-finite velocity");
-    VP_FUZZ_CHECK(allFinite(servo.cameraVelocity()), "the camera velocity is finite");
-    const vpServoMorph::Status st = servo.status();
-    if (st == vpServoMorph::CONVERGED || st == vpServoMorph::TARGET_LOST || st == vpServoMorph::DEGENERATE_CONTOUR ||
-        st == vpServoMorph::UNRELIABLE_CORRESPONDENCE)
+    VP_FUZZ_CHECK(allFinite(servo.getCameraVelocity()), "the camera velocity is finite");
+    const vpServoMorph::Status st = servo.getStatus();
+    if (st != vpServoMorph::MOVING && st != vpServoMorph::SUBGOAL_REACHED)
       VP_FUZZ_CHECK(v.frobeniusNorm() == 0.0, "the velocity is zero when the servo stops");
     const vpHomogeneousMatrix eMc = servo.get_eMc();
     for (unsigned int i = 0; i < 4; ++i)

@@ -104,7 +104,7 @@ inline PoseError truthError(const vpHomogeneousMatrix &cMo, const vpHomogeneousM
 */
 inline bool aligned(const vpServoMorph &servo, const PoseError &e)
 {
-  return servo.converged() && e.inPlaneMm < 1.0 && e.deg < 0.5 && e.depthMm < 3.0;
+  return servo.getStatus() == vpServoMorph::CONVERGED && e.inPlaneMm < 1.0 && e.deg < 0.5 && e.depthMm < 3.0;
 }
 
 //! The controller of every figure: the paper's, 8 virtual images, switching at 0.10 rad and 5 px (the defaults),
@@ -115,14 +115,9 @@ inline void setUpController(vpServoMorph &servo, const vpMorphSimRobot &robot, c
 {
   servo.setCameraParameters(cam);
   servo.set_eMc(robot.eMcTrue() * vpHomogeneousMatrix(0.01, -0.01, 0, 0, 0, vpMath::rad(5)));
-  servo.setSubGoalCount(8);
+  servo.getPlanner().setSubGoalCount(8);
   servo.setGain(0.5);
   servo.setSamplingTime(dt);
-  // Two extractions of the same object from two images differ by their polygonisation: work up to ~0.4 between
-  // consecutive images (measured on these runs), and 0 at the first image against the first rigid sub-goal,
-  // which is that very contour moved. A swapped correspondence costs about 0.8. The default floor (0.05, tuned
-  // on exact polygons) stops the real pipeline at its second image.
-  servo.setWorkFloor(0.3);
   servo.setTarget(storedView, Zd);
 }
 
@@ -169,7 +164,7 @@ struct Bench
 //! True while the controller is moving (not converged, not stopped by a lost target or an unreliable match).
 inline bool running(const vpServoMorph &servo)
 {
-  return servo.status() == vpServoMorph::MOVING || servo.status() == vpServoMorph::SUBGOAL_REACHED;
+  return servo.getStatus() == vpServoMorph::MOVING || servo.getStatus() == vpServoMorph::SUBGOAL_REACHED;
 }
 
 //! Grey image to colour with the contour drawn over it.

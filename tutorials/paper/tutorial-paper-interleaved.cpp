@@ -81,19 +81,20 @@ int main(int argc, char **argv)
       const vpMorphContour seen = bench.look(I);
       if (move == 0)
         tiles.push_back({paper::withContour(I, vpMorphContour(), vpColor::orange), "start", true});
-      const std::size_t before = servo.subGoalIndex();
+      const std::size_t before = servo.getSubGoalIndex();
       const vpColVector ve = servo.computeControlLaw(seen);
       watch.show(I, servo, move, bench.robot.get_cMo());
       // The sub-goals reached at this move: each virtual image, then the real view that reached it.
-      const std::size_t reached = servo.converged() ? servo.subGoals().size() : servo.subGoalIndex();
+      const std::size_t reached =
+          servo.getStatus() == vpServoMorph::CONVERGED ? servo.getSubGoals().size() : servo.getSubGoalIndex();
       for (std::size_t k = before; k < reached; ++k) {
-        const vpMorphContour &goal = servo.subGoals()[k];
+        const vpMorphContour &goal = servo.getSubGoals()[k];
         vpImage<unsigned char> blank(I.getHeight(), I.getWidth(), 255);
         std::ostringstream v, r;
         v << "virtual " << k + 1;
         r << "real, move " << move;
         tiles.push_back({paper::withContour(blank, goal, vpColor::orange), v.str(), false});
-        tiles.push_back({paper::withContour(I, goal, vpColor::orange), r.str(), k + 1 == servo.subGoals().size()});
+        tiles.push_back({paper::withContour(I, goal, vpColor::orange), r.str(), k + 1 == servo.getSubGoals().size()});
       }
       e = bench.error();
       if (!paper::running(servo) || watch.stopped())
@@ -106,7 +107,7 @@ int main(int argc, char **argv)
     vpMorphDrawing::write(grid(tiles, 6, 256, 192), out + "/fig5-interleaved.png");
     //! [Figure]
     std::printf("pliers, 100 deg and 45 mm, Viper850: %s after %u moves, %zu virtual images, %zu tiles\n",
-                vpServoMorph::statusName(servo.status()), move, servo.subGoals().size(), tiles.size());
+                vpServoMorph::statusName(servo.getStatus()), move, servo.getSubGoals().size(), tiles.size());
     std::printf("final pose error (simulator truth): %.3f deg, %.3f mm in the image plane, %.3f mm in depth\n", e.deg,
                 e.inPlaneMm, e.depthMm);
     std::printf("wrote %s/fig5-interleaved.png\n", out.c_str());

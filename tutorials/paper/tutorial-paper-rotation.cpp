@@ -48,18 +48,19 @@ int main(int argc, char **argv)
       const vpMorphContour seen = bench.look(I);
       if (move == 0)
         vpMorphDrawing::write(paper::withContour(I, bench.storedView, vpColor::green), out + "/fig2-start.png");
-      const std::size_t before = servo.subGoalIndex();
+      const std::size_t before = servo.getSubGoalIndex();
       const vpColVector ve = servo.computeControlLaw(seen);
       watch.show(I, servo, move, bench.robot.get_cMo());
       // Every sub-goal passed at this iteration was reached by the contour seen now: how far was it from it?
-      const std::size_t reached = servo.converged() ? servo.subGoals().size() : servo.subGoalIndex();
+      const std::size_t reached =
+          servo.getStatus() == vpServoMorph::CONVERGED ? servo.getSubGoals().size() : servo.getSubGoalIndex();
       for (std::size_t k = before; k < reached; ++k) {
         double rad, px;
-        paper::morphResidual(seen, servo.subGoals()[k], rad, px);
+        paper::morphResidual(seen, servo.getSubGoals()[k], rad, px);
         subgoals << k + 1 << "," << move << "," << vpMath::deg(std::fabs(rad)) << "," << px << "\n";
       }
       e = bench.error();
-      moves << move << "," << servo.subGoalIndex() + 1 << "," << vpServoMorph::statusName(servo.status()) << ","
+      moves << move << "," << servo.getSubGoalIndex() + 1 << "," << vpServoMorph::statusName(servo.getStatus()) << ","
             << e.deg << "," << e.inPlaneMm << "," << e.depthMm << "\n";
       if (!paper::running(servo) || watch.stopped())
         break;
@@ -70,7 +71,7 @@ int main(int argc, char **argv)
 
     const vpHomogeneousMatrix eMcErr = bench.robot.eMcTrue().inverse() * servo.get_eMc();
     std::printf("pliers, 150 deg about the optical axis, Viper850: %s after %u moves (%zu virtual images)\n",
-                vpServoMorph::statusName(servo.status()), move, servo.subGoals().size());
+                vpServoMorph::statusName(servo.getStatus()), move, servo.getSubGoals().size());
     std::printf("final pose error (simulator truth): %.3f deg, %.3f mm in the image plane, %.3f mm in depth\n", e.deg,
                 e.inPlaneMm, e.depthMm);
     std::printf("hand-eye estimate error: %.2f deg, %.1f mm (start: 5 deg, 14.1 mm)\n",

@@ -48,20 +48,21 @@ int main(int argc, char **argv)
     unsigned int move = 0;
     for (; move < 200; ++move) {
       const vpMorphContour seen = bench.look(I);
-      const std::size_t before = servo.subGoalIndex();
+      const std::size_t before = servo.getSubGoalIndex();
       const vpColVector ve = servo.computeControlLaw(seen);
       watch.show(I, servo, move, bench.robot.get_cMo());
       const vpHomogeneousMatrix cdMc = cdMf * bench.robot.get_fMc(); // where the camera is (truth)
-      const std::size_t reached = servo.converged() ? servo.subGoals().size() : servo.subGoalIndex();
+      const std::size_t reached =
+          servo.getStatus() == vpServoMorph::CONVERGED ? servo.getSubGoals().size() : servo.getSubGoalIndex();
       for (std::size_t k = before; k < reached; ++k) {
         double rad, px;
-        paper::morphResidual(seen, servo.subGoals()[k], rad, px);
+        paper::morphResidual(seen, servo.getSubGoals()[k], rad, px);
         subgoals << k + 1 << "," << move << "," << px << "," << cdMc[0][3] * 1000 << "," << cdMc[1][3] * 1000 << "\n";
       }
       double rad, imagePx;
       paper::morphResidual(seen, bench.storedView, rad, imagePx); // error in the morph plane
       e = bench.error();
-      moves << move << "," << servo.subGoalIndex() + 1 << "," << vpServoMorph::statusName(servo.status()) << ","
+      moves << move << "," << servo.getSubGoalIndex() + 1 << "," << vpServoMorph::statusName(servo.getStatus()) << ","
             << imagePx << "," << std::hypot(e.inPlaneMm, e.depthMm) << "," << cdMc[0][3] * 1000 << ","
             << cdMc[1][3] * 1000 << "\n";
       if (!paper::running(servo) || watch.stopped())
@@ -71,7 +72,7 @@ int main(int argc, char **argv)
     //! [Loop]
 
     std::printf("wedge, 70 mm in the plane, Viper850: %s after %u moves (%zu virtual images), camera path %.1f mm\n",
-                vpServoMorph::statusName(servo.status()), move, servo.subGoals().size(),
+                vpServoMorph::statusName(servo.getStatus()), move, servo.getSubGoals().size(),
                 bench.robot.cameraPathLength() * 1000);
     std::printf("final pose error (simulator truth): %.3f deg, %.3f mm in the image plane, %.3f mm in depth\n", e.deg,
                 e.inPlaneMm, e.depthMm);

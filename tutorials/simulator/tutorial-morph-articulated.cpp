@@ -116,7 +116,7 @@ int main(int argc, char **argv)
     vpServoMorph servo;
     servo.setCameraParameters(world.camera());
     servo.set_eMc(robot.eMcNominal());
-    servo.setSubGoalCount(10);
+    servo.getPlanner().setSubGoalCount(10);
     servo.setSamplingTime(robot.samplingTime());
     servo.setGain(0.1);
     servo.setTiltCorrection(vpServoMorph::TILT_FINAL_APPROACH);
@@ -124,25 +124,26 @@ int main(int argc, char **argv)
     tutorial::ServoWindows windows(viewer, world.imageWidth(), world.imageHeight(), world.objectContour3D(),
                                    world.tagCorners3D(), cdMo, "Free camera");
     int it = 0;
-    for (; it < 600 && !servo.converged() && !windows.stopped(); ++it) {
+    for (; it < 600 && servo.getStatus() != vpServoMorph::CONVERGED && !windows.stopped(); ++it) {
       const vpColVector ve = servo.computeControlLaw(look());
-      windows.setDesiredPose(goals[servo.targetFixedPart()]); // the arm kept still decides the goal
+      windows.setDesiredPose(goals[servo.getTargetFixedPart()]); // the arm kept still decides the goal
       windows.show(I, servo, it, robot.get_cMo());
-      if (!servo.converged() && servo.status() != vpServoMorph::MOVING &&
-          servo.status() != vpServoMorph::SUBGOAL_REACHED && servo.status() != vpServoMorph::REPLANNED)
+      if (servo.getStatus() != vpServoMorph::CONVERGED && servo.getStatus() != vpServoMorph::MOVING &&
+          servo.getStatus() != vpServoMorph::SUBGOAL_REACHED && servo.getStatus() != vpServoMorph::REPLANNED)
         break; // lost, degenerate or unreliable: the velocity is zero, stop here
       robot.setVelocity(vpRobot::END_EFFECTOR_FRAME, ve);
     }
     //! [Servo]
     double t, rot;
-    vpMorphTagPoseEstimator::poseDifference(robot.get_cMo(), goals[servo.targetFixedPart()], t, rot);
+    vpMorphTagPoseEstimator::poseDifference(robot.get_cMo(), goals[servo.getTargetFixedPart()], t, rot);
     std::printf("%s after %d iterations (%s): target posed at %.2f deg, arm %u still; %.2f mm and %.3f deg from the "
                 "goal\n",
-                servo.converged() ? "converged" : "stopped", it, vpServoMorph::statusName(servo.status()),
-                vpMath::deg(servo.targetOpening()), servo.targetFixedPart(), t * 1000, vpMath::deg(rot));
+                servo.getStatus() == vpServoMorph::CONVERGED ? "converged" : "stopped", it,
+                vpServoMorph::statusName(servo.getStatus()), vpMath::deg(servo.getTargetOpening()),
+                servo.getTargetFixedPart(), t * 1000, vpMath::deg(rot));
     std::cout << "wrote " << out + "/morph-articulated.png" << std::endl;
     windows.end(servo);
-    return servo.converged() ? EXIT_SUCCESS : EXIT_FAILURE;
+    return servo.getStatus() == vpServoMorph::CONVERGED ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "error: " << e.getStringMessage() << std::endl;
     return EXIT_FAILURE;

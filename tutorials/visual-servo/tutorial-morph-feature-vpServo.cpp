@@ -117,8 +117,8 @@ int main(int argc, char **argv)
         std::cout << "converged after " << iter << " iterations: position error "
                   << cdMc.getTranslationVector().frobeniusNorm() * 1000 << " mm, rotation error "
                   << vpMath::deg(vpThetaUVector(cdMc.getRotationMatrix()).getTheta()) << " deg, "
-                  << s.tracker().fullMatchCount() << " full correspondence search(es), "
-                  << s.tracker().trackedMatchCount() << " tracked" << std::endl;
+                  << s.getAligner().getTracker().fullMatchCount() << " full correspondence search(es), "
+                  << s.getAligner().getTracker().trackedMatchCount() << " tracked" << std::endl;
         break;
       }
       if (iter % 10 == 0)

@@ -50,8 +50,8 @@ int main(int argc, char **argv)
     vpServoMorph servo;
     servo.setCameraParameters(vpCameraParameters(960, 960, 320, 240));
     servo.set_eMc(eMcGuess);
-    servo.setSubGoalCount(10);             // 10 virtual images; 0 = the goal only
-    servo.setSubGoalThresholds(0.10, 5.0); // the paper's switching thresholds (rad, px)
+    servo.getPlanner().setSubGoalCount(10); // 10 virtual images; 0 = the goal only
+    servo.setSubGoalThresholds(0.10, 5.0);  // the paper's switching thresholds (rad, px)
     servo.setSamplingTime(0.1);
     servo.setGain(0.5);                                     // half of the Eq. 11 step per period
     servo.setTarget(tutorial::project(cdMo, camTrue), 0.5); // taught view, taken 0.5 m above the part
@@ -94,18 +94,18 @@ int main(int argc, char **argv)
       vpDisplay::flush(Iext);
       viewer.pace(40);
       errorOf(cdMo * cMo_now.inverse(), deg, mm);
-      std::printf("%4d  %2zu/%zu     %8.4f      %8.2f      %7.2f  %7.2f   %s\n", move, servo.subGoalIndex() + 1,
-                  servo.subGoals().size(), servo.rotationResidual(), servo.translationResidual(), deg, mm,
-                  vpServoMorph::statusName(servo.status()));
-      if (servo.converged()) {
+      std::printf("%4d  %2zu/%zu     %8.4f      %8.2f      %7.2f  %7.2f   %s\n", move, servo.getSubGoalIndex() + 1,
+                  servo.getSubGoals().size(), servo.getRotationResidual(), servo.getTranslationResidual(), deg, mm,
+                  vpServoMorph::statusName(servo.getStatus()));
+      if (servo.getStatus() == vpServoMorph::CONVERGED) {
         errorOf(eMcTrue.inverse() * servo.get_eMc(), deg, mm);
         std::printf("converged after %d moves; hand-eye estimate error %.3f deg, %.2f mm; projection scale %.4f "
                     "(true 1.2)\n",
-                    move, deg, mm, servo.handEyeEstimator().translationScale());
+                    move, deg, mm, servo.getHandEyeEstimator().translationScale());
         ok = true;
         break;
       }
-      if (servo.status() != vpServoMorph::MOVING && servo.status() != vpServoMorph::SUBGOAL_REACHED)
+      if (servo.getStatus() != vpServoMorph::MOVING && servo.getStatus() != vpServoMorph::SUBGOAL_REACHED)
         break; // lost target, degenerate contour or unreliable correspondence: the velocity is zero
       if (viewer.clicked(I))
         break; // a click in the camera window stops the servo
@@ -113,7 +113,7 @@ int main(int argc, char **argv)
     }
     //! [Loop]
     if (!ok)
-      std::cout << "not converged: " << vpServoMorph::statusName(servo.status()) << std::endl;
+      std::cout << "not converged: " << vpServoMorph::statusName(servo.getStatus()) << std::endl;
     plot.expect(viewer, "camera", servo, I.getWidth(), I.getHeight());
     viewer.save();
     viewer.waitClick(I);

@@ -116,7 +116,7 @@ int main(int argc, char **argv)
     // vpServoMorph on the key's contour, through 10 sub-goals, the camera's frame as the end effector's.
     vpServoMorph servo;
     servo.setCameraParameters(cam);
-    servo.setSubGoalCount(10);
+    servo.getPlanner().setSubGoalCount(10);
     servo.setGain(gain);
     servo.setSamplingTime(dt);
     servo.setTarget(goal, cdMo[2][3]);
@@ -184,12 +184,12 @@ int main(int argc, char **argv)
         if (!tag.estimate(Im, cMo_tag, &corners))
           corners.clear(); // no tag to mask
         const vpColVector v = servo.computeControlLaw(vpMorphTagPoseEstimator::silhouette(Im, corners));
-        if (servo.converged() ||
-            (servo.status() != vpServoMorph::MOVING && servo.status() != vpServoMorph::SUBGOAL_REACHED))
+        if (servo.getStatus() == vpServoMorph::CONVERGED ||
+            (servo.getStatus() != vpServoMorph::MOVING && servo.getStatus() != vpServoMorph::SUBGOAL_REACHED))
           morph.done = true;
         else
           morph.move(v); // eMc is the identity: the end effector's velocity is the camera's
-        morph.state = vpServoMorph::statusName(servo.status());
+        morph.state = vpServoMorph::statusName(servo.getStatus());
         morph.measure(cdMo);
       }
       //! [Loop morph]
@@ -243,7 +243,7 @@ int main(int argc, char **argv)
     viewer.expectCurves("plot", "distance and errors", {vpColor::red, vpColor::blue});
     viewer.save();
     viewer.waitClick(Im);
-    return servo.converged() ? EXIT_SUCCESS : EXIT_FAILURE;
+    return servo.getStatus() == vpServoMorph::CONVERGED ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "error: " << e.getStringMessage() << std::endl;
     return EXIT_FAILURE;

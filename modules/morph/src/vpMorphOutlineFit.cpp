@@ -360,9 +360,16 @@ struct vpMorphOutlineFit::Solver
     const std::size_t ng = rows.r.size() - n;
     self.m_goalCoverage = ng > 0 ? double(covered) / double(ng) : std::numeric_limits<double>::quiet_NaN();
     // Covariance of (a, b, tx, ty) from the Tukey-weighted normal equations (without the point-to-point pull), the
-    // offset marginalised, mapped to (theta, tx, ty, ln s).
-    if (posed && inliers > 5)
-      covarianceFrom(self, H, x, sigma);
+    // offset marginalised, mapped to (theta, tx, ty, ln s), at the residuals' own scale (their weighted mean square
+    // over the degrees of freedom left), not the robust one, which is floored for the weights' sake.
+    double sw = 0.0, swr2 = 0.0;
+    for (std::size_t k = 0; k < rows.r.size(); ++k) {
+      sw += rows.w[k];
+      swr2 += rows.w[k] * rows.r[k] * rows.r[k];
+    }
+    const double dof = sw - double(H.rows());
+    if (posed && inliers > 5 && dof > 0.0)
+      covarianceFrom(self, H, x, std::sqrt(swr2 / dof));
     return fromLinearParameters(x, cx, cy);
   }
 }; // Solver
@@ -418,31 +425,49 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
     if (Solver::irls(*m_goalData, window, nullptr, x, delta, sigma, false, false, m_maxIterations, floor, spread)) {
       hypotheses.push_back({x, sigma});
       windowSigmas.push_back(sigma);
+      // And with its scale free: a curved window finds the scale that a hidden part biased the start's by (a
+      // straight one slides or shrinks, and its consensus below says so).
+      double ds = 0.0, ss = 0.0;
+      if (Solver::irls(*m_goalData, window, nullptr, x, ds, ss, true, false, m_maxIterations, floor, spread))
+        hypotheses.push_back({x, ss});
     }
   }
-  // Kept: the hypothesis that lays the most of the input on the goal's edges within their noise (the consensus at
-  // the median of the windows' own scales: a window lies on one part of the object, most do not span a bend or a
-  // cut), the largest rigid part of the view: what an occluder leaves, the part a bend did not move.
+  // Each hypothesis refined locally, its scale free, at the edges' noise (the median of the windows' own scales: a
+  // window lies on one part of the object, most do not span a bend or a cut), then scored by the consensus there:
+  // kept, the one that lays the most of the input on the goal's edges, the largest rigid part of the view (what an
+  // occluder leaves, the part a bend did not move). Then refined to the end.
   const double noise = windowSigmas.empty() ? 0.0 : median(windowSigmas);
-  Hypothesis best{x0, 0.0};
-  double bestCost = std::numeric_limits<double>::infinity();
+  Eigen::Vector4d x = x0;
+  double delta = 0.0, sigma = noise, bestCost = std::numeric_limits<double>::infinity();
   Solver::Rows rows;
-  for (const Hypothesis &h : hypotheses) {
-    const double sigma = noise > 0.0 ? noise : h.sigma;
-    Solver::measureRows(*m_goalData, P, nullptr, h.x, 0.0, floor, 0.0, rows);
-    const double c = cost(rows.r, sigma);
-    if (c < bestCost) {
-      bestCost = c;
-      best = h;
+  // Each from two scales: the edges' noise (it stays on the part it lies on) and the spread of all its residuals (a
+  // scale the hypotheses' fixed one left off by percents, as a hidden part biases the correspondence's, is found
+  // again).
+  for (const Hypothesis &h : hypotheses)
+    for (const double start : {noise > 0.0 ? noise : h.sigma, 0.0}) {
+      // One way only: the goal's samples would pull the view over a part it does not show; the two ways' consensus
+      // below rules out a view shrunk onto an edge.
+      Eigen::Vector4d xh = h.x;
+      double dh = 0.0, sh = start;
+      if (!Solver::irls(*m_goalData, P, nullptr, xh, dh, sh, m_withScale, m_withOffset, 8, floor, spread))
+        continue;
+      // Both ways: a fit shrunk onto one edge of the goal lays the view on it but leaves the goal bare.
+      Solver::measureRows(*m_goalData, P, edges.get(), xh, dh, floor, 0.0, rows);
+      const double c = cost(rows.r, noise > 0.0 ? noise : sh);
+      if (c < bestCost) {
+        bestCost = c;
+        x = xh;
+        delta = dh;
+        sigma = sh;
+      }
     }
-  }
-  double delta = 0.0, sigma = windowSigmas.empty() ? best.sigma : median(windowSigmas);
-  Eigen::Vector4d x = best.x;
-  const bool solved = Solver::irls(*m_goalData, P, edges.get(), x, delta, sigma, m_withScale, m_withOffset,
-                                   m_maxIterations, floor, spread);
-  if (!solved) {
-    x = best.x;
-    sigma = best.sigma;
+  const Eigen::Vector4d xBest = x;
+  const double deltaBest = delta, sigmaBest = sigma;
+  if (!Solver::irls(*m_goalData, P, edges.get(), x, delta, sigma, m_withScale, m_withOffset, m_maxIterations, floor,
+                    spread)) {
+    x = xBest;
+    delta = deltaBest;
+    sigma = sigmaBest;
   }
   return Solver::finish(*this, P, edges.get(), x, delta, sigma, true, floor, cx, cy, initial);
 }

@@ -188,7 +188,7 @@ protected:
   //! The recognition is checked on the first image and then every kCheckPeriod measured images (1 s at 25 Hz).
   static constexpr unsigned int kCheckPeriod = 25;
   //! Another template replaces the current one only when the current one costs this much more work.
-  static constexpr double kSwitchRatio = 1.2; // vpServoMorph::mismatchRatio()
+  static constexpr double kSwitchRatio = 1.2; // vpMorphServoGuard::getMismatchRatio()
 
   /*!
     The silhouette of image \e I and, on the first one, the recognition. False when the caller must return
@@ -317,14 +317,14 @@ public:
     }
     if (!m_targetSet) {
       if (m_tilt) // the turn comes back near the image's border: it needs the image's size
-        m_servo->setHandEyeTiltExploration(vpMath::rad(kExplorationDeg), I.getWidth(), I.getHeight());
+        m_servo->getHandEyeExploration().setAngle(vpMath::rad(kExplorationDeg), I.getWidth(), I.getHeight());
       setTarget();
     }
     const Clock::time_point t0 = Clock::now();
-    m_servo->setJointState(eJe, q, m_ctx.jointMin, m_ctx.jointMax); // read when a sequence is planned
+    m_servo->getPlanner().setJointState(eJe, q, m_ctx.jointMin, m_ctx.jointMax); // read when a sequence is planned
     cmd.v = m_servo->computeControlLaw(c);
     cmd.controlMs = msSince(t0);
-    if (m_servo->status() == vpServoMorph::TARGET_MISMATCH) {
+    if (m_servo->getStatus() == vpServoMorph::TARGET_MISMATCH) {
       // vpServoMorph's target check (at each new sequence and before convergence): recognise anew, restart.
       if (!rerecognize(c))
         return stopCommand("target-mismatch");
@@ -353,17 +353,19 @@ private:
   void setTarget()
   {
     m_servo->setTarget(*m_template);
-    m_servo->setTargetCheck(*m_ctx.database, m_template->name(), kCheckSlack);
+    m_servo->getGuard().setTargetCheck(*m_ctx.database, m_template->name(), kCheckSlack);
     m_targetSet = true;
   }
   Command fromStatus(Command cmd) const
   {
     cmd.frame = vpRobot::END_EFFECTOR_FRAME;
-    const vpServoMorph::Status s = m_servo->status();
+    const vpServoMorph::Status s = m_servo->getStatus();
     cmd.converged = s == vpServoMorph::CONVERGED;
     switch (s) {
     case vpServoMorph::TARGET_LOST:
-      cmd.measured = false; // hold
+    case vpServoMorph::DEGENERATE_CONTOUR:
+    case vpServoMorph::UNEXPLAINED_VIEW:
+      cmd.measured = false; // a hold: vpServoMorph stops by itself after too many in a row
       break;
     case vpServoMorph::REPLANNED:
       cmd.replanned = true;
@@ -391,7 +393,7 @@ private:
     m_servo.reset(new vpServoMorph);
     m_servo->setCameraParameters(m_ctx.cam);
     m_servo->set_eMc(m_ctx.eMc);
-    m_servo->setSubGoalCount(10);
+    m_servo->getPlanner().setSubGoalCount(10);
     m_servo->setSamplingTime(m_ctx.samplingTime);
     m_servo->setGain(std::min(1.0, m_ctx.lambda * m_ctx.samplingTime)); // same exponential rate as lambda
     // Extracted contours are digitised: the final residual settles at a few tenths of a pixel.
@@ -400,7 +402,7 @@ private:
     m_servo->setFinalScaleThreshold(5e-4);
     if (m_tilt)
       m_servo->setTiltCorrection(vpServoMorph::TILT_FINAL_APPROACH);
-    m_servo->setMaxLostIterations(8); // its own stop before the loop's feature-lost (10)
+    m_servo->getGuard().setMaxLostIterations(8); // its own stop before the loop's feature-lost (10)
     m_targetSet = false;
     m_joints.setSamplingTime(m_ctx.samplingTime);
     m_joints.reset();
@@ -448,7 +450,10 @@ public:
       const double a = c.area();
       if (!(a > 25.0))
         return stopCommand("degenerate-contour");
-      m_s.buildFrom(c, m_ctx.cam, Zd * std::sqrt(m_areaD / a));
+      // The depth of the view: the desired one times the scale the feature's last alignment measured (the area ratio
+      // before the first).
+      const vpMorphViewAlignment &al = m_s.getAlignment();
+      m_s.buildFrom(c, m_ctx.cam, Zd * (m_built && al.explained() ? al.transform.scale() : std::sqrt(m_areaD / a)));
       if (!m_built) {
         m_task.reset(new vpServo);
         setupPlanarTask(*m_task);
@@ -456,7 +461,7 @@ public:
         m_built = true;
       }
       const vpColVector vc = m_task->computeControlLaw();
-      if (fitJumped(m_s.lastFit()))
+      if (fitJumped(m_s.getAlignment().transform))
         return stopCommand("feature-jump");
       cmd.v = vpVelocityTwistMatrix(m_ctx.eMc) * vc;
       // Stop rule: s - s* = (centroid, angle, log scale) as the outline's RMS displacement in pixels.

@@ -153,12 +153,12 @@ TEST_CASE("bench: vpServoMorph poses an articulated target at the opening the vi
   vpServoMorph servo;
   servo.setCameraParameters(vpMorphPlanarScene::defaultCamera());
   servo.setTarget(t);
-  CHECK(servo.targetOpening() == 0.0); // not posed before the first view
+  CHECK(servo.getTargetOpening() == 0.0); // not posed before the first view
   servo.computeControlLaw(view);
-  CHECK(std::fabs(vpMath::deg(servo.targetOpening()) - 32.0) < 0.2);
-  CHECK(servo.targetFixedPart() < 2);
+  CHECK(std::fabs(vpMath::deg(servo.getTargetOpening()) - 32.0) < 0.2);
+  CHECK(servo.getTargetFixedPart() < 2);
   // A rigid target (a contour) forgets the articulation.
   servo.setTarget(t.contour(), 0.5);
   servo.computeControlLaw(view);
-  CHECK(servo.targetOpening() == 0.0);
+  CHECK(servo.getTargetOpening() == 0.0);
 }

@@ -7,20 +7,13 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/morph/vpMorphException.h>
 
-#include "vpMorphRegionCheck.h"
-
 namespace
 {
-// Regions, deformed view, overlap and undeformed part: the constants shared with vpServoMorph (see
-// vpMorphRegionCheck); the part's outline sampled as vpServoMorph samples it (twice the overlap's points).
-constexpr double kRegionMismatch = vpMorphRegionCheck::kRegionMismatch;
-constexpr double kDeformedOutside = vpMorphRegionCheck::kDeformedOutside;
-constexpr std::size_t kOutsidePoints = vpMorphRegionCheck::kOverlapPoints, kPartSamples = 2 * kOutsidePoints;
-constexpr double kPartTolerancePx = vpMorphRegionCheck::kRigidPartTolerancePx;
-constexpr double kPartMinShare = vpMorphRegionCheck::kRigidPartMinShare;
-constexpr unsigned int kPartPeriod = vpMorphRegionCheck::kRigidPartPeriod;
-// Rotation of the fit to the goal under which a view not alike is judged hidden or bent.
-const double kDecideTurn = 5.0 * M_PI / 180.0;
+// Whether two contours have the same vertices (a desired feature rebuilt from the same contour keeps its goal).
+bool sameContour(const vpMorphContour &a, const vpMorphContour &b)
+{
+  return a.size() == b.size() && a.xs() == b.xs() && a.ys() == b.ys();
+}
 
 // Region moments of a polygon (Green's theorem): area a, centroid, normalised centred moments mu_ij / a.
 void regionMoments(const vpMorphContour &c, double &a, double &xg, double &yg, double &n20, double &n02, double &n11)
@@ -64,14 +57,7 @@ void vpFeatureMorph::init()
   m_A = m_B = 0.0;
   m_C = 1.0;
   m_n20 = m_n02 = m_n11 = 0.0;
-  m_tracker.reset();
-  m_fit = vpMorphRigidTransform();
-  m_regions = REGIONS_UNDECIDED;
-  m_regionsChecked = false;
-  m_bentCount = 0;
-  m_partKnown = false;
-  m_partOffset = vpMorphRigidTransform();
-  m_scaleBias = 1.0;
+  m_aligner = vpMorphViewAligner();
 }
 
 void vpFeatureMorph::buildFrom(const vpMorphContour &contour, const vpCameraParameters &cam, double Z)
@@ -127,20 +113,19 @@ void vpFeatureMorph::setContour(const vpMorphContour &normalized, double A, doub
   // (found by fuzz_servo).
   // The interaction matrix sums cubes of the vertex offsets: below 1e-50 normalised units (a 1e-50 rad object,
   // far below any image) they underflow and ViSP divides by zero.
-  if (!(std::sqrt(a) >= 1e-50) || !std::isfinite(a) || !std::isfinite(xg) || !std::isfinite(yg) || !std::isfinite(n20) ||
-      !std::isfinite(n02) || !std::isfinite(n11) || !std::isfinite(Z) || !std::isfinite(std::log(a))) {
+  if (!(std::sqrt(a) >= 1e-50) || !std::isfinite(a) || !std::isfinite(xg) || !std::isfinite(yg) ||
+      !std::isfinite(n20) || !std::isfinite(n02) || !std::isfinite(n11) || !std::isfinite(Z) ||
+      !std::isfinite(std::log(a))) {
     std::ostringstream os;
     os << "vpFeatureMorph::buildFrom: the contour's moments are not finite in normalised coordinates (area " << a
-       << ", centroid (" << xg << ", " << yg << ")): the polygon is too small (below 1e-50 normalised units) or too large";
+       << ", centroid (" << xg << ", " << yg
+       << ")): the polygon is too small (below 1e-50 normalised units) or too large";
     throw vpMorphException(vpMorphException::badContourError, os.str());
   }
   m_contour = normalized;
   m_A = A;
   m_B = B;
   m_C = C;
-  m_polyS[0] = xg;
-  m_polyS[1] = yg;
-  m_polyS[2] = 0.5 * std::log(a);
   if (normalized.hasRegion()) {
     // The region measured on the image (see vpMorphContour::hasRegion()): the polygon's area and centroid move by a
     // percent when a vertex appears or shifts from one image to the next.
@@ -249,142 +234,6 @@ vpMatrix vpFeatureMorph::interaction(unsigned int select)
   return L;
 }
 
-vpMorphRigidTransform vpFeatureMorph::fitToDesired(const vpFeatureMorph &sd, const vpMorphCorrespondence &corr)
-{
-  const vpMorphContour &des = sd.m_contour;
-  const bool outlines = m_contour.hasOutline() && des.hasOutline();
-  const double tenthPixel = m_cam.get_px() > 0.0 ? 0.1 / m_cam.get_px() : 0.0;
-  // Both outlines measured: the fit refined on them, point to edge, robust scale floored at a tenth of a pixel. It does
-  // not move with the polygons' vertices as the corresponded vertices' fit does.
-  auto onOutlines = [&](const vpMorphRigidTransform &T) {
-    try {
-      return vpMorphRigidTransform::refineOnOutline(m_contour.outline(), des.outline(), T, true, tenthPixel);
-    } catch (const vpException &) {
-      return T; // an outline fit that degenerates: the corresponded vertices' fit stands
-    }
-  };
-  const vpMorphRigidTransform plain =
-      vpMorphRigidTransform::fitLeastSquares(m_contour, des, corr, true, vpMorphRigidTransform::NO_ROBUST);
-  // Decided at the first error() after init(), then only from alike to not alike (an occluder that comes): switching
-  // between the regions' and the fit's estimates from one image to the next makes a loop chatter (see vpServoMorph).
-  // Only against a desired contour with its measured region (a template): a polygon goal (a morph's frame, a drawn
-  // contour) has no region to compare with, and polygons' areas are no test (a thin tool's strays by 2-3 %).
-  const bool alike = !des.hasRegion() || vpMorphRegionCheck::alike(des, m_contour, plain.scale(), kRegionMismatch);
-  const bool wasHidden = m_regions == REGIONS_HIDDEN;
-  if (m_regions == REGIONS_UNDECIDED || (m_regions == REGIONS_ALIKE && !alike))
-    m_regions = alike ? REGIONS_ALIKE : REGIONS_NOT_ALIKE;
-  // A current contour without its region against a desired one with it is an outline joined across an occluder's cut
-  // (vpMorphContourExtractor): it sticks out along its bridge, and is hidden, not bent.
-  if (m_regions == REGIONS_NOT_ALIKE && !m_contour.hasRegion())
-    m_regions = REGIONS_HIDDEN;
-  // Share of the view that F lays outside the desired region (on the outlines when both have them, resampled once).
-  vpMorphContour view, goal;
-  auto outside = [&](const vpMorphRigidTransform &F) {
-    if (view.empty()) {
-      view = outlines ? m_contour.outline().resampled(kOutsidePoints) : m_contour;
-      goal = outlines ? des.outline().resampled(kOutsidePoints) : des;
-    }
-    return vpMorphRegionCheck::outsideShare(F, view, goal);
-  };
-  auto robustFit = [&]() {
-    // The corresponded vertices crowd a hidden part onto the cut, and the plain least squares follow them; the robust
-    // ones weigh them out.
-    const vpMorphRigidTransform T =
-        vpMorphRigidTransform::fitLeastSquares(m_contour, des, corr, true, vpMorphRigidTransform::TUKEY);
-    return outlines ? onOutlines(T) : T;
-  };
-  if (m_regions == REGIONS_BENT)
-    return outlines ? bentFit(sd, onOutlines(m_fit), true) : plain;
-  if (m_regions == REGIONS_ALIKE) {
-    const vpMorphRigidTransform T = outlines ? onOutlines(plain) : plain;
-    // A small occluder or bend barely changes the regions' invariants, and their centroids and areas then carry the
-    // part it hides or moves into the pose (an occluded wrench, key and pliers converging 2.3-11.4 mm off). Checked
-    // once near the goal, as a view not alike is: laid by the regions, such a view sticks out of the desired region;
-    // laid by the robust fit, a hidden one lies inside, a bent one still sticks out.
-    if (!m_regionsChecked && des.hasRegion() && m_contour.hasRegion() && std::fabs(T.theta()) < kDecideTurn) {
-      m_regionsChecked = true;
-      double cx, cy, gx, gy;
-      m_contour.regionCentroid(cx, cy);
-      des.regionCentroid(gx, gy);
-      const vpMorphRigidTransform byRegions(T.theta(), gx - cx, gy - cy,
-                                            std::sqrt(des.regionArea() / m_contour.regionArea()), cx, cy);
-      if (outside(byRegions) > kDeformedOutside) {
-        const vpMorphRigidTransform Tr = robustFit();
-        if (outside(Tr) <= kDeformedOutside) {
-          m_regions = REGIONS_HIDDEN;
-          return Tr;
-        }
-        // Out of the desired region either way: bent (a wrench whose handle is bent keeps its regions' invariants
-        // within 2 %, and converged 2.1 mm off on them).
-        if (outlines) {
-          m_regions = REGIONS_BENT;
-          return bentFit(sd, T, false);
-        }
-      }
-    }
-    return T;
-  }
-
-  // Part of the object hidden (or not yet decided).
-  vpMorphRigidTransform T = robustFit();
-  // A hidden view's fit can have two basins (an outline joined across a card, whose bridge changes from one image to
-  // the next: a key's scales 4 % apart, a screwdriver's 7 %), and the correspondence started it in one or the other: a
-  // loop chattering until its budget ran out, or a jump. Also refined from the last period's fit; kept, the one whose
-  // scale moved less since, as the depth changes little in a period. (The one laying the view more inside the desired
-  // region was kept first: shrinking a view always does that, and a screwdriver's scale jumped by 7 %.)
-  if (wasHidden && outlines) {
-    const vpMorphRigidTransform Tp = onOutlines(m_fit);
-    if (std::fabs(std::log(Tp.scale() / m_fit.scale())) < std::fabs(std::log(T.scale() / m_fit.scale())))
-      T = Tp;
-  }
-  // Hidden or bent, decided once the view is near the goal (the fit is then at its most accurate): an occluder only
-  // hides, so the view laid by the fit lies inside the desired region; a bend sticks out. A bent view's outline fit
-  // has two basins or more (a bent hammer's, 0.25 % apart in scale), and the tracked correspondence started it in one
-  // or the other from one image to the next: a loop chattering about a goal 3-14 mm off until its budget ran out. It
-  // is laid by its largest overlap instead (bentFit()), or by the regions without outlines.
-  if (m_regions == REGIONS_NOT_ALIKE && std::fabs(T.theta()) < kDecideTurn) {
-    m_regions = outside(T) > kDeformedOutside ? REGIONS_BENT : REGIONS_HIDDEN;
-    if (m_regions == REGIONS_BENT)
-      return outlines ? bentFit(sd, T, false) : plain;
-  }
-  return T;
-}
-
-vpMorphRigidTransform vpFeatureMorph::bentFit(const vpFeatureMorph &sd, const vpMorphRigidTransform &base, bool warm)
-{
-  const vpMorphContour &des = sd.m_contour;
-  const double tolerance = kPartTolerancePx / m_cam.get_px();
-  // The scale of the largest part that lies on the template (vpMorphRigidTransform::fitRigidPart: a bent key's bow):
-  // a bend drags the outline fit and changes the area by percents. Searched every kPartPeriod periods (milliseconds),
-  // followed from its offset to the base fit in between; when none is found, the outlines' length ratio (which a bend
-  // nearly keeps) times the last part's ratio to it.
-  const vpMorphContour dense = m_contour.outline().resampled(kPartSamples);
-  const double lengthScale = des.outline().resampled(kPartSamples).perimeter() / dense.perimeter();
-  double share = 0.0;
-  const vpMorphRigidTransform R =
-      !warm || !m_partKnown || m_bentCount % kPartPeriod == 0
-          ? vpMorphRigidTransform::fitRigidPart(dense, des.outline(), base, tolerance, &share)
-          : vpMorphRigidTransform::refineRigidPart(dense, des.outline(), m_partOffset * base, tolerance, &share);
-  ++m_bentCount;
-  m_partKnown = share >= kPartMinShare;
-  if (m_partKnown) {
-    m_partOffset = R * base.inverse();
-    m_scaleBias = R.scale() / lengthScale;
-  }
-  const double scale = m_scaleBias * lengthScale;
-  // Rotation and translation: the placement of largest overlap with the template at that scale (as vpServoMorph's), the
-  // pose the bench's truth holds a bent tool to. Searched over +-10 deg at the decision, then refined from the last
-  // period's placement.
-  const vpMorphContour view = m_contour.outline().resampled(kOutsidePoints);
-  const vpMorphContour goal = des.outline().resampled(kOutsidePoints);
-  if (!warm) {
-    const vpMorphRigidTransform Ts(base.theta(), base.tx(), base.ty(), scale, base.cx(), base.cy());
-    return vpMorphRigidTransform::fitOnOverlap(view, goal, Ts, vpMath::rad(10.0), 5, 25);
-  }
-  const vpMorphRigidTransform last(m_fit.theta(), m_fit.tx(), m_fit.ty(), scale, m_fit.cx(), m_fit.cy());
-  return vpMorphRigidTransform::refineOnOverlap(view, goal, last, 6, 0.002);
-}
-
 vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int select)
 {
   const vpFeatureMorph *sd = dynamic_cast<const vpFeatureMorph *>(&s_star);
@@ -396,31 +245,27 @@ vpColVector vpFeatureMorph::error(const vpBasicFeature &s_star, unsigned int sel
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpFeatureMorph::error: the desired feature has no contour; call its buildFrom() "
                            "(vpServo::addFeature(s) alone gives an empty desired feature)");
-  m_fit = fitToDesired(*sd, m_tracker.update(m_contour, sd->m_contour));
-  s[2] = -m_fit.theta();
-  double full[4] = {0.0, 0.0, s[2], 0.0};
-  // A bent view without outlines has no fit of its own (see bentFit()): the regions, as for a view alike.
-  const bool hasOutlines = m_contour.hasOutline() && sd->m_contour.hasOutline();
-  if (m_regions == REGIONS_ALIKE || (m_regions == REGIONS_BENT && !hasOutlines)) {
-    // The regions measured on both images, or the polygons' for both (one measured region against a polygon's area
-    // would be a bias of the depth).
-    const bool regions = m_contour.hasRegion() && sd->m_contour.hasRegion();
-    const double *cur = regions ? &s[0] : m_polyS, *des = regions ? &sd->s[0] : sd->m_polyS;
-    const double cs = regions ? s[3] : m_polyS[2], ds = regions ? sd->s[3] : sd->m_polyS[2];
-    full[0] = cur[0] - des[0];
-    full[1] = cur[1] - des[1];
-    full[3] = cs - ds;
-  } else {
-    // Part of the object hidden, or bent: the desired values are where the fit lays the current centroid and at what
-    // size. The visible part is a fixed part of the object (an occluder lies on the plane), so at the goal its centroid
-    // is seen where the fit puts it, and its area grows by the fit's scale squared; the desired region's own centroid
-    // and area (a whole object against a part of it, or a bent one) would be a bias of centimetres.
+  // One measurement, vpServoMorph's: the similarity that lays this view on the desired one (a new desired contour
+  // is a new goal).
+  if (!m_aligner.hasGoal() || !sameContour(m_aligner.getGoalNormalized(), sd->m_contour)) {
+    m_aligner.setCameraParameters(m_cam);
+    m_aligner.setGoal(sd->m_contour);
+  }
+  const vpMorphViewAlignment a = m_aligner.align(m_contour);
+  double full[4] = {0.0, 0.0, 0.0, 0.0};
+  if (a.explained()) {
+    // The desired values are where the alignment lays the current centroid and at what size: for a view with a part
+    // hidden or bent, the visible part's own centroid and area at the goal, not the desired region's.
     double gx, gy;
-    m_fit.apply(s[0], s[1], gx, gy);
+    a.transform.apply(s[0], s[1], gx, gy);
+    s[2] = -a.transform.theta();
     full[0] = s[0] - gx;
     full[1] = s[1] - gy;
-    full[3] = -std::log(m_fit.scale());
+    full[2] = s[2];
+    full[3] = -std::log(a.transform.scale());
   }
+  // An unexplained view (another shape, a view the measurement cannot place): a zero error, which a stock vpServo
+  // turns into a zero velocity; getAlignment() says why.
   vpColVector e(0);
   for (unsigned int k = 0; k < 4; ++k)
     if (select & FEATURE_LINE[k])

@@ -5,11 +5,13 @@
 
 #include <visp3/core/vpException.h>
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphHomography.h>
 
 namespace
 {
-// Share of the view's area that must lie on the goal's for the fit to stand for the view: beyond, the part laid on
-// the goal is not the larger part of the object.
+// Share of the view's area that must lie on the goal's, and of the goal's outline that must lie on the view's, for
+// the fit to stand for the view: below, the part laid on the goal is not the larger part of the object (or the view
+// was shrunk onto a part of the goal).
 const double kBreakdown = 0.5;
 // Points of the outlines whose regions' overlap is measured (a few pixels apart).
 const std::size_t kRegionPoints = 128;
@@ -24,38 +26,40 @@ vpMorphViewAligner::vpMorphViewAligner() : m_cam(800, 800, 320, 240)
 void vpMorphViewAligner::setCameraParameters(const vpCameraParameters &cam)
 {
   m_cam = cam;
-  if (!m_goalPx.empty())
-    setGoal(vpMorphContour(m_goalPx));
+  if (!m_goalN.empty())
+    setGoal(vpMorphContour(m_goalN));
 }
 
 void vpMorphViewAligner::setGoal(const vpMorphContour &goal)
 {
-  if (goal.empty() || goal.units() != vpMorphContour::PIXEL)
-    throw vpMorphException(vpMorphException::badParameterError,
-                           "vpMorphViewAligner::setGoal: the goal must be a non-empty contour in pixels");
-  m_goalPx = goal;
-  m_goalN = goal.toNormalized(m_cam);
+  if (goal.empty())
+    throw vpMorphException(vpMorphException::badParameterError, "vpMorphViewAligner::setGoal: empty goal");
+  m_goalPx = goal.units() == vpMorphContour::PIXEL ? goal : goal.toPixels(m_cam);
+  m_goalN = goal.units() == vpMorphContour::PIXEL ? goal.toNormalized(m_cam) : goal;
   m_fit.emplace(m_goalN);
   const vpMorphContour &o = m_goalN.outline();
   m_goalRegion = o.size() > kRegionPoints ? o.resampled(kRegionPoints) : o;
   m_tracker.reset();
-  m_haveStart = false;
+  m_haveStart = m_haveHomography = false;
   m_last = vpMorphViewAlignment();
   for (unsigned int i = 0; i < 4; ++i)
     m_last.covariance[i][i] = std::numeric_limits<double>::infinity();
 }
 
-void vpMorphViewAligner::setStart(const vpMorphRigidTransform &currentToGoal)
+void vpMorphViewAligner::setStart(const vpMorphRigidTransform &currentToGoal, double sigmaPx)
 {
+  if (!std::isfinite(sigmaPx) || sigmaPx < 0.0)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphViewAligner::setStart: sigma must be finite and >= 0");
   m_start = currentToGoal;
-  m_startSigma = 0.0;
+  m_startSigma = sigmaPx / std::max(m_cam.get_px(), m_cam.get_py());
   m_haveStart = true;
 }
 
 void vpMorphViewAligner::reset()
 {
   m_tracker.reset();
-  m_haveStart = false;
+  m_haveStart = m_haveHomography = false;
 }
 
 void vpMorphViewAligner::setMethod(Method m)
@@ -90,7 +94,9 @@ vpMorphViewAlignment vpMorphViewAligner::fromFit(const vpMorphRigidTransform &T,
   // goal) from a part bent out of it. Beyond the breakdown point, or a robust scale that no edge noise makes, the fit
   // does not stand for the view.
   a.overlapShare = overlapShare(T, currentN);
-  if (a.overlapShare < kBreakdown || !(a.sigmaPx <= (measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx())))
+  a.goalCoverage = fit.getGoalCoverage();
+  if (a.overlapShare < kBreakdown || !(a.goalCoverage >= kBreakdown) ||
+      !(a.sigmaPx <= (measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx())))
     a.model = vpMorphViewAlignment::UNEXPLAINED;
   else if (a.outsideShare + a.insideShare == 0.0)
     a.model = vpMorphViewAlignment::RIGID;
@@ -112,20 +118,114 @@ vpMorphRigidTransform vpMorphViewAligner::correspondenceStart(const vpMorphConto
                                                 normalisedPixels(0.5));
 }
 
+namespace
+{
+// The similarity of least squares from the points (x, y) to their images (X, Y) (closed-form 2-D Procrustes), about
+// the points' centroid.
+vpMorphRigidTransform procrustes(const std::vector<double> &x, const std::vector<double> &y,
+                                 const std::vector<double> &X, const std::vector<double> &Y)
+{
+  const double n = double(x.size());
+  double mx = 0, my = 0, mX = 0, mY = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    mx += x[k] / n;
+    my += y[k] / n;
+    mX += X[k] / n;
+    mY += Y[k] / n;
+  }
+  double dot = 0, cross = 0, var = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double px = x[k] - mx, py = y[k] - my, qx = X[k] - mX, qy = Y[k] - mY;
+    dot += px * qx + py * qy;
+    cross += px * qy - py * qx;
+    var += px * px + py * py;
+  }
+  return vpMorphRigidTransform(std::atan2(cross, dot), mX - mx, mY - my, std::hypot(dot, cross) / var, mx, my);
+}
+} // namespace
+
+bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphViewAlignment &a, bool warmOnly)
+{
+  // A view that no similarity explains may be the goal seen tilted: a homography (refined on the outlines, from the
+  // similarity, else from the correspondence's polygon fit) that lays the larger part of it on the goal within the
+  // edges' noise says so. The similarity is then the homography's own, over the view's outline.
+  const bool measured = currentN.hasOutline() && m_goalN.hasOutline();
+  const double limit = normalisedPixels(measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx());
+  const double floor = normalisedPixels(measured ? 0.1 : 0.5);
+  auto explains = [&](const vpMorphHomography &G) { return G.inlierShare() >= kBreakdown && G.residual() <= limit; };
+  vpMorphHomography G;
+  bool ok = false;
+  // From the last period's homography when the view was already seen tilted, else from the similarity.
+  for (int start = m_haveHomography ? 0 : 1; start < (warmOnly ? 1 : 2) && !ok; ++start) {
+    try {
+      const vpMorphHomography G0 = start == 0 ? m_homography : vpMorphHomography(a.transform.toMatrix());
+      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G0, floor, 200, 10);
+      ok = explains(G);
+    } catch (const vpException &) {
+    }
+  }
+  if (!ok && !warmOnly && !a.explained()) { // from the correspondence's polygon fit, for a view no other start explains
+    try {
+      const vpMorphCorrespondence &corr = m_tracker.update(currentN, m_goalN);
+      G = vpMorphHomography::fit(currentN, m_goalN, corr, floor, 200, 12);
+      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G, floor, 200, 10);
+      ok = explains(G);
+    } catch (const vpException &) {
+    }
+  }
+  if (!ok)
+    return false;
+  // The same tests as a similarity's, on the view laid by the homography: the larger part of it on the goal and of the
+  // goal on it (eight parameters bend many an outline onto part of another).
+  try {
+    const vpMorphContour laid = G.apply(currentN.outline());
+    vpMorphOutlineFit check(m_goalN);
+    check.setMinimumSigma(floor);
+    check.setMaxIterations(1);
+    check.fit(laid, vpMorphRigidTransform());
+    const vpMorphContour region = laid.size() > kRegionPoints ? laid.resampled(kRegionPoints) : laid;
+    const double area = region.area();
+    const double overlap = area > 0.0 ? region.overlapArea(m_goalRegion) / area : 0.0;
+    // Rigid up to the homography: no run of outliers beyond what the noise makes (a bent or hidden part keeps its own
+    // under any homography that lays the rest).
+    if (!(check.getGoalCoverage() >= kBreakdown) || !(overlap >= kBreakdown) || !(check.getSigma() <= limit) ||
+        check.getOutsideShare() + check.getInsideShare() > 0.0)
+      return false;
+    a.goalCoverage = check.getGoalCoverage();
+    // How well the goal pins the laid view's similarity: the uncertainty of the homography's similarity part.
+    a.covariance = check.getCovariance();
+  } catch (const vpException &) {
+    return false;
+  }
+  const vpMorphContour o =
+      currentN.outline().size() > kRegionPoints ? currentN.outline().resampled(kRegionPoints) : currentN.outline();
+  std::vector<double> X(o.size()), Y(o.size());
+  for (std::size_t k = 0; k < o.size(); ++k)
+    if (!G.apply(o.x(k), o.y(k), X[k], Y[k]))
+      return false;
+  a.transform = procrustes(o.xs(), o.ys(), X, Y);
+  m_homography = G;
+  m_haveHomography = true;
+  a.model = vpMorphViewAlignment::RIGID;
+  a.perspective = true;
+  a.inlierShare = G.inlierShare();
+  a.sigmaPx = G.residual() * std::max(m_cam.get_px(), m_cam.get_py());
+  a.overlapShare = overlapShare(a.transform, currentN);
+  a.fromCorrespondence = false;
+  return true;
+}
+
 vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
 {
   if (m_goalPx.empty())
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphViewAligner::align: no goal; call setGoal()");
-  if (current.units() != vpMorphContour::PIXEL)
-    throw vpMorphException(vpMorphException::badParameterError,
-                           "vpMorphViewAligner::align: the current contour must be in pixels");
   vpMorphViewAlignment result;
   for (unsigned int i = 0; i < 4; ++i)
     result.covariance[i][i] = std::numeric_limits<double>::infinity();
   try {
     if (current.empty())
       throw vpMorphException(vpMorphException::badContourError, "empty view");
-    const vpMorphContour currentN = current.toNormalized(m_cam);
+    const vpMorphContour currentN = current.units() == vpMorphContour::PIXEL ? current.toNormalized(m_cam) : current;
     if (m_method == PAPER) {
       vpMorphViewAlignment a;
       a.transform = correspondenceStart(currentN, a);
@@ -135,6 +235,8 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
       for (unsigned int i = 0; i < 4; ++i)
         a.covariance[i][i] = std::numeric_limits<double>::infinity();
       result = a;
+    } else if (m_haveHomography && perspective(currentN, result = m_last, true)) {
+      // Seen tilted at the last period: the homography followed from there explains it again.
     } else {
       vpMorphOutlineFit &fit = *m_fit;
       const bool measured = currentN.hasOutline() && m_goalN.hasOutline();
@@ -167,6 +269,11 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
     for (unsigned int i = 0; i < 4; ++i)
       result.covariance[i][i] = std::numeric_limits<double>::infinity();
   }
+  // A view the similarity leaves parts of off the goal may be the goal seen tilted rather than a part hidden or bent.
+  if (result.model != vpMorphViewAlignment::RIGID && m_method == OUTLINE && !current.empty())
+    perspective(current.units() == vpMorphContour::PIXEL ? current.toNormalized(m_cam) : current, result);
+  if (!result.perspective)
+    m_haveHomography = false;
   if (result.explained()) {
     m_start = result.transform;
     m_startSigma = result.sigmaPx / std::max(m_cam.get_px(), m_cam.get_py());

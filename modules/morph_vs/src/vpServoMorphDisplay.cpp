@@ -1,6 +1,7 @@
 // vpServoMorph: what display() and draw() show, from the servo's public state only, on a display or into an image.
 #include <visp3/morph_vs/vpServoMorph.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include <visp3/core/vpMath.h>
@@ -9,60 +10,72 @@
 
 namespace
 {
-// The correspondence drawn between the current contour and its sub-goal, and the status text.
+// The correspondence drawn between the current contour and its sub-goal, and the status text on its band.
 const vpColor kCorrespondenceColor = vpColor::cyan;
 const vpColor kStatusColor = vpColor::yellow;
+const vpColor kBandColor = vpColor::black;
 
-// Whether the tracker's correspondence is the one from \e current to sub-goal \e goal fitted at the last period: only
-// when the servo fitted it (moving, reached, converged; not on a stop, a re-plan or the exploration turn), and never
-// beyond the two contours' vertices.
-bool correspondenceShown(const vpServoMorph &servo, const vpMorphContour &current, const vpMorphContour &goal)
+// Whether the last alignment is the one from the current contour to the current sub-goal: only when the servo aligned
+// it (moving, reached, converged; not on a hold, a stop, a re-plan or the exploration turn).
+bool alignmentShown(const vpServoMorph &servo)
 {
-  const vpServoMorph::Status st = servo.status();
-  if (servo.exploring() ||
-      (st != vpServoMorph::MOVING && st != vpServoMorph::SUBGOAL_REACHED && st != vpServoMorph::CONVERGED))
-    return false;
-  const vpMorphCorrespondence &corr = servo.tracker().correspondence();
-  return !corr.empty() && corr.inputSize() == current.size() && corr.targetSize() == goal.size();
+  const vpServoMorph::Status st = servo.getStatus();
+  return !servo.getHandEyeExploration().isActive() && servo.getAlignment().explained() &&
+         (st == vpServoMorph::MOVING || st == vpServoMorph::SUBGOAL_REACHED || st == vpServoMorph::CONVERGED);
 }
 
 void drawServo(const vpServoMorph &servo, vpMorphOverlay &o, const vpColor &currentColor, const vpColor &subGoalColor,
                const vpColor &targetColor, unsigned int thickness)
 {
-  const vpMorphContour &target = servo.getTargetContour(), &current = servo.getCurrentContour();
-  const std::vector<vpMorphContour> &goals = servo.subGoals();
-  const std::size_t k = servo.subGoalIndex();
+  const vpMorphContour &target = servo.getTarget(), &current = servo.getCurrentContour();
+  const std::vector<vpMorphContour> &goals = servo.getSubGoals();
+  const std::size_t k = servo.getSubGoalIndex();
   if (!target.empty())
     o.polygon(target.points(), targetColor, thickness + 2);
   if (k + 1 < goals.size())
     o.polygon(goals[k].points(), subGoalColor, thickness);
-  if (!current.empty() && k < goals.size() && correspondenceShown(servo, current, goals[k])) {
-    const std::vector<vpImagePoint> a = current.points(), b = goals[k].points();
-    for (const auto &p : servo.tracker().correspondence().pairs())
-      o.line(a[p.first], b[p.second], kCorrespondenceColor, 1);
-  }
+  if (!current.empty() && k < goals.size() && alignmentShown(servo))
+    for (const auto &l : servo.alignmentLines())
+      o.line(l.first, l.second, kCorrespondenceColor, 1);
   if (!current.empty())
     o.polygon(current.points(), currentColor, thickness);
-  o.text(servo.statusText(), kStatusColor);
+  o.text(servo.statusText(), kStatusColor, kBandColor);
 }
 } // namespace
+
+std::vector<std::pair<vpImagePoint, vpImagePoint>> vpServoMorph::alignmentLines() const
+{
+  std::vector<std::pair<vpImagePoint, vpImagePoint>> lines;
+  if (m_current.empty() || !m_alignment.explained())
+    return lines;
+  const vpMorphContour n = m_current.toNormalized(m_camIso);
+  const std::size_t step = std::max<std::size_t>(1, n.size() / 24);
+  for (std::size_t k = 0; k < n.size(); k += step) {
+    double x, y;
+    m_alignment.transform.apply(n.x(k), n.y(k), x, y);
+    lines.emplace_back(m_current.point(k), vpImagePoint(m_camIso.get_v0() + m_camIso.get_py() * y,
+                                                        m_camIso.get_u0() + m_camIso.get_px() * x));
+  }
+  return lines;
+}
 
 std::vector<std::string> vpServoMorph::statusText() const
 {
   char line[160];
   std::vector<std::string> lines;
-  const std::size_t n = subGoals().size();
+  const std::size_t n = getSubGoals().size();
+  const bool exploring = getHandEyeExploration().isActive();
   if (n > 0)
-    std::snprintf(line, sizeof line, "%s  sub-goal %zu/%zu%s", statusName(status()), subGoalIndex() + 1, n,
-                  exploring() ? "  (exploration turn)" : "");
+    std::snprintf(line, sizeof line, "%s  sub-goal %zu/%zu  (%s)", statusName(getStatus()), getSubGoalIndex() + 1, n,
+                  exploring ? "exploration turn" : vpMorphViewAlignment::modelName(getAlignment().model));
   else
-    std::snprintf(line, sizeof line, "%s", statusName(status()));
+    std::snprintf(line, sizeof line, "%s%s", statusName(getStatus()), exploring ? "  (exploration turn)" : "");
   lines.emplace_back(line);
-  if (n > 0 && !exploring()) { // the turn measures no residual
-    std::snprintf(line, sizeof line, "residual %.3f rad  %.2f px", rotationResidual(), translationResidual());
+  if (n > 0 && !exploring) { // the turn measures no residual
+    std::snprintf(line, sizeof line, "residual %.3f rad  %.2f px", getRotationResidual(), getTranslationResidual());
     std::string l = line;
-    if (tiltEstimated()) {
-      std::snprintf(line, sizeof line, "  tilt %.2f deg", vpMath::deg(tiltResidual()));
+    if (getTiltEstimator().isEstimated()) {
+      std::snprintf(line, sizeof line, "  tilt %.2f deg", vpMath::deg(getTiltEstimator().getResidual()));
       l += line;
     }
     lines.push_back(l);

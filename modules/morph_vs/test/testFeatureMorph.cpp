@@ -39,14 +39,19 @@ vpFeatureMorph featureAt(const vpHomogeneousMatrix &cMo, bool withPlane = false)
   return f;
 }
 
-// Feature values of the camera moved by v during dt, with the theta component measured against \e ref.
+// The feature's values seen from the camera moved by v during dt: xg, yg and sigma as measured, theta as the rotation
+// of its alignment on \e ref (s has no absolute theta).
 vpColVector movedValue(const vpHomogeneousMatrix &cMo, const vpColVector &v, double dt, const vpFeatureMorph &ref)
 {
   const vpHomogeneousMatrix cMcp = vpExponentialMap::direct(v, dt);
   vpFeatureMorph f = featureAt(cMcp.inverse() * cMo, true);
-  vpColVector e = f.error(ref); // (xg - xg0, yg - yg0, theta - theta0, sigma - sigma0)
-  return e;
+  f.error(ref);
+  return vpColVector({f.get_xg(), f.get_yg(), -f.getAlignment().transform.theta(), f.get_sigma()});
 }
+
+// Whether L's row r, column k is checked against finite differences: theta's rotation is measured by a similarity,
+// which a tilt of the camera (columns 3 and 4, wx and wy) does not keep, so its row is checked on the planar motions.
+bool checked(unsigned int r, unsigned int k) { return r != 2 || (k != 3 && k != 4); }
 } // namespace
 
 TEST_CASE("vpFeatureMorph interaction matrices match finite differences of a camera motion", "[feature]")
@@ -66,7 +71,8 @@ TEST_CASE("vpFeatureMorph interaction matrices match finite differences of a cam
       for (unsigned int r = 0; r < 4; ++r) {
         INFO("pose theta=" << p[0] << " row " << r << " column " << k << ": analytic " << L[r][k] << " finite "
                            << fd[r]);
-        CHECK(std::fabs(L[r][k] - fd[r]) < 1e-4 * (1 + std::fabs(L[r][k])));
+        if (checked(r, k))
+          CHECK(std::fabs(L[r][k] - fd[r]) < 1e-4 * (1 + std::fabs(L[r][k])));
       }
     }
   }
@@ -87,7 +93,8 @@ TEST_CASE("vpFeatureMorph interaction matrices with a tilted plane match finite 
       for (unsigned int r = 0; r < 4; ++r) {
         INFO("tilted pose " << p[3] << "/" << p[4] << " row " << r << " column " << k << ": analytic " << L[r][k]
                             << " finite " << fd[r]);
-        CHECK(std::fabs(L[r][k] - fd[r]) < 1e-4 * (1 + std::fabs(L[r][k])));
+        if (checked(r, k) && r != 2) // a tilted plane's view is no similarity of itself moved: theta unchecked
+          CHECK(std::fabs(L[r][k] - fd[r]) < 1e-4 * (1 + std::fabs(L[r][k])));
       }
     }
   }
@@ -222,15 +229,15 @@ StockResult runStock(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix 
     CHECK(rec.count(vpColor::green) == 9);
     CHECK(rec.count(vpColor::red) == 9);
   }
-  r.fullMatches = s.tracker().fullMatchCount();
-  r.searches = r.fullMatches + s.tracker().trackedMatchCount();
+  r.fullMatches = s.getAligner().getTracker().fullMatchCount();
+  r.searches = r.fullMatches + s.getAligner().getTracker().trackedMatchCount();
   poseError(robot.getPosition().inverse() * wMo, cdMo, r.tErr, r.rDeg);
   task.kill();
   return r;
 }
 } // namespace
 
-TEST_CASE("vpFeatureMorph takes the measured region and outline when both contours carry them", "[feature]")
+TEST_CASE("vpFeatureMorph measures its error on the outlines, and its values on the region", "[feature]")
 {
   const vpHomogeneousMatrix cdMo = planarPose(0, 0.0, 0.0), cMo = planarPose(30, 0.02, -0.01, 0.6);
   const vpMorphContour exactD = projectPixels(cdMo), exact = projectPixels(cMo);
@@ -246,35 +253,31 @@ TEST_CASE("vpFeatureMorph takes the measured region and outline when both contou
     return s.error(sd);
   };
   const double thetaPoly = error(poly, exactD, 0.6)[2];
-  // Both outlines measured (here the exact polygons, densely): the rotation from them.
+  // Both outlines measured (here the exact polygons, densely): the rotation from them, the stray vertex left out.
   vpMorphContour withOutline = poly, desiredWithOutline = exactD;
   withOutline.setOutline(exact.resampled(400));
   desiredWithOutline.setOutline(exactD.resampled(400));
   const double thetaOutline = error(withOutline, desiredWithOutline, 0.6)[2];
   INFO("theta error: polygons " << vpMath::deg(thetaPoly - vpMath::rad(30)) << " deg, outlines "
                                 << vpMath::deg(thetaOutline - vpMath::rad(30)) << " deg");
-  CHECK(std::fabs(thetaOutline - vpMath::rad(30)) < 0.1 * std::fabs(thetaPoly - vpMath::rad(30)));
-  CHECK(std::fabs(thetaOutline - vpMath::rad(30)) < vpMath::rad(0.01));
-  // Only one outline: the polygons' fit.
-  CHECK(error(withOutline, exactD, 0.6)[2] == Approx(thetaPoly).margin(1e-12));
+  CHECK(std::fabs(thetaOutline - vpMath::rad(30)) < vpMath::rad(1e-4));
+  CHECK(std::fabs(thetaPoly - vpMath::rad(30)) < vpMath::rad(0.05)); // a polygon's edges fitted robustly
 
-  // A measured region 10 % larger and 2 px to the right of the polygon's (the same shape: its moments over area grow
-  // with the area): centroid and scale from the regions when both have one, from the polygons when only one does (a
-  // region against a polygon would bias the depth).
-  double cx, cy, cxd, cyd;
+  // A measured region 2 px to the right of the polygon's: s's centroid is the region's, and the error lays that
+  // centroid where the alignment (of the outlines) puts it, so the region's offset does not bias the error.
+  double cx, cy;
   exact.centroid(cx, cy);
-  exactD.centroid(cxd, cyd);
-  vpMorphContour region = exact, desiredRegion = exactD;
-  region.setRegion(1.1 * exact.area(), cx + 2.0, cy, 110.0 * exact.area() / exactD.area(), 0.0,
-                   110.0 * exact.area() / exactD.area());
-  desiredRegion.setRegion(exactD.area(), cxd, cyd, 100.0, 0.0, 100.0);
-  const vpColVector ePoly = error(exact, exactD, 0.6), eBoth = error(region, desiredRegion, 0.6);
-  CHECK(eBoth[0] == Approx(ePoly[0] + 2.0 / camera().get_px()).margin(1e-9));
-  CHECK(eBoth[1] == Approx(ePoly[1]).margin(1e-9));
-  CHECK(eBoth[3] == Approx(ePoly[3] + 0.5 * std::log(1.1)).margin(1e-9));
-  const vpColVector eOne = error(region, exactD, 0.6);
-  CHECK(eOne[0] == Approx(ePoly[0]).margin(1e-12));
-  CHECK(eOne[3] == Approx(ePoly[3]).margin(1e-12));
+  vpMorphContour region = exact;
+  region.setRegion(exact.area(), cx + 2.0, cy, 100.0, 0.0, 100.0);
+  vpFeatureMorph s, sd;
+  sd.buildFrom(exactD, camera(), 0.5);
+  s.buildFrom(region, camera(), 0.6);
+  CHECK(s.get_xg() == Approx((cx + 2.0 - camera().get_u0()) / camera().get_px()).margin(1e-12));
+  const vpColVector e = s.error(sd), ePoly = error(exact, exactD, 0.6);
+  // The same motion of the camera is left to do: a point 2 px aside goes where the same similarity takes it.
+  CHECK(std::fabs(e[2] - ePoly[2]) < 1e-9);
+  CHECK(std::fabs(e[3] - ePoly[3]) < 1e-9);
+  CHECK(s.getAlignment().model == vpMorphViewAlignment::RIGID);
 }
 
 namespace
@@ -323,7 +326,7 @@ TEST_CASE("vpFeatureMorph lays a view with part of the object hidden by the part
     hidden.buildFrom(measuredBracket(cMo, 0.04), camera(), st[3]);
     const vpColVector eWhole = whole.error(sd), eHidden = hidden.error(sd);
     double gx, gy; // where the whole view's similarity lays the visible part's centroid
-    whole.lastFit().apply(hidden.get_xg(), hidden.get_yg(), gx, gy);
+    whole.getAlignment().transform.apply(hidden.get_xg(), hidden.get_yg(), gx, gy);
     INFO("start " << st[0] << " deg: error whole (" << eWhole.t() << "), hidden (" << eHidden.t() << "), the hidden "
                   << "region's sigma " << hidden.get_sigma() - sd.get_sigma() << " from the desired's");
     CHECK(px * std::fabs(eHidden[0] - (hidden.get_xg() - gx)) < 0.02);
@@ -332,8 +335,11 @@ TEST_CASE("vpFeatureMorph lays a view with part of the object hidden by the part
     CHECK(std::fabs(eHidden[3] - eWhole[3]) < 1e-4);
     // The test's premise: the hidden region is far from the whole one's (its area a fifth smaller).
     CHECK(std::fabs(hidden.get_sigma() - sd.get_sigma() - eWhole[3]) > 0.05);
-    if (st[0] == 0.0) // at the goal: no error
-      CHECK(px * eHidden.frobeniusNorm() < 0.02);
+    if (st[0] == 0.0) { // at the goal: no error
+      CHECK(px * std::hypot(eHidden[0], eHidden[1]) < 0.02);
+      CHECK(std::fabs(eHidden[2]) < vpMath::rad(0.005));
+      CHECK(std::fabs(eHidden[3]) < 1e-4);
+    }
   }
 }
 
@@ -355,9 +361,7 @@ TEST_CASE("vpFeatureMorph converges in a stock vpServo with current, desired and
         CHECK(r.converged);
         CHECK(r.tErr < 1e-3);
         CHECK(r.rDeg < 0.5);
-        CHECK(r.fullMatches <= 3); // tracked from iteration to iteration
-        // One correspondence per vpServo::computeControlLaw() call (iterations + 1 calls up to convergence).
-        CHECK(r.searches == static_cast<unsigned int>(r.iterations + 1));
+        CHECK(r.fullMatches == 1); // the correspondence starts the first fit; each next starts from the last
       }
     }
   }

@@ -31,7 +31,7 @@ struct Setup
   vpCameraParameters camEstimate = camera();
   std::size_t subGoals = 10;
   vpServoMorph::ControlLaw law = vpServoMorph::HOMOGENEOUS_TRANSFORMS;
-  vpServoMorph::RigidPath rigidPath = vpServoMorph::CAMERA_STRAIGHT_LINE;
+  vpMorphSubGoalPlanner::RigidPath rigidPath = vpMorphSubGoalPlanner::CAMERA_STRAIGHT_LINE;
   bool online = true;
   int maxIterations = 400;
   double noisePx = 0;                    // Gaussian noise on the vertices (seeded)
@@ -75,9 +75,9 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
   servo.setCameraParameters(st.camEstimate);
   servo.set_eMc(st.eMcEstimate);
   servo.setOnlineCalibration(st.online);
-  servo.setSubGoalCount(st.subGoals);
+  servo.getPlanner().setSubGoalCount(st.subGoals);
   servo.setControlLaw(st.law);
-  servo.setRigidPath(st.rigidPath);
+  servo.getPlanner().setRigidPath(st.rigidPath);
   servo.setSamplingTime(0.1);
   servo.setGain(0.5);
   servo.setTarget(projectPixels(cdMo), depth(cdMo));
@@ -113,7 +113,7 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
       q[5] = roll;
       qMin[5] = std::min(roll, st.rollMin);
       qMax[5] = std::max(roll, st.rollMax);
-      servo.setJointState(eJe, q, qMin, qMax);
+      servo.getPlanner().setJointState(eJe, q, qMin, qMax);
     }
     const vpHomogeneousMatrix cMo = robot.getPosition().inverse() * wMo;
     r.maxDepth = std::max(r.maxDepth, depth(cMo));
@@ -128,14 +128,15 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
     }
     const vpColVector ve = servo.computeControlLaw(c);
     if (r.iterations == 0) {
-      r.longWay = servo.turnsLongWay();
-      r.plannedRollDeg = servo.plannedJointEnd().size() == 6 ? vpMath::deg(servo.plannedJointEnd()[5]) : 0.0;
+      r.longWay = servo.getPlanner().isLongWay();
+      r.plannedRollDeg =
+          servo.getPlanner().getJointEnd().size() == 6 ? vpMath::deg(servo.getPlanner().getJointEnd()[5]) : 0.0;
     }
-    if (servo.converged()) {
+    if (servo.getStatus() == vpServoMorph::CONVERGED) {
       r.converged = true;
       break;
     }
-    if (servo.status() != vpServoMorph::MOVING && servo.status() != vpServoMorph::SUBGOAL_REACHED)
+    if (servo.getStatus() != vpServoMorph::MOVING && servo.getStatus() != vpServoMorph::SUBGOAL_REACHED)
       break;
     const vpHomogeneousMatrix wMcBefore = robot.getPosition();
     robot.setVelocity(vpRobot::CAMERA_FRAME, cVe * ve);
@@ -146,13 +147,13 @@ Result run(const vpHomogeneousMatrix &cMo0, const vpHomogeneousMatrix &cdMo, con
     r.path += (t - prev).frobeniusNorm();
     prev = t;
   }
-  r.status = servo.status();
+  r.status = servo.getStatus();
   r.rollDeg = vpMath::deg(roll);
-  r.lastSubGoal = servo.subGoalIndex();
-  r.searches = servo.tracker().fullMatchCount() + servo.tracker().trackedMatchCount();
+  r.lastSubGoal = servo.getSubGoalIndex();
+  r.searches = servo.getAligner().getTracker().fullMatchCount() + servo.getAligner().getTracker().trackedMatchCount();
   poseError(robot.getPosition().inverse() * wMo, cdMo, r.tErr, r.rDeg);
   handEyeError(servo.get_eMc(), st.eMcTrue, r.eMcT, r.eMcR);
-  r.scale = servo.handEyeEstimator().translationScale();
+  r.scale = servo.getHandEyeEstimator().translationScale();
   return r;
 }
 
@@ -201,9 +202,9 @@ TEST_CASE("vpServoMorph rigid sub-goals on the straight camera path: short paths
   st.eMcTrue = st.eMcEstimate = eMcTrue;
   const double starts[][3] = {{150, 0.05, -0.03}, {180, -0.04, 0.02}, {-100, 0.06, 0.04}};
   for (const auto &s : starts) {
-    st.rigidPath = vpServoMorph::CAMERA_STRAIGHT_LINE;
+    st.rigidPath = vpMorphSubGoalPlanner::CAMERA_STRAIGHT_LINE;
     const Result straight = run(planarPose(20 + s[0], s[1], s[2]), cdMo, st);
-    st.rigidPath = vpServoMorph::ABOUT_OBJECT_CENTROID;
+    st.rigidPath = vpMorphSubGoalPlanner::ABOUT_OBJECT_CENTROID;
     const Result arc = run(planarPose(20 + s[0], s[1], s[2]), cdMo, st);
     std::printf("[servo] start %6.1f deg: path ratio %.3f on the straight camera path, %.3f about the object\n", s[0],
                 straight.path / straight.straight, arc.path / arc.straight);
@@ -221,7 +222,8 @@ TEST_CASE("vpServoMorph plans a half turn the way its joints allow", "[servo][jo
 {
   Setup st;
   st.eMcTrue = st.eMcEstimate = eMcTrue;
-  for (const vpServoMorph::RigidPath path : {vpServoMorph::CAMERA_STRAIGHT_LINE, vpServoMorph::ABOUT_OBJECT_CENTROID})
+  for (const vpMorphSubGoalPlanner::RigidPath path :
+       {vpMorphSubGoalPlanner::CAMERA_STRAIGHT_LINE, vpMorphSubGoalPlanner::ABOUT_OBJECT_CENTROID})
     for (const double startDeg : {150.0, 179.0, -179.0}) {
       st.rigidPath = path;
       st.joints = false;
@@ -236,8 +238,8 @@ TEST_CASE("vpServoMorph plans a half turn the way its joints allow", "[servo][jo
       const Result bounded = run(cMo0, cdMo, st);
       std::printf("[servo] start %6.1f deg (%s): the short way turns %.1f deg; with a limit 5 deg beyond, %s %.1f deg "
                   "(planned %.1f, from %.1f to %.1f), %s after %d iterations, %.3f mm %.3f deg\n",
-                  startDeg, path == vpServoMorph::CAMERA_STRAIGHT_LINE ? "straight line" : "about the object", shortDeg,
-                  bounded.longWay ? "the long way" : "the short way", bounded.rollDeg, bounded.plannedRollDeg,
+                  startDeg, path == vpMorphSubGoalPlanner::CAMERA_STRAIGHT_LINE ? "straight line" : "about the object",
+                  shortDeg, bounded.longWay ? "the long way" : "the short way", bounded.rollDeg, bounded.plannedRollDeg,
                   bounded.rollMinDeg, bounded.rollMaxDeg, vpServoMorph::statusName(bounded.status), bounded.iterations,
                   bounded.tErr * 1000, bounded.rDeg);
       INFO("start " << startDeg << " deg");
@@ -254,7 +256,7 @@ TEST_CASE("vpServoMorph plans a half turn the way its joints allow", "[servo][jo
       CHECK(side * (side > 0 ? bounded.rollMaxDeg : bounded.rollMinDeg) < 1.0);
     }
   // Limits that the short way stays clear of change nothing (+-200 deg: margin 12 deg, the turn ends 50 deg short).
-  st.rigidPath = vpServoMorph::CAMERA_STRAIGHT_LINE;
+  st.rigidPath = vpMorphSubGoalPlanner::CAMERA_STRAIGHT_LINE;
   st.rollMin = vpMath::rad(-200.0);
   st.rollMax = vpMath::rad(200.0);
   const Result clear = run(planarPose(20 + 150.0, 0.03, -0.02), cdMo, st);
@@ -267,13 +269,13 @@ TEST_CASE("vpServoMorph plans a half turn the way its joints allow", "[servo][jo
   const vpColVector q(6, 0.0), lo(6, -1.0), hi(6, 1.0);
   vpColVector bad = q;
   bad[5] = 1.5;
-  CHECK_THROWS_AS(servo.setJointState(eJe, bad, lo, hi), vpMorphException);
+  CHECK_THROWS_AS(servo.getPlanner().setJointState(eJe, bad, lo, hi), vpMorphException);
   bad[5] = std::numeric_limits<double>::quiet_NaN();
-  CHECK_THROWS_AS(servo.setJointState(eJe, bad, lo, hi), vpMorphException);
-  CHECK_THROWS_AS(servo.setJointState(eJe, vpColVector(5, 0.0), lo, hi), vpMorphException);
-  CHECK_THROWS_AS(servo.setJointState(vpMatrix(5, 6), q, lo, hi), vpMorphException);
-  servo.setJointState(eJe, q, lo, hi);
-  CHECK(servo.plannedJointEnd().size() == 0); // nothing planned yet
+  CHECK_THROWS_AS(servo.getPlanner().setJointState(eJe, bad, lo, hi), vpMorphException);
+  CHECK_THROWS_AS(servo.getPlanner().setJointState(eJe, vpColVector(5, 0.0), lo, hi), vpMorphException);
+  CHECK_THROWS_AS(servo.getPlanner().setJointState(vpMatrix(5, 6), q, lo, hi), vpMorphException);
+  servo.getPlanner().setJointState(eJe, q, lo, hi);
+  CHECK(servo.getPlanner().getJointEnd().size() == 0); // nothing planned yet
 }
 
 TEST_CASE("vpServoMorph online calibration: wrong eMc (15 deg, 30 mm) and intrinsics (20 %) still converge",
@@ -358,10 +360,9 @@ TEST_CASE("vpServoMorph: Eq. 5-11 law and stock vpServo over vpFeatureMorph comp
               h.iterations, h.path * 1000, s.iterations, s.path * 1000, h.straight * 1000, h.searches, s.searches);
   CHECK(h.converged);
   CHECK(s.converged);
-  // One correspondence per iteration (iterations + 1 calls) plus one per sub-goal switch, with either law: the
-  // stock law must not search again inside vpServo::computeControlLaw(), and tracker() is the one in use.
-  CHECK(h.searches == h.iterations + 1 + h.lastSubGoal);
-  CHECK(s.searches == s.iterations + 1 + s.lastSubGoal);
+  // One correspondence, at the plan: every fit after it starts from the last one.
+  CHECK(h.searches == 1);
+  CHECK(s.searches == 1);
   CHECK(s.tErr < 1e-3);
   CHECK(s.rDeg < 0.5);
 }
@@ -373,17 +374,17 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
   CHECK_THROWS_AS(servo.setTarget(t), vpMorphException); // no desired pose in the template
   t.setCdMo(cdMo);
   servo.setTarget(t);
-  servo.setSubGoalCount(6);
+  servo.getPlanner().setSubGoalCount(6);
   vpSimulatorCamera robot;
   robot.setSamplingTime(0.1);
   robot.setMaxTranslationVelocity(10.0);
   robot.setMaxRotationVelocity(100.0);
   robot.setPosition(planarPose(20 + 150, 0.04, 0.02).inverse());
-  for (int i = 0; i < 200 && !servo.converged(); ++i) {
+  for (int i = 0; i < 200 && servo.getStatus() != vpServoMorph::CONVERGED; ++i) {
     const vpColVector ve = servo.computeControlLaw(projectPixels(robot.getPosition().inverse()));
     robot.setVelocity(vpRobot::CAMERA_FRAME, vpVelocityTwistMatrix(servo.get_eMc().inverse()) * ve);
   }
-  REQUIRE(servo.converged());
+  REQUIRE(servo.getStatus() == vpServoMorph::CONVERGED);
   vpImage<vpRGBa> I(480, 640);
   CHECK_NOTHROW(servo.display(I)); // headless: no display attached, nothing drawn
   {
@@ -398,95 +399,32 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
     CHECK(rec.count(vpColor::cyan) == servo.tracker().correspondence().size());
     CHECK(rec.lines.size() == 18 + rec.count(vpColor::cyan));
   }
-  CHECK(servo.subGoals().size() == 6);
-  CHECK(servo.subGoalIndex() == 5);
-  const auto &h = servo.history();
+  CHECK(servo.getSubGoals().size() == 6);
+  CHECK(servo.getSubGoalIndex() == 5);
+  const auto &h = servo.getHistory();
   REQUIRE(!h.empty());
   CHECK(h.front().status == vpServoMorph::MOVING);
   CHECK(h.back().status == vpServoMorph::CONVERGED);
   CHECK(h.back().ve.frobeniusNorm() == 0);
-  std::size_t reached = 0, full = 0;
+  std::size_t reached = 0;
   for (std::size_t k = 0; k < h.size(); ++k) {
     CHECK(h[k].iteration == k + 1);
     if (k > 0)
       CHECK(h[k].subGoal >= h[k - 1].subGoal); // sub-goals are never revisited
     reached += h[k].status == vpServoMorph::SUBGOAL_REACHED;
-    full += h[k].fullMatch;
+    CHECK(h[k].model == vpMorphViewAlignment::RIGID); // the view seen again: every period explained whole
   }
   CHECK(reached >= 1);
-  CHECK(full <= reached + 1); // one full search per sub-goal at most: the rest is tracked
+  CHECK(servo.getAligner().getTracker().fullMatchCount() == 1); // one correspondence, at the plan: the rest is warm
   servo.restart();
-  CHECK(servo.status() == vpServoMorph::NOT_STARTED);
-  CHECK(servo.history().empty());
+  CHECK(servo.getStatus() == vpServoMorph::NOT_STARTED);
+  CHECK(servo.getHistory().empty());
   CHECK_THROWS_AS(servo.setGain(0), vpMorphException);
   CHECK_THROWS_AS(servo.setGain(1.5), vpMorphException);
   CHECK_THROWS_AS(servo.setSamplingTime(-1), vpMorphException);
   CHECK_THROWS_AS(servo.setTarget(projectPixels(cdMo), 0), vpMorphException);
   CHECK_THROWS_AS(servo.setTarget(projectNormalized(cdMo), 0.5), vpMorphException);
   CHECK_THROWS_AS(servo.computeControlLaw(projectNormalized(cdMo)), vpMorphException);
-}
-
-namespace
-{
-// The contour with a measured region: the polygon's own centroid and second-order spread (proportional to its
-// area), the region's area scaled by \e areaFactor (as when part of the object's region is hidden); the polygon
-// itself then scaled by \e polygonScale about its centroid (its vertices placed a little outside or inside the
-// region, as the polygon of a thin-handled tool can be on a noisy image).
-vpMorphContour withRegion(const vpMorphContour &c, double areaFactor, double polygonScale = 1.0)
-{
-  double cx, cy;
-  c.centroid(cx, cy);
-  std::vector<double> x(c.xs()), y(c.ys());
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    x[k] = cx + polygonScale * (x[k] - cx);
-    y[k] = cy + polygonScale * (y[k] - cy);
-  }
-  vpMorphContour r(x, y, c.units());
-  r.setRegion(areaFactor * c.area(), cx, cy, 0.1 * c.area(), 0.0, 0.05 * c.area());
-  return r;
-}
-
-// Runs the servo on the free camera with regions on every contour; returns the history.
-std::vector<vpServoMorph::Iteration> runWithRegions(double currentAreaFactor, double currentPolygonScale = 1.0)
-{
-  vpServoMorph servo;
-  servo.setTarget(withRegion(projectPixels(cdMo), 1.0), depth(cdMo));
-  vpSimulatorCamera robot;
-  robot.setSamplingTime(0.1);
-  robot.setMaxTranslationVelocity(10.0);
-  robot.setMaxRotationVelocity(100.0);
-  robot.setPosition(planarPose(20 + 120, 0.04, -0.02).inverse());
-  for (int i = 0; i < 60; ++i) {
-    const vpColVector ve = servo.computeControlLaw(
-        withRegion(projectPixels(robot.getPosition().inverse()), currentAreaFactor, currentPolygonScale));
-    if (servo.status() != vpServoMorph::MOVING && servo.status() != vpServoMorph::SUBGOAL_REACHED)
-      break;
-    robot.setVelocity(vpRobot::CAMERA_FRAME, vpVelocityTwistMatrix(servo.get_eMc().inverse()) * ve);
-  }
-  return servo.history();
-}
-} // namespace
-
-TEST_CASE("vpServoMorph decides once per sequence, against the target, whether the areas can be trusted", "[servo]")
-{
-  // A region matching the target's: area centroids and ratio on every iteration.
-  const auto alike = runWithRegions(1.0);
-  REQUIRE(alike.size() > 10);
-  for (const auto &it : alike)
-    CHECK(it.areaBased);
-  // A region 15 % smaller than its outline says (part hidden): the vertex fit on every iteration, from the first
-  // one, although the first sub-goals are views of the current contour itself (whose region matches its own).
-  const auto hidden = runWithRegions(0.85);
-  REQUIRE(hidden.size() > 10);
-  for (const auto &it : hidden)
-    CHECK_FALSE(it.areaBased);
-  // The same region under a polygon 3 % larger (vertices outside the region): the region is still the target's
-  // seen again, and its area and centroid are trusted; the polygon-fitted scale is not the judge (a noisy first
-  // frame of the pliers was judged occluded by it and the servo stopped 1.5 mm deep).
-  const auto strayPolygon = runWithRegions(1.0, 1.03);
-  REQUIRE(strayPolygon.size() > 10);
-  for (const auto &it : strayPolygon)
-    CHECK(it.areaBased);
 }
 
 TEST_CASE("vpServoMorph sub-goal switching thresholds are configurable", "[servo]")
@@ -496,9 +434,9 @@ TEST_CASE("vpServoMorph sub-goal switching thresholds are configurable", "[servo
   servo.setTarget(projectPixels(cdMo), depth(cdMo));
   // Defaults (0.10 rad, 5 px): the first rigid frame is about 0.6 rad away, so the servo stays on it.
   CHECK(servo.computeControlLaw(start).frobeniusNorm() > 0);
-  CHECK(servo.status() == vpServoMorph::MOVING);
-  CHECK(servo.subGoalIndex() == 0);
-  CHECK(servo.rotationResidual() > 0.10);
+  CHECK(servo.getStatus() == vpServoMorph::MOVING);
+  CHECK(servo.getSubGoalIndex() == 0);
+  CHECK(servo.getRotationResidual() > 0.10);
   {
     // Moving: the contour, the current sub-goal and the target, each a 9-edge polygon in its colour.
     vpImage<unsigned char> I(480, 640, 0);
@@ -520,8 +458,8 @@ TEST_CASE("vpServoMorph sub-goal switching thresholds are configurable", "[servo
   servo.setSubGoalThresholds(4.0, 1000.0);
   servo.restart();
   servo.computeControlLaw(start);
-  CHECK(servo.status() == vpServoMorph::SUBGOAL_REACHED);
-  CHECK(servo.subGoalIndex() == 9);
+  CHECK(servo.getStatus() == vpServoMorph::SUBGOAL_REACHED);
+  CHECK(servo.getSubGoalIndex() == 9);
   CHECK_THROWS_AS(servo.setSubGoalThresholds(0, 5), vpMorphException);
   CHECK_THROWS_AS(servo.setFinalThresholds(0.001, -1), vpMorphException);
   CHECK_THROWS_AS(servo.setFinalScaleThreshold(-1e-3), vpMorphException);
@@ -574,47 +512,41 @@ TEST_CASE("vpServoMorph goal only (0 sub-goals)", "[servo]")
   st.eMcTrue = st.eMcEstimate = eMcTrue;
   st.subGoals = 0;
   const Result r = run(planarPose(20 + 120, 0.03, 0.02), cdMo, st);
+  INFO(vpServoMorph::statusName(r.status)
+       << " after " << r.iterations << " iterations, " << r.tErr * 1000 << " mm " << r.rDeg << " deg");
   CHECK(r.converged);
   CHECK(r.lastSubGoal == 0);
 }
 
-TEST_CASE("vpServoMorph safety: lost target, degenerate contour, unreliable correspondence", "[servo][safety]")
+TEST_CASE("vpServoMorph safety: lost target, degenerate contour, a view its goal does not explain", "[servo][safety]")
 {
   vpServoMorph servo;
   CHECK_THROWS_AS(servo.computeControlLaw(projectPixels(planarPose(0, 0, 0))), vpMorphException); // no target
   servo.setTarget(projectPixels(cdMo), depth(cdMo));
   const vpMorphContour c = projectPixels(planarPose(100, 0.02, 0.01));
   vpColVector v = servo.computeControlLaw(c);
-  CHECK(servo.status() == vpServoMorph::MOVING);
+  CHECK(servo.getStatus() == vpServoMorph::MOVING);
   CHECK(v.frobeniusNorm() > 0);
 
   v = servo.computeControlLaw(vpMorphContour()); // lost
-  CHECK(servo.status() == vpServoMorph::TARGET_LOST);
+  CHECK(servo.getStatus() == vpServoMorph::TARGET_LOST);
   CHECK(v.frobeniusNorm() == 0);
 
   const vpMorphContour tiny({320, 322, 322, 320}, {240, 240, 242, 242}); // 4 px^2
   v = servo.computeControlLaw(tiny);
-  CHECK(servo.status() == vpServoMorph::DEGENERATE_CONTOUR);
+  CHECK(servo.getStatus() == vpServoMorph::DEGENERATE_CONTOUR);
   CHECK(v.frobeniusNorm() == 0);
 
-  // Another object suddenly (a long thin bar): the work to the same sub-goal jumps.
+  // Another object suddenly (a long thin bar): no part of it lies on the goal (a hold), then the object again.
   v = servo.computeControlLaw(c);
-  CHECK(servo.status() == vpServoMorph::MOVING);
+  CHECK(servo.getStatus() == vpServoMorph::MOVING);
   const vpMorphContour bar({200, 440, 440, 200}, {230, 230, 250, 250});
   v = servo.computeControlLaw(bar);
-  CHECK(servo.status() == vpServoMorph::UNRELIABLE_CORRESPONDENCE);
+  CHECK(servo.getStatus() == vpServoMorph::UNEXPLAINED_VIEW);
   CHECK(v.frobeniusNorm() == 0);
   v = servo.computeControlLaw(c); // back to the object: moving again
-  CHECK(servo.status() == vpServoMorph::MOVING);
-
-  // A symmetric object: its rotation is ambiguous (low margin).
-  vpServoMorph sym;
-  const vpMorphContour square({270, 370, 370, 270}, {190, 190, 290, 290});
-  sym.setTarget(square, 0.5);
-  v = sym.computeControlLaw(square.transformed(0.3, 5, 5));
-  CHECK(sym.status() == vpServoMorph::UNRELIABLE_CORRESPONDENCE);
-  CHECK(v.frobeniusNorm() == 0);
-  for (const auto &it : servo.history())
+  CHECK(servo.getStatus() == vpServoMorph::MOVING);
+  for (const auto &it : servo.getHistory())
     for (unsigned int i = 0; i < it.ve.size(); ++i)
       CHECK(std::isfinite(it.ve[i]));
 }

@@ -76,10 +76,10 @@ TEST_CASE("vpServoMorph::draw() burns the target, sub-goal, correspondence, cont
 {
   vpServoMorph servo;
   servo.setTarget(projectPixels(cdMo), depth(cdMo));
-  servo.setSubGoalCount(6);
+  servo.getPlanner().setSubGoalCount(6);
   const vpMorphContour start = projectPixels(planarPose(20 + 120, 0.05, -0.03));
   servo.computeControlLaw(start);
-  REQUIRE(servo.status() == vpServoMorph::MOVING);
+  REQUIRE(servo.getStatus() == vpServoMorph::MOVING);
 
   vpImage<vpRGBa> I(480, 640, vpRGBa(255, 255, 255));
   servo.draw(I);
@@ -87,7 +87,7 @@ TEST_CASE("vpServoMorph::draw() burns the target, sub-goal, correspondence, cont
   // correspondence lines crossing it here and there).
   CHECK(coverage(I, servo.getTargetContour(), vpColor::green) > 0.9);
   CHECK(coverage(I, start, vpColor::red) > 0.9);
-  CHECK(coverage(I, servo.subGoals()[0], vpColor::orange) > 0.8);
+  CHECK(coverage(I, servo.getSubGoals()[0], vpColor::orange) > 0.8);
   CHECK(countColor(I, vpColor::cyan) > 50);
   // The status: yellow text on the black band, two lines (status and sub-goal, residuals).
   const std::vector<std::string> text = servo.statusText();
@@ -105,14 +105,14 @@ TEST_CASE("vpServoMorph::display() draws the same on a display, and nothing of a
 {
   vpServoMorph servo;
   servo.setTarget(projectPixels(cdMo), depth(cdMo));
-  servo.setSubGoalCount(6);
+  servo.getPlanner().setSubGoalCount(6);
   servo.computeControlLaw(projectPixels(planarPose(20 + 120, 0.05, -0.03)));
   {
     const RecordingDisplay rec = recorded(servo);
     CHECK(rec.count(vpColor::green) == 9);
     CHECK(rec.count(vpColor::orange) == 9);
     CHECK(rec.count(vpColor::red) == 9);
-    CHECK(rec.count(vpColor::cyan) == servo.tracker().correspondence().size());
+    CHECK(rec.count(vpColor::cyan) == servo.getAligner().getTracker().correspondence().size());
     REQUIRE(rec.texts.size() == 2);
     CHECK(rec.texts[0].text == servo.statusText()[0]);
     CHECK(rec.texts[0].color == vpColor::yellow);
@@ -120,7 +120,7 @@ TEST_CASE("vpServoMorph::display() draws the same on a display, and nothing of a
   }
   // An empty view: the target and the sub-goal stay, the contour and its correspondence go, the status says why.
   servo.computeControlLaw(vpMorphContour());
-  REQUIRE(servo.status() == vpServoMorph::TARGET_LOST);
+  REQUIRE(servo.getStatus() == vpServoMorph::TARGET_LOST);
   {
     const RecordingDisplay rec = recorded(servo);
     CHECK(rec.count(vpColor::green) == 9);

@@ -84,13 +84,13 @@ private:
   void solve();
 
   static constexpr double kMaxTranslationScale = 2.0; // k is kept in [1/2, 2] (see translationScale())
-  static constexpr double kOutlierMoves = 2.0;  // residual allowed per unit of commanded translation
-  static constexpr double kOutlierOffset = 0.1; // m: offset error the residual allows per radian of rotation
+  static constexpr double kOutlierMoves = 2.0;        // residual allowed per unit of commanded translation
+  static constexpr double kOutlierOffset = 0.1;       // m: offset error the residual allows per radian of rotation
 
   vpHomogeneousMatrix m_eMc0, m_eMc; // m_eMc: eMc0 * Y(m_u), kept from solve()
-  vpMatrix m_M;    // 4x4 data normal matrix
-  vpColVector m_r; // data right-hand side
-  vpColVector m_u; // current solution (t1, t2, k cos psi, k sin psi)
+  vpMatrix m_M;                      // 4x4 data normal matrix
+  vpColVector m_r;                   // data right-hand side
+  vpColVector m_u;                   // current solution (t1, t2, k cos psi, k sin psi)
   double m_forget = 0.95, m_prior = 1e-6, m_eRef = 0.0;
   unsigned int m_moves = 0, m_rejected = 0;
 };

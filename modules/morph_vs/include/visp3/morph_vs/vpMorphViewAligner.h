@@ -10,6 +10,7 @@
 
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphHomography.h>
 #include <visp3/morph/vpMorphOutlineFit.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_vs/vpMorphCorrespondenceTracker.h>
@@ -30,14 +31,17 @@
   vertex fit, which finds the rotation at any angle; when both ran, the lower robust cost at one scale wins.
   Hidden, bent and articulated parts are the robust fit's outliers: the part of the view that lies on the goal fixes
   the pose (up to half of the view may be anything else), and vpMorphViewAlignment::model says which model explains
-  the residuals. Measured outlines (vpMorphContourExtractor) are fitted as they are; polygons without them are fitted
-  edge to edge, their robust scale floored at half a pixel (vertices on the pixel grid).
+  the residuals. A view that no similarity explains but a homography does is the goal seen tilted: RIGID, its
+  similarity the homography's own over the view (vpMorphViewAlignment::perspective). Measured outlines
+  (vpMorphContourExtractor) are fitted as they are; polygons without them are fitted edge to edge, their robust scale
+  floored at half a pixel (vertices on the pixel grid).
 
   <b>Method (PAPER).</b> The paper's rectification: the rotation and translation between the elongation vectors of the
   corresponded vertex sets (vpMorphRigidTransform::fitElongation) over the correspondence of every period, and the
   scale of their spreads. The model is then RIGID with an unknown covariance (infinite).
 
-  Units: contours in pixels, converted with setCameraParameters(); transforms in normalised coordinates.
+  Units: contours in pixels (converted with setCameraParameters()) or already normalised; transforms in normalised
+  coordinates. The limits in pixels use the camera's px (800 by default).
 
   \code
   vpMorphViewAligner aligner;
@@ -61,9 +65,9 @@ public:
   void setCameraParameters(const vpCameraParameters &cam);
   const vpCameraParameters &getCameraParameters() const { return m_cam; }
   /*!
-    The goal view, in pixels. Forgets the last alignment (the next align() starts from the correspondence or from
-    setStart()).
-    \throw vpMorphException::badParameterError on an empty contour or one not in pixels.
+    The goal view (pixels or normalised). Forgets the last alignment (the next align() starts from the correspondence
+    or from setStart()).
+    \throw vpMorphException::badParameterError on an empty contour.
   */
   void setGoal(const vpMorphContour &goal);
   //! The goal in pixels.
@@ -71,16 +75,21 @@ public:
   //! The goal in normalised coordinates.
   const vpMorphContour &getGoalNormalized() const { return m_goalN; }
   bool hasGoal() const { return !m_goalPx.empty(); }
-  //! The start of the next align() (normalised coordinates, current -> goal), in place of the last alignment.
-  void setStart(const vpMorphRigidTransform &currentToGoal);
+  /*!
+    The start of the next align() (normalised coordinates, current -> goal), in place of the last alignment, with the
+    residuals' scale there (pixels; 0: unknown). E.g. the last alignment moved by the share of it a command executed.
+    \throw vpMorphException::badParameterError on a negative or non-finite sigma.
+  */
+  void setStart(const vpMorphRigidTransform &currentToGoal, double sigmaPx = 0.0);
   //! Forgets the last alignment and the correspondence (after a jump of the view).
   void reset();
   void setMethod(Method m);
   Method getMethod() const { return m_method; }
 
   /*!
-    Aligns \e current (pixels) on the goal. Never throws for a view it cannot align: the result is then UNEXPLAINED.
-    \throw vpMorphException::badParameterError without a goal, or for a contour not in pixels.
+    Aligns \e current (pixels or normalised) on the goal. Never throws for a view it cannot align (empty, degenerate,
+    another shape): the result is then UNEXPLAINED.
+    \throw vpMorphException::badParameterError without a goal.
   */
   vpMorphViewAlignment align(const vpMorphContour &current);
   //! The last alignment (UNEXPLAINED before any).
@@ -88,9 +97,12 @@ public:
   //! The correspondence tracker of the cold starts (and of every period with PAPER).
   const vpMorphCorrespondenceTracker &getTracker() const { return m_tracker; }
 
-  //! Floor of the outline fit's robust scale on measured outlines (pixels, default 0.02: their accuracy on
-  //! noise-free edges).
-  static double outlineSigmaFloorPx() { return 0.02; }
+  /*!
+    Floor of the outline fit's robust scale on measured outlines (pixels, 0.1): two views of one edge place it within
+    about a tenth of a pixel of each other (each view's outline lies a few hundredths of a pixel from the true edge,
+    more at corners and where the pixel phase differs). Below it the fit would keep only the straightest stretches.
+  */
+  static double outlineSigmaFloorPx() { return 0.1; }
   //! Floor on polygons without measured outlines (pixels, 0.5: their vertices lie on the pixel grid).
   static double polygonSigmaFloorPx() { return 0.5; }
   /*!
@@ -105,6 +117,9 @@ private:
   double normalisedPixels(double px) const { return px / std::max(m_cam.get_px(), m_cam.get_py()); }
   vpMorphViewAlignment fromFit(const vpMorphRigidTransform &T, const vpMorphOutlineFit &fit,
                                const vpMorphContour &currentN, bool cold, bool measured) const;
+  //! A view no similarity explains, tried as the goal seen tilted (a homography): true, \e a updated, when it is;
+  //! \e warmOnly: from the last period's homography alone.
+  bool perspective(const vpMorphContour &currentN, vpMorphViewAlignment &a, bool warmOnly = false);
   //! Share of the view's region (normalised) that lies in the goal's once laid by T.
   double overlapShare(const vpMorphRigidTransform &T, const vpMorphContour &currentN) const;
   vpMorphRigidTransform correspondenceStart(const vpMorphContour &currentN, vpMorphViewAlignment &a);
@@ -118,6 +133,8 @@ private:
   vpMorphRigidTransform m_start;
   double m_startSigma = 0.0; // the residuals' scale at the start (normalised; 0: unknown)
   vpMorphViewAlignment m_last;
+  vpMorphHomography m_homography; // the last period's, when the view was seen tilted
+  bool m_haveHomography = false;
 };
 
 #endif

@@ -21,13 +21,14 @@
   units, log-scale) at the residuals' robust scale.
 
   <b>Models</b> (vpMorphViewAligner, the test on the fit's residuals):
-  - RIGID: every sample of the view lies on the goal's edges within the noise (none beyond Tukey's cut);
+  - RIGID: every sample of the view lies on the goal's edges within the noise (no run of outliers beyond what the
+    noise makes), up to a similarity, or up to a homography (perspective: the goal seen tilted);
   - PART_HIDDEN: samples beyond the cut lie inside the goal's region and outnumber those outside (an occluder only
     hides: its edge crosses the object);
   - PART_BENT: samples beyond the cut lie outside the goal's region and outnumber those inside (a part turned away);
-  - UNEXPLAINED: less than half of the view's region lies on the goal's, or the residuals' robust scale is beyond what
-    edge noise makes: the part laid on the goal is not the larger part of the object (another shape, a deformation no
-    rigid placement explains).
+  - UNEXPLAINED: less than half of the view's region lies on the goal's, or less than half of the goal's outline on
+    the view's, or the residuals' robust scale is beyond what edge noise makes: the part laid on the goal is not the
+    larger part of the object (another shape, a deformation no rigid placement explains, a fit run off to a point).
 */
 class vpMorphViewAlignment
 {
@@ -44,12 +45,15 @@ public:
   //! Covariance of (theta, tx, ty, ln s), 4 x 4; infinite diagonal when the inliers do not determine them.
   vpMatrix covariance = vpMatrix(4, 4, 0.0);
   Model model = UNEXPLAINED;
-  double sigmaPx = 0.0;            //!< robust scale of the residuals, pixels
-  double edgeOffsetPx = 0.0;       //!< the goal's edges moved outwards by this to lie on the view's (pixels)
-  double inlierShare = 0.0;        //!< share of the view's samples on the goal's edges, [0, 1]
-  double overlapShare = 0.0;       //!< share of the view's region inside the goal's once laid by the transform, [0, 1]
-  double outsideShare = 0.0;       //!< share beyond the cut outside the goal's region
-  double insideShare = 0.0;        //!< share beyond the cut inside the goal's region
+  double sigmaPx = 0.0;      //!< robust scale of the residuals, pixels
+  double edgeOffsetPx = 0.0; //!< the goal's edges moved outwards by this to lie on the view's (pixels)
+  double inlierShare = 0.0;  //!< share of the view's samples on the goal's edges, [0, 1]
+  double overlapShare = 0.0; //!< share of the view's region inside the goal's once laid by the transform, [0, 1]
+  double goalCoverage = 0.0; //!< share of the goal's outline on the view's edges, [0, 1]
+  double outsideShare = 0.0; //!< share beyond the cut outside the goal's region
+  double insideShare = 0.0;  //!< share beyond the cut inside the goal's region
+  //! The view is the goal seen tilted: no similarity explained it, a homography did (the transform is its own).
+  bool perspective = false;
   bool fromCorrespondence = false; //!< the fit started from the correspondence (no usable warm start)
   double work = std::numeric_limits<double>::quiet_NaN();   //!< work of the correspondence, when it was run
   double margin = std::numeric_limits<double>::quiet_NaN(); //!< its margin after a full search (NaN: tracked)

@@ -1,0 +1,117 @@
+#include <visp3/morph_vs/vpMorphServoGuard.h>
+
+#include <cmath>
+#include <sstream>
+
+#include <visp3/morph/vpMorphException.h>
+
+void vpMorphServoGuard::setJumpPixels(double px)
+{
+  if (!std::isfinite(px) || px <= 0.0)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphServoGuard::setJumpPixels: the jump threshold must be finite and > 0");
+  m_jumpPx = px;
+}
+
+void vpMorphServoGuard::setJumpRotation(double rad)
+{
+  if (!std::isfinite(rad) || rad <= 0.0)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphServoGuard::setJumpRotation: the jump threshold must be finite and > 0");
+  m_jumpRotation = rad;
+}
+
+void vpMorphServoGuard::setTargetCheck(const vpMorphDatabase &db, const std::string &name, double slack)
+{
+  if (!std::isfinite(slack) || slack < 1.0)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphServoGuard::setTargetCheck: the slack must be finite and >= 1");
+  const std::size_t k = db.find(name);
+  if (k == vpMorphRecognition::npos)
+    throw vpMorphException(vpMorphException::notFoundError,
+                           "vpMorphServoGuard::setTargetCheck: no template '" + name + "' in the database");
+  m_db = db;
+  m_index = k;
+  m_slack = slack;
+}
+
+void vpMorphServoGuard::clearTargetCheck() { m_db = vpMorphDatabase(); }
+
+void vpMorphServoGuard::reset()
+{
+  m_lost = m_replans = 0;
+  m_halted = NOT_STARTED;
+  m_targetDistance = std::numeric_limits<double>::quiet_NaN();
+}
+
+vpMorphServoGuard::Status vpMorphServoGuard::halt(Status s)
+{
+  m_halted = s;
+  return s;
+}
+
+vpMorphServoGuard::Status vpMorphServoGuard::hold(Status why)
+{
+  if (++m_lost > m_maxLost)
+    return halt(LOST_TOO_LONG);
+  return why;
+}
+
+bool vpMorphServoGuard::viewJumped(const vpMorphRigidTransform &T, const vpMorphRigidTransform &previous, double gain,
+                                   const vpCameraParameters &cam) const
+{
+  // A command executes about gain x the residual per period (twice that in translation with a calibration error).
+  const double dth = std::fabs(std::remainder(T.theta() - previous.theta(), 2.0 * M_PI));
+  if (dth > gain * std::fabs(previous.theta()) + m_jumpRotation)
+    return true;
+  const double px = cam.get_px(), py = cam.get_py();
+  const double dt = std::hypot((T.tx() - previous.tx()) * px, (T.ty() - previous.ty()) * py);
+  return dt > 2.0 * gain * std::hypot(previous.tx() * px, previous.ty() * py) + m_jumpPx;
+}
+
+bool vpMorphServoGuard::allowReplan()
+{
+  if (m_replans >= m_maxReplans) {
+    halt(TOO_MANY_REPLANS);
+    return false;
+  }
+  ++m_replans;
+  return true;
+}
+
+bool vpMorphServoGuard::targetMismatch(const vpMorphContour &current, const vpMorphContour &target, bool articulated)
+{
+  if (m_db.empty())
+    return false;
+  const vpMorphRecognition r = m_db.recognize(current);
+  if (articulated) {
+    // Its distance to the target posed at one opening varies from one view to the next: the database's, over its
+    // poses.
+    if (!m_db.accepts(current, m_index, m_slack, &m_targetDistance))
+      return true;
+  } else {
+    m_targetDistance = m_db.distance().distance(current, target);
+    if (!(m_targetDistance <= m_slack * m_db.threshold(m_index)) &&
+        !(m_db.support(current, m_index, r.index == m_index && r.mirrored) >= m_db.minimumSupport()))
+      return true; // NaN too; an occluded view of the target (it shows enough of its outline) is not a mismatch
+  }
+  if (!(r.index != vpMorphRecognition::npos && r.index != m_index && r.accepted &&
+        m_targetDistance >= getMismatchRatio() * r.distance))
+    return false;
+  // Nearer by the distance, another template still does not replace the target when it explains less of the view
+  // (a bent view may be nearer another template by the distance).
+  return !(std::isfinite(r.support) && m_db.support(current, m_index, m_db.distance().mirrors()) > r.support);
+}
+
+vpMorphServoGuard::Status vpMorphServoGuard::verify(const vpMorphViewAlignment &a, double rotationRad,
+                                                    double translationPx, double scalePx, double radiusPx,
+                                                    double pixelsPerUnit, bool tiltVerified) const
+{
+  if (!a.explained() || !tiltVerified)
+    return UNVERIFIED;
+  const double k = getVerificationSigmas();
+  const bool pinned = k * a.rotationDeviation() <= rotationRad &&
+                      k * a.translationDeviation() * pixelsPerUnit <= translationPx &&
+                      k * a.scaleDeviation() * radiusPx <= scalePx;
+  return pinned ? CONVERGED : UNVERIFIED;
+}

@@ -1,0 +1,125 @@
+// vpMorphViewAligner on rendered views of bent objects and of objects with a part hidden: the part that lies on the
+// template fixes the pose, whatever the rest of the outline does.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/io/vpImageIo.h>
+#include <visp3/morph_sim/vpMorphPlanarScene.h>
+#include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
+#include <visp3/morph_vs/vpMorphViewAligner.h>
+
+namespace
+{
+/*
+  The object image with the part right of column \e pivotX turned by \e deg about (pivotX, pivotY): a limb bent at a
+  joint, the rest drawn where it was (so the template's pose is the undeformed part's).
+*/
+std::string bentTexture(const std::string &name, double pivotX, double pivotY, double deg)
+{
+  vpImage<unsigned char> I, J;
+  vpImageIo::read(I, std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png");
+  J = I;
+  const double c = std::cos(vpMath::rad(-deg)), s = std::sin(vpMath::rad(-deg));
+  for (unsigned int i = 0; i < I.getHeight(); ++i)
+    for (unsigned int j = 0; j < I.getWidth(); ++j) {
+      if (j < pivotX)
+        continue;
+      const double dx = j - pivotX, dy = i - pivotY;
+      const int sj = static_cast<int>(std::lround(pivotX + c * dx - s * dy));
+      const int si = static_cast<int>(std::lround(pivotY + s * dx + c * dy));
+      J[i][j] = (si >= 0 && sj >= 0 && si < int(I.getHeight()) && sj < int(I.getWidth()) && sj >= pivotX)
+                    ? I[static_cast<unsigned int>(si)][static_cast<unsigned int>(sj)]
+                    : 255;
+    }
+  const std::string path = "bent-" + name + ".png";
+  vpImageIo::write(J, path);
+  return path;
+}
+
+vpMorphContour view(const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cMo)
+{
+  vpImage<unsigned char> I;
+  scene.render(cMo, I);
+  return vpMorphTagPoseEstimator::silhouette(I, scene.projectedTagCorners(cMo));
+}
+} // namespace
+
+TEST_CASE("A bent view is aligned by the part the bend did not move, at any in-plane rotation", "[rendered][aligner]")
+{
+  // The screwdriver's shaft bent by 10 deg at the ferrule (the handle, the larger part, stays), and the key's blade
+  // tip by 12 deg: seen from the goal turned about the optical axis, the alignment must be that turn exactly (the
+  // undeformed part's pose), the scale 1.
+  struct Bend
+  {
+    const char *name;
+    double pivotX, pivotY, deg;
+  };
+  const Bend bends[] = {{"screwdriver", 330.0, 240.0, 10.0}, {"key", 390.0, 240.0, -12.0}};
+  const vpHomogeneousMatrix cdMo(0.005, 0.0, 0.5, 0, 0, vpMath::rad(15));
+  for (const Bend &b : bends) {
+    const std::string image = std::string(VISPMORPH_DATA_DIR) + "/objects/" + b.name + ".png";
+    const vpMorphPlanarScene taught(image);
+    vpMorphPlanarScene bent(bentTexture(b.name, b.pivotX, b.pivotY, b.deg));
+    bent.setReferenceImage(image, vpMorphPlanarScene::SHARED_FRAME);
+    const vpMorphContour target = view(taught, cdMo);
+    for (int deg = -150; deg <= 180; deg += 30) {
+      const vpHomogeneousMatrix cMo = vpHomogeneousMatrix(0, 0, 0, 0, 0, vpMath::rad(deg)).inverse() * cdMo;
+      const vpMorphContour c = view(bent, cMo);
+      vpMorphViewAligner aligner;
+      aligner.setCameraParameters(taught.camera());
+      aligner.setGoal(target);
+      const vpMorphViewAlignment cold = aligner.align(c);
+      const vpMorphViewAlignment warm = aligner.align(c);
+      for (const vpMorphViewAlignment &a : {cold, warm}) {
+        const double dth = std::remainder(a.transform.theta() - vpMath::rad(deg), 2.0 * M_PI);
+        double x0, y0; // the principal point stays where it is
+        a.transform.apply(0.0, 0.0, x0, y0);
+        INFO(b.name << " bent by " << b.deg << " deg, seen turned by " << deg << " deg: " << vpMath::deg(dth)
+                    << " deg, " << std::hypot(x0, y0) * 800.0 << " px, scale " << a.transform.scale() << ", model "
+                    << vpMorphViewAlignment::modelName(a.model));
+        REQUIRE(a.explained());
+        CHECK(a.model != vpMorphViewAlignment::RIGID); // the bent part is left out
+        CHECK(std::fabs(dth) < vpMath::rad(0.05));
+        CHECK(std::hypot(x0, y0) * 800.0 < 0.3);
+        CHECK(std::fabs(a.transform.scale() - 1.0) < 0.001);
+      }
+    }
+  }
+}
+
+TEST_CASE("A view with a part hidden is aligned by the part it shows, and a view of another object is not explained",
+          "[rendered][aligner]")
+{
+  const std::string image = std::string(VISPMORPH_DATA_DIR) + "/objects/key.png";
+  const vpHomogeneousMatrix cdMo(0.0, 0.005, 0.5, 0, 0, vpMath::rad(-30));
+  const vpMorphPlanarScene taught(image);
+  const vpMorphContour target = view(taught, cdMo);
+  vpMorphPlanarScene hidden(image);
+  vpMorphPlanarScene::Faults f;
+  f.occludedShare = 0.15;
+  f.occluderPosition = 0.6;
+  hidden.setFaults(f);
+  for (int deg : {-120, 45, 170}) {
+    const vpHomogeneousMatrix cMo = vpHomogeneousMatrix(0, 0, 0, 0, 0, vpMath::rad(deg)).inverse() * cdMo;
+    vpMorphViewAligner aligner;
+    aligner.setCameraParameters(taught.camera());
+    aligner.setGoal(target);
+    const vpMorphViewAlignment a = aligner.align(view(hidden, cMo));
+    const double dth = std::remainder(a.transform.theta() - vpMath::rad(deg), 2.0 * M_PI);
+    INFO("key hidden, turned by " << deg << " deg: " << vpMath::deg(dth) << " deg, scale " << a.transform.scale());
+    REQUIRE(a.explained());
+    CHECK(a.model == vpMorphViewAlignment::PART_HIDDEN);
+    CHECK(std::fabs(dth) < vpMath::rad(0.05));
+    CHECK(std::fabs(a.transform.scale() - 1.0) < 0.001);
+  }
+  // The wrench seen where the key is expected: not the key, whatever its best placement.
+  const vpMorphPlanarScene other(std::string(VISPMORPH_DATA_DIR) + "/objects/wrench.png");
+  vpMorphViewAligner aligner;
+  aligner.setCameraParameters(taught.camera());
+  aligner.setGoal(target);
+  CHECK_FALSE(aligner.align(view(other, cdMo)).explained());
+}
