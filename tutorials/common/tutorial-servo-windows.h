@@ -44,10 +44,10 @@ public:
   {
     if (!m_plot)
       return;
-    m_plot->plot(0, 0, k, servo.rotationResidual());
-    m_plot->plot(1, 0, k, servo.translationResidual());
-    m_plot->plot(1, 1, k, servo.scaleResidual());
-    m_plot->plot(2, k, servo.cameraVelocity());
+    m_plot->plot(0, 0, k, servo.getRotationResidual());
+    m_plot->plot(1, 0, k, servo.getTranslationResidual());
+    m_plot->plot(1, 1, k, servo.getScaleResidual());
+    m_plot->plot(2, k, servo.getCameraVelocity());
   }
   /*!
     What the display test checks: the target drawn in green in the camera window \e cameraTag (of \e width x

@@ -27,7 +27,7 @@ bool alignmentShown(const vpServoMorph &servo)
 void drawServo(const vpServoMorph &servo, vpMorphOverlay &o, const vpColor &currentColor, const vpColor &subGoalColor,
                const vpColor &targetColor, unsigned int thickness)
 {
-  const vpMorphContour &target = servo.getTarget(), &current = servo.getCurrentContour();
+  const vpMorphContour &target = servo.getTargetContour(), &current = servo.getCurrentContour();
   const std::vector<vpMorphContour> &goals = servo.getSubGoals();
   const std::size_t k = servo.getSubGoalIndex();
   if (!target.empty())

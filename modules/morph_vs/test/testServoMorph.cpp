@@ -396,7 +396,7 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
     RecordingDisplay::detach(I);
     CHECK(rec.count(vpColor::red) == 9);
     CHECK(rec.count(vpColor::green) == 9);
-    CHECK(rec.count(vpColor::cyan) == servo.tracker().correspondence().size());
+    CHECK(rec.count(vpColor::cyan) == servo.alignmentLines().size());
     CHECK(rec.lines.size() == 18 + rec.count(vpColor::cyan));
   }
   CHECK(servo.getSubGoals().size() == 6);

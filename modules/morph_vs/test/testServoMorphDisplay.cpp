@@ -92,7 +92,7 @@ TEST_CASE("vpServoMorph::draw() burns the target, sub-goal, correspondence, cont
   // The status: yellow text on the black band, two lines (status and sub-goal, residuals).
   const std::vector<std::string> text = servo.statusText();
   REQUIRE(text.size() == 2);
-  CHECK(text[0] == "moving  sub-goal 1/6");
+  CHECK(text[0] == "moving  sub-goal 1/6  (rigid)");
   CHECK(text[1].rfind("residual ", 0) == 0);
   const std::size_t yellow = countColor(I, vpColor::yellow, 0, 60), black = countColor(I, vpColor::black, 0, 60);
   CHECK(yellow > 5 * (text[0].size() + text[1].size()) / 2); // glyphs drawn, not a blob or nothing
@@ -112,7 +112,7 @@ TEST_CASE("vpServoMorph::display() draws the same on a display, and nothing of a
     CHECK(rec.count(vpColor::green) == 9);
     CHECK(rec.count(vpColor::orange) == 9);
     CHECK(rec.count(vpColor::red) == 9);
-    CHECK(rec.count(vpColor::cyan) == servo.getAligner().getTracker().correspondence().size());
+    CHECK(rec.count(vpColor::cyan) == servo.alignmentLines().size());
     REQUIRE(rec.texts.size() == 2);
     CHECK(rec.texts[0].text == servo.statusText()[0]);
     CHECK(rec.texts[0].color == vpColor::yellow);

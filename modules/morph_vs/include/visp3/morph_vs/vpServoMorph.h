@@ -138,7 +138,7 @@ public:
     \throw vpMorphException::badParameterError when the template has no desired pose.
   */
   void setTarget(const vpMorphTemplate &t);
-  const vpMorphContour &getTarget() const { return m_target; }
+  const vpMorphContour &getTargetContour() const { return m_target; }
   double getTargetDepth() const { return m_Zd; }
   //! The opening the articulated target was posed at (radians; 0 for a rigid target).
   double getTargetOpening() const { return m_opening; }
