@@ -11,6 +11,9 @@
 
 namespace
 {
+// Outline points of a homography fit (vpMorphHomography's default).
+const unsigned int kSamples = 200;
+
 void checkNonNegative(double v, const char *what)
 {
   if (!std::isfinite(v) || v < 0.0)
@@ -101,12 +104,14 @@ bool vpMorphTiltEstimator::homography(const vpMorphContour &currentN, const vpMo
                                       const vpMorphHomography &start, double minInliers, double maxResidualPx,
                                       vpMorphHomography &G) const
 {
-  // Measured edges of one plane's outline meet within hundredths of a pixel: a tenth of a pixel floors the robust
-  // scale; polygons (vertices on the pixel grid) half a pixel.
+  // The robust scale floored as the view aligner's (the edges' noise); measured outlines sampled twice as densely as
+  // polygons (every few pixels of a tool's outline: what the tilt's second-order effect needs).
   const bool dense = currentN.hasOutline() && targetN.hasOutline();
   try {
-    G = vpMorphHomography::refine(currentN.outline(), targetN.outline(), start, (dense ? 0.1 : 0.5) * m_pixel,
-                                  dense ? 400 : 200, 8);
+    G = vpMorphHomography::refine(
+        currentN.outline(), targetN.outline(), start,
+        (dense ? vpMorphViewAligner::outlineSigmaFloorPx() : vpMorphViewAligner::polygonSigmaFloorPx()) * m_pixel,
+        dense ? 2 * kSamples : kSamples);
   } catch (const vpException &) {
     return false;
   }

@@ -15,9 +15,11 @@ namespace
 const double kBreakdown = 0.5;
 // Points of the outlines whose regions' overlap is measured (a few pixels apart).
 const std::size_t kRegionPoints = 128;
+// IRLS rounds of the correspondence's robust fit: Tukey's weights settle in a few rounds from the least squares.
+const unsigned int kRobustIterations = 30;
 } // namespace
 
-vpMorphViewAligner::vpMorphViewAligner() : m_cam(800, 800, 320, 240)
+vpMorphViewAligner::vpMorphViewAligner() : m_cam(getDefaultCameraParameters())
 {
   for (unsigned int i = 0; i < 4; ++i)
     m_last.covariance[i][i] = std::numeric_limits<double>::infinity();
@@ -114,8 +116,8 @@ vpMorphRigidTransform vpMorphViewAligner::correspondenceStart(const vpMorphConto
   if (m_method == PAPER)
     return vpMorphRigidTransform::fitElongation(currentN, m_goalN, corr, true);
   // Polygon vertices lie on the pixel grid: the robust scale is floored at half a pixel.
-  return vpMorphRigidTransform::fitLeastSquares(currentN, m_goalN, corr, true, vpMorphRigidTransform::TUKEY, 30,
-                                                normalisedPixels(0.5));
+  return vpMorphRigidTransform::fitLeastSquares(currentN, m_goalN, corr, true, vpMorphRigidTransform::TUKEY,
+                                                kRobustIterations, normalisedPixels(polygonSigmaFloorPx()));
 }
 
 namespace
@@ -151,7 +153,7 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
   // edges' noise says so. The similarity is then the homography's own, over the view's outline.
   const bool measured = currentN.hasOutline() && m_goalN.hasOutline();
   const double limit = normalisedPixels(measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx());
-  const double floor = normalisedPixels(measured ? 0.1 : 0.5);
+  const double floor = normalisedPixels(measured ? outlineSigmaFloorPx() : polygonSigmaFloorPx());
   auto explains = [&](const vpMorphHomography &G) { return G.inlierShare() >= kBreakdown && G.residual() <= limit; };
   vpMorphHomography G;
   bool ok = false;
@@ -159,7 +161,7 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
   for (int start = m_haveHomography ? 0 : 1; start < (warmOnly ? 1 : 2) && !ok; ++start) {
     try {
       const vpMorphHomography G0 = start == 0 ? m_homography : vpMorphHomography(a.transform.toMatrix());
-      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G0, floor, 200, 10);
+      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G0, floor);
       ok = explains(G);
     } catch (const vpException &) {
     }
@@ -167,8 +169,8 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
   if (!ok && !warmOnly && !a.explained()) { // from the correspondence's polygon fit, for a view no other start explains
     try {
       const vpMorphCorrespondence &corr = m_tracker.update(currentN, m_goalN);
-      G = vpMorphHomography::fit(currentN, m_goalN, corr, floor, 200, 12);
-      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G, floor, 200, 10);
+      G = vpMorphHomography::fit(currentN, m_goalN, corr, floor);
+      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G, floor);
       ok = explains(G);
     } catch (const vpException &) {
     }

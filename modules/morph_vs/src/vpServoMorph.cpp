@@ -40,7 +40,7 @@ double rmsRadius(const vpMorphContour &c)
 }
 } // namespace
 
-vpServoMorph::vpServoMorph() : m_cam(800, 800, 320, 240), m_camIso(800, 800, 320, 240), m_ve(6, 0.0), m_vc(6, 0.0)
+vpServoMorph::vpServoMorph() : m_cam(vpMorphViewAligner::getDefaultCameraParameters()), m_camIso(m_cam), m_ve(6, 0.0), m_vc(6, 0.0)
 {
   m_task.setServo(vpServo::EYEINHAND_CAMERA);
   m_task.setInteractionMatrixType(vpServo::CURRENT);

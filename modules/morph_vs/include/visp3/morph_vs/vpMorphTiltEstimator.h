@@ -12,6 +12,7 @@
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphHomography.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
+#include <visp3/morph_vs/vpMorphViewAligner.h>
 
 /*!
   \class vpMorphTiltEstimator
@@ -124,12 +125,12 @@ private:
                   double minInliers, double maxResidualPx, vpMorphHomography &G) const;
   void fuse(const vpMatrix &C, double &angle, double &ax, double &ay, double &sa);
 
-  double m_pixel = 1.0 / 800.0;
+  double m_pixel = 1.0 / vpMorphViewAligner::getDefaultCameraParameters().get_px();
   double m_deadZone = 0.07, m_outlineDeadZone = 0.0026, m_final = 0.002;
   // State of a sequence.
   vpMorphHomography m_warm;
   bool m_haveWarm = false, m_latched = false, m_estimated = false;
-  double m_residual = 0.0, m_deadZoneUsed = 0.07;
+  double m_residual = 0.0, m_deadZoneUsed = m_deadZone;
   vpHomogeneousMatrix m_cMcd;
   // Tilt executed since the final approach began (rad): the fused estimates of earlier periods are compensated by it.
   double m_sumX = 0.0, m_sumY = 0.0;

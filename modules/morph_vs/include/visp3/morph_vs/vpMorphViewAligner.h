@@ -112,6 +112,8 @@ public:
   static double outlineSigmaLimitPx() { return 0.5; }
   //! The same for polygons (pixels, 1.5: two polygonisations place their vertices up to a pixel apart, on the grid).
   static double polygonSigmaLimitPx() { return 1.5; }
+  //! The camera until setCameraParameters(): 800 px focal length, a 640 x 480 image (a 44 deg field of view).
+  static vpCameraParameters getDefaultCameraParameters() { return vpCameraParameters(800, 800, 320, 240); }
 
 private:
   double normalisedPixels(double px) const { return px / std::max(m_cam.get_px(), m_cam.get_py()); }
