@@ -68,7 +68,7 @@ void usage(std::ostream &os)
         "                     faults, calib-no-tilt, calib-wide, saturated, low-contrast, rough, gradient, "
         "plane-edge,\n"
         "                     large-distractor, res-1280, res-320\n"
-        "  --controllers L    comma-separated (default all): morph, morph-planar, morph-vpservo, ibvs-current, "
+        "  --controllers L    comma-separated (default all): morph, morph-planar, morph-paper, morph-vpservo, ibvs-current, "
         "ibvs-desired,\n"
         "                     ibvs-mean, pbvs, moments, moments-planar\n"
         "  --robot R          camera (default), viper850 or afma6\n"

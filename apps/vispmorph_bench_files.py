@@ -15,8 +15,8 @@ SETS = ["planar", "planar-hard", "6dof", "calib", "calib-no-tilt", "noise", "occ
         "res-320"]
 # Columns of timings.csv that read_runs() joins to the runs (they are not in runs.csv: they differ between runs).
 TIMING_COLUMNS = ("yardstick_ms", "measure_ms", "control_ms", "max_control_ms", "period_ms")
-CONTROLLERS = ["morph", "morph-planar", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean", "pbvs", "moments",
-               "moments-planar"]
+CONTROLLERS = ["morph", "morph-planar", "morph-paper", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean",
+               "pbvs", "moments", "moments-planar"]
 
 
 class BenchFileError(Exception):

@@ -289,7 +289,9 @@ protected:
   out-of-plane (tilt) correction on the final approach (vpServoMorph::TILT_FINAL_APPROACH: the contour's homography
   refined on the measured edge outlines, default dead zones), first turning the camera by kExplorationDeg about its
   optical axis and back to read the tilt of the camera on the hand (vpServoMorph::setHandEyeTiltExploration())
-  ("morph"); or the paper's planar law alone, no tilt command and no turn ("morph-planar"). Both give the servo the
+  ("morph"); or the planar law alone, no tilt command and no turn ("morph-planar"); or the paper's method as it is
+  written (vpServoMorph::PAPER: elongation-vector rectification over the morph's correspondence, image-space rigid
+  frames and deformation frames, the per-axis thresholds; no tilt, no turn: "morph-paper"). All give the servo the
   robot's joints (vpServoMorph::setJointState()), so that a half turn is planned the way that keeps them clear of their
   limits, and send joint velocities from the Jacobian at the middle of each period (vpMorphJointVelocity): held for the
   period from the Jacobian at its start, a turn about the optical axis tilts the Afma6's camera, a tilt the planar law
@@ -302,7 +304,12 @@ class MorphController : public MorphBase
   static constexpr double kExplorationDeg = 90.0;
 
 public:
-  explicit MorphController(bool tilt = true) : m_tilt(tilt), m_name(tilt ? "morph" : "morph-planar") {}
+  enum Mode { FULL, PLANAR, PAPER };
+  explicit MorphController(Mode mode = FULL)
+    : m_tilt(mode == FULL), m_paper(mode == PAPER),
+      m_name(mode == FULL ? "morph" : (mode == PLANAR ? "morph-planar" : "morph-paper"))
+  {
+  }
   std::string name() const override { return m_name; }
   Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe, const vpColVector &q) override
   {
@@ -391,6 +398,8 @@ private:
   {
     MorphBase::reset();
     m_servo.reset(new vpServoMorph);
+    if (m_paper)
+      m_servo->setMeasurement(vpServoMorph::PAPER);
     m_servo->setCameraParameters(m_ctx.cam);
     m_servo->set_eMc(m_ctx.eMc);
     m_servo->getPlanner().setSubGoalCount(10);
@@ -408,7 +417,7 @@ private:
     m_joints.reset();
   }
 
-  bool m_tilt;
+  bool m_tilt, m_paper;
   std::string m_name;
   std::unique_ptr<vpServoMorph> m_servo;
   vpMorphJointVelocity m_joints;
@@ -762,8 +771,8 @@ vpMorphBenchController::Command vpMorphBenchController::missingFrame()
 
 std::vector<std::string> vpMorphBenchController::names()
 {
-  return {"morph",     "morph-planar", "morph-vpservo", "ibvs-current",  "ibvs-desired",
-          "ibvs-mean", "pbvs",         "moments",       "moments-planar"};
+  return {"morph",        "morph-planar", "morph-paper", "morph-vpservo", "ibvs-current",
+          "ibvs-desired", "ibvs-mean",    "pbvs",        "moments",       "moments-planar"};
 }
 
 std::unique_ptr<vpMorphBenchController> vpMorphBenchController::create(const std::string &name)
@@ -771,7 +780,9 @@ std::unique_ptr<vpMorphBenchController> vpMorphBenchController::create(const std
   if (name == "morph")
     return std::unique_ptr<vpMorphBenchController>(new MorphController);
   if (name == "morph-planar")
-    return std::unique_ptr<vpMorphBenchController>(new MorphController(false));
+    return std::unique_ptr<vpMorphBenchController>(new MorphController(MorphController::PLANAR));
+  if (name == "morph-paper")
+    return std::unique_ptr<vpMorphBenchController>(new MorphController(MorphController::PAPER));
   if (name == "morph-vpservo")
     return std::unique_ptr<vpMorphBenchController>(new MorphVpServoController);
   if (name == "ibvs-current")
@@ -788,6 +799,6 @@ std::unique_ptr<vpMorphBenchController> vpMorphBenchController::create(const std
     return std::unique_ptr<vpMorphBenchController>(new MomentsController(true));
   throw vpMorphException(vpMorphException::notFoundError,
                          "vpMorphBenchController: unknown controller '" + name +
-                             "' (morph, morph-planar, morph-vpservo, ibvs-current, "
+                             "' (morph, morph-planar, morph-paper, morph-vpservo, ibvs-current, "
                              "ibvs-desired, ibvs-mean, pbvs, moments, moments-planar)");
 }

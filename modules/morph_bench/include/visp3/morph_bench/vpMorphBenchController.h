@@ -37,6 +37,8 @@ class vpServoMorph;
   Names (create()): "morph" (vpServoMorph: the paper's Eq. 5-11 through 10 sub-goals, online hand-eye
   estimation, and the out-of-plane correction on the final approach from the homography refined on the edge
   outlines), "morph-planar" (the same without the out-of-plane correction: the paper's planar law),
+  "morph-paper" (the paper's measurement as written, vpServoMorph::PAPER: elongation-vector rectification over the
+  morph's correspondence, image-space rigid frames, deformation frames, per-axis thresholds; planar law),
   "morph-vpservo" (vpFeatureMorph to the final goal in a stock vpServo, EYEINHAND_CAMERA with the tilts disabled,
   current L, the camera velocity mapped by the estimated eMc), "ibvs-current", "ibvs-desired", "ibvs-mean" (4 tag
   corners, vpFeaturePoint, depth from the tag pose), "pbvs" (vpFeatureTranslation(cdMc) + vpFeatureThetaU(cdRc) from
