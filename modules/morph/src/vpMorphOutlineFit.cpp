@@ -75,6 +75,13 @@ void vpMorphOutlineFit::setMinimumSigma(double sigma)
   m_minSigma = sigma;
 }
 
+void vpMorphOutlineFit::setMaximumSigma(double sigma)
+{
+  if (!(sigma > 0.0))
+    badParameter("the maximum sigma must be > 0");
+  m_maxSigma = sigma;
+}
+
 void vpMorphOutlineFit::setMaxIterations(unsigned int n)
 {
   if (n < 1)
@@ -228,16 +235,18 @@ struct vpMorphOutlineFit::Solver
   }
 
   // Reweighting rounds from x at the robust scale \e sigma (in: the start's, 0 for the MAD of all residuals; out: the
-  // last one). False when no round could be solved.
+  // last one), never above sigmaCap. False when no round could be solved.
   static bool irls(const Goal &goal, const std::vector<Eigen::Vector2d> &P, const InputEdges *inputEdges,
                    Eigen::Vector4d &x, double &delta, double &sigma, bool withScale, bool withOffset,
-                   unsigned int iterations, double sigmaFloor, double spread)
+                   unsigned int iterations, double sigmaFloor, double spread,
+                   double sigmaCap = std::numeric_limits<double>::infinity())
   {
     Rows rows;
     Eigen::VectorXd z;
     bool solved = false;
     for (unsigned int it = 0; it < iterations; ++it) {
-      sigma = measureRows(goal, P, inputEdges, x, delta, sigmaFloor, tukeyConstant() * sigma, rows);
+      sigma = std::min(measureRows(goal, P, inputEdges, x, delta, sigmaFloor, tukeyConstant() * sigma, rows),
+                       std::max(sigmaCap, sigmaFloor));
       if (!solveRows(rows, x, delta, tukeyConstant() * sigma, withOffset, nullptr, z))
         break;
       Eigen::Vector4d xn = z.head<4>();
@@ -257,6 +266,24 @@ struct vpMorphOutlineFit::Solver
         break;
     }
     return solved;
+  }
+
+  // irls() continued at scales halved from \e sigma down to \e maximum when it settled above (graduated
+  // non-convexity); the solution is kept from the last stage that could be solved.
+  static void graduate(const Goal &goal, const std::vector<Eigen::Vector2d> &P, const InputEdges *inputEdges,
+                       Eigen::Vector4d &x, double &delta, double &sigma, bool withScale, bool withOffset,
+                       unsigned int iterations, double sigmaFloor, double maximum, double spread)
+  {
+    while (sigma > maximum) {
+      const double cap = std::max(0.5 * sigma, maximum);
+      Eigen::Vector4d xs = x;
+      double ds = delta, ss = cap;
+      if (!irls(goal, P, inputEdges, xs, ds, ss, withScale, withOffset, iterations, sigmaFloor, spread, cap))
+        return;
+      x = xs;
+      delta = ds;
+      sigma = cap;
+    }
   }
 
   static std::vector<Eigen::Vector2d> inputSamples(const vpMorphContour &input, const vpMorphContour &goalOutline,
@@ -343,7 +370,8 @@ struct vpMorphOutlineFit::Solver
                                      vpMorphOutlineFit::tukeyConstant() * lastSigma, rows);
     Eigen::MatrixXd H;
     Eigen::VectorXd z;
-    const bool posed = solveRows(rows, x, delta, vpMorphOutlineFit::tukeyConstant() * sigma, self.m_withOffset, &H, z);
+    const double cut = vpMorphOutlineFit::tukeyConstant() * std::min(sigma, std::max(self.m_maxSigma, sigmaFloor));
+    const bool posed = solveRows(rows, x, delta, cut, self.m_withOffset, &H, z);
     // The goal's left normals point inwards on a counter-clockwise outline: a residual along them is inside.
     const double outward = self.m_goalCcw ? -1.0 : 1.0;
     std::size_t inliers = 0, covered = 0;
@@ -387,6 +415,9 @@ vpMorphRigidTransform vpMorphOutlineFit::fit(const vpMorphContour &input, const 
   const double floor = std::max(1e-9 * std::max(spread, 1e-300), m_minSigma);
   const bool solved = Solver::irls(*m_goalData, P, edges.get(), x, delta, sigma, m_withScale, m_withOffset,
                                    m_maxIterations, floor, spread);
+  if (solved)
+    Solver::graduate(*m_goalData, P, edges.get(), x, delta, sigma, m_withScale, m_withOffset, m_maxIterations, floor,
+                     m_maxSigma, spread);
   return Solver::finish(*this, P, edges.get(), x, delta, sigma, solved, floor, cx, cy, initial);
 }
 
@@ -469,6 +500,8 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
     delta = deltaBest;
     sigma = sigmaBest;
   }
+  Solver::graduate(*m_goalData, P, edges.get(), x, delta, sigma, m_withScale, m_withOffset, m_maxIterations, floor,
+                   m_maxSigma, spread);
   return Solver::finish(*this, P, edges.get(), x, delta, sigma, true, floor, cx, cy, initial);
 }
 

@@ -243,6 +243,8 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
       vpMorphOutlineFit &fit = *m_fit;
       const bool measured = currentN.hasOutline() && m_goalN.hasOutline();
       fit.setMinimumSigma(normalisedPixels(measured ? outlineSigmaFloorPx() : polygonSigmaFloorPx()));
+      // Residuals beyond the noise's limit are not the goal's edges seen again: the fit settles on the part that is.
+      fit.setMaximumSigma(normalisedPixels(measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx()));
       bool haveWarm = false;
       vpMorphViewAlignment warm;
       std::vector<double> warmResiduals;

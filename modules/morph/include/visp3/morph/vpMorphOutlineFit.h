@@ -6,6 +6,7 @@
 #ifndef VP_MORPH_OUTLINE_FIT_H
 #define VP_MORPH_OUTLINE_FIT_H
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -67,6 +68,15 @@ public:
   */
   void setMinimumSigma(double sigma);
   double getMinimumSigma() const { return m_minSigma; }
+  /*!
+    Largest robust scale of the noise, in the contours' units (> 0, default infinite). A fit whose scale settles above
+    it is continued with the scale halved, and refined at each, down to it (graduated non-convexity): it then lies on
+    the largest part of the input that meets the goal within that noise (a limb bent about a pivot leaves residuals
+    that grow steadily from it, which a scale taken from them alone would absorb). getSigma() stays the inliers' own.
+    \throw vpMorphException::badParameterError on a value that is not > 0.
+  */
+  void setMaximumSigma(double sigma);
+  double getMaximumSigma() const { return m_maxSigma; }
   //! Reweighting rounds at most (>= 1, default 20). \throw vpMorphException::badParameterError on 0.
   void setMaxIterations(unsigned int n);
   unsigned int getMaxIterations() const { return m_maxIterations; }
@@ -141,7 +151,7 @@ private:
   vpMorphContour m_goal;
   bool m_goalCcw = true;
   bool m_withOffset = true, m_withScale = true;
-  double m_minSigma = 0.0;
+  double m_minSigma = 0.0, m_maxSigma = std::numeric_limits<double>::infinity();
   unsigned int m_maxIterations = 20, m_samples = 256;
 
   double m_sigma = 0.0, m_offset = 0.0, m_inlierShare = 0.0, m_outsideShare = 0.0, m_insideShare = 0.0;
