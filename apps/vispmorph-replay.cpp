@@ -180,16 +180,11 @@ int codecFor(const std::string &file)
   return c[0] | (c[1] << 8) | (c[2] << 16) | (c[3] << 24);
 }
 
-// The correspondence from s to s* (a line per pair), in pixels.
-void drawCorrespondence(vpImage<vpRGBa> &O, const vpFeatureMorph &s, const vpFeatureMorph &sd,
-                        const vpCameraParameters &cam)
+// The alignment from s to s* (a line from a vertex of s to where the measured similarity lays it), in pixels.
+void drawAlignment(vpImage<vpRGBa> &O, const vpFeatureMorph &s, const vpCameraParameters &cam)
 {
-  const vpMorphCorrespondence &corr = s.tracker().correspondence();
-  if (corr.empty() || corr.inputSize() != s.contour().size() || corr.targetSize() != sd.contour().size())
-    return;
-  const std::vector<vpImagePoint> a = s.contour().toPixels(cam).points(), b = sd.contour().toPixels(cam).points();
-  for (const auto &p : corr.pairs())
-    vpMorphDrawing::drawLine(O, a[p.first], b[p.second], vpColor::cyan);
+  for (const auto &l : s.getAlignment().lines(s.contour(), cam))
+    vpMorphDrawing::drawLine(O, l.first, l.second, vpColor::cyan);
 }
 
 std::string fmt(const char *format, double a, double b = 0, double c = 0, double d = 0)
@@ -281,9 +276,12 @@ int main(int argc, char **argv)
       }
       if (status == "ok") {
         ++withObject;
-        // The depth from the area ratio to the taught view (a plane parallel to the image).
+        // A first depth from the area ratio to the taught view, then the one the alignment's scale gives (a plane
+        // parallel to the image; vpFeatureMorph's depth): only the interaction matrix and Z depend on it, not e.
         s.buildFrom(c, cam, Zd * std::sqrt(goal.area() / c.area()));
         e = s.error(sd);
+        if (s.getAlignment().explained())
+          s.buildFrom(c, cam, Zd * s.getAlignment().transform.scale());
       }
       //! [Frame]
 
@@ -293,7 +291,7 @@ int main(int argc, char **argv)
       csv << index << "," << status << ",";
       if (status == "ok") {
         sd.draw(cam, O, vpColor::green, 3);
-        drawCorrespondence(O, s, sd, cam);
+        drawAlignment(O, s, cam);
         s.draw(cam, O, vpColor::red, 1);
         text[0] += "  " + db[chosen].name() + fmt("  Z %.3f m", s.get_Z());
         text.push_back(

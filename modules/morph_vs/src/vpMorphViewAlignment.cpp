@@ -30,3 +30,22 @@ double vpMorphViewAlignment::translationDeviation() const
 }
 
 double vpMorphViewAlignment::scaleDeviation() const { return std::sqrt(covariance[3][3]); }
+
+std::vector<std::pair<vpImagePoint, vpImagePoint>> vpMorphViewAlignment::lines(const vpMorphContour &view,
+                                                                               const vpCameraParameters &cam,
+                                                                               std::size_t count) const
+{
+  std::vector<std::pair<vpImagePoint, vpImagePoint>> out;
+  if (view.empty() || !explained())
+    return out;
+  const auto pixel = [&cam](double x, double y) {
+    return vpImagePoint(cam.get_v0() + cam.get_py() * y, cam.get_u0() + cam.get_px() * x);
+  };
+  const std::size_t step = std::max<std::size_t>(1, view.size() / std::max<std::size_t>(1, count));
+  for (std::size_t k = 0; k < view.size(); k += step) {
+    double x, y;
+    transform.apply(view.x(k), view.y(k), x, y);
+    out.emplace_back(pixel(view.x(k), view.y(k)), pixel(x, y));
+  }
+  return out;
+}

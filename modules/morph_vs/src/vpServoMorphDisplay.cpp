@@ -10,10 +10,9 @@
 
 namespace
 {
-// The correspondence drawn between the current contour and its sub-goal, and the status text on its band.
+// The correspondence drawn between the current contour and its sub-goal, and the status text.
 const vpColor kCorrespondenceColor = vpColor::cyan;
 const vpColor kStatusColor = vpColor::yellow;
-const vpColor kBandColor = vpColor::black;
 
 // Whether the last alignment is the one from the current contour to the current sub-goal: only when the servo aligned
 // it (moving, reached, converged; not on a hold, a stop, a re-plan or the exploration turn).
@@ -39,24 +38,13 @@ void drawServo(const vpServoMorph &servo, vpMorphOverlay &o, const vpColor &curr
       o.line(l.first, l.second, kCorrespondenceColor, 1);
   if (!current.empty())
     o.polygon(current.points(), currentColor, thickness);
-  o.text(servo.statusText(), kStatusColor, kBandColor);
+  o.text(servo.statusText(), kStatusColor);
 }
 } // namespace
 
 std::vector<std::pair<vpImagePoint, vpImagePoint>> vpServoMorph::alignmentLines() const
 {
-  std::vector<std::pair<vpImagePoint, vpImagePoint>> lines;
-  if (m_current.empty() || !m_alignment.explained())
-    return lines;
-  const vpMorphContour n = m_current.toNormalized(m_camIso);
-  const std::size_t step = std::max<std::size_t>(1, n.size() / 24);
-  for (std::size_t k = 0; k < n.size(); k += step) {
-    double x, y;
-    m_alignment.transform.apply(n.x(k), n.y(k), x, y);
-    lines.emplace_back(m_current.point(k), vpImagePoint(m_camIso.get_v0() + m_camIso.get_py() * y,
-                                                        m_camIso.get_u0() + m_camIso.get_px() * x));
-  }
-  return lines;
+  return m_alignment.lines(m_current.toNormalized(m_camIso), m_camIso);
 }
 
 std::vector<std::string> vpServoMorph::statusText() const

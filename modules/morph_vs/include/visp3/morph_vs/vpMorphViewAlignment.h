@@ -7,8 +7,13 @@
 #define VP_MORPH_VIEW_ALIGNMENT_H
 
 #include <limits>
+#include <utility>
+#include <vector>
 
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
+#include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 
 /*!
@@ -65,6 +70,12 @@ public:
   double scaleDeviation() const;
   //! The view is explained: the larger part of it lies on the goal within the noise.
   bool explained() const { return model != UNEXPLAINED; }
+  /*!
+    What a display draws of the alignment: from about \e count vertices of \e view (the aligned view, normalised
+    coordinates) to where the transform lays them, both in pixels of \e cam. None when the view is unexplained.
+  */
+  std::vector<std::pair<vpImagePoint, vpImagePoint>> lines(const vpMorphContour &view, const vpCameraParameters &cam,
+                                                           std::size_t count = 24) const;
 };
 
 #endif
