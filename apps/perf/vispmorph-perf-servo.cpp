@@ -18,11 +18,11 @@
     morph and its sub-goals, so the mean includes them once per run;
   - BM_morphIterationTilt: the final approach of the run (from the last sub-goal on) with the out-of-plane
     correction on every iteration (the homography refined on the edge outlines);
-  - BM_morphIterationDeformed: the final approach of a bent hammer servoed to its template's view (recorded the
-    same way, the object placed by largest overlap as in the benchmark's deformable set), where the view is laid on
-    the target by the largest overlap (once from several starts, then refined from the last offset);
-  - BM_morphIterationDeformedFollow: the same without its first iteration (the overlap's search, once per run): the
-    periods that follow the overlap and the part from the previous period (and search the part every 8th);
+  - BM_morphIterationDeformed: the final approach of a sagging wedge servoed to its template's view (recorded the
+    same way, the object placed by largest overlap as in the benchmark's deformable set), where the part of the view
+    off the template is left out of the aligner's robust fit;
+  - BM_morphIterationDeformedFollow: the same without its first iteration (the fit to the target from the last
+    sub-goal's): the periods warm-started from the previous one;
   - BM_morphStart: that first call alone (full cyclic search, morph, sequence);
   - BM_edgeBand: the fit vpServoMorph measures the edge band with on the final approach (every 8th period: the current
     outline on the target's with one common offset of its edges), and BM_edgeFit the same fit without the offset;
@@ -133,11 +133,11 @@ const Recording &recording()
   return rec;
 }
 
-// The bent hammer (its handle turned by 12 deg) servoed to its template's view from 60 deg away.
+// The sagging wedge (its top bent down) servoed to its template's view from 60 deg away.
 const Recording &deformedRecording()
 {
-  static const Recording rec = record(std::string(VISPMORPH_DATA_DIR) + "/objects/hammer-deformed.png",
-                                      std::string(VISPMORPH_DATA_DIR) + "/objects/hammer.png",
+  static const Recording rec = record(std::string(VISPMORPH_DATA_DIR) + "/objects/wedge-deformed.png",
+                                      std::string(VISPMORPH_DATA_DIR) + "/objects/wedge.png",
                                       vpHomogeneousMatrix(0.02, 0.01, 0, 0, 0, vpMath::rad(60)));
   return rec;
 }
@@ -254,8 +254,8 @@ void BM_morphIterationTilt(benchmark::State &state)
   state.counters["outlines"] = r.contours.front().hasOutline() && r.target.hasOutline() ? 1.0 : 0.0;
 }
 
-// The recorded run of the bent hammer from its iteration \e first on (the ones before it made again, untimed, at each
-// pass), to the end: its final approach, where the view's bent part is left out of the fit.
+// The recorded run of the sagging wedge from its iteration \e first on (the ones before it made again, untimed, at each
+// pass), to the end: its final approach, where the part of the view off the template is left out of the fit.
 void deformedIterations(benchmark::State &state, std::size_t first)
 {
   const Recording &r = deformedRecording();
@@ -273,8 +273,8 @@ void deformedIterations(benchmark::State &state, std::size_t first)
     benchmark::DoNotOptimize(servo.computeControlLaw(r.contours[k++])[0]);
   }
   state.counters["contours"] = static_cast<double>(r.contours.size() - first);
-  state.counters["bent"] =
-      !servo.getHistory().empty() && servo.getHistory().back().model == vpMorphViewAlignment::PART_BENT ? 1.0 : 0.0;
+  state.counters["rigid"] =
+      !servo.getHistory().empty() && servo.getHistory().back().model == vpMorphViewAlignment::RIGID ? 1.0 : 0.0;
 }
 
 // The whole final approach (its first iteration a fit to the target from the last sub-goal's).

@@ -470,6 +470,9 @@ public:
         m_built = true;
       }
       const vpColVector vc = m_task->computeControlLaw();
+      // A view the feature's aligner does not explain gives a zero error: not a goal reached, a view not measured.
+      if (!m_s.getAlignment().explained())
+        return holdCommand(msSince(t0));
       if (fitJumped(m_s.getAlignment().transform))
         return stopCommand("feature-jump");
       cmd.v = vpVelocityTwistMatrix(m_ctx.eMc) * vc;

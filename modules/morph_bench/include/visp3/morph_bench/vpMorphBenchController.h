@@ -61,9 +61,9 @@ class vpServoMorph;
   - "morph": vpServoMorph holds while nothing is seen and resumes on the same sub-goal, stops after 8 periods
     (reason "lost-too-long", before the loop's 10); re-plans after a view jump (Command::replanned; at most 3,
     then "too-many-replans").
-  - "morph-vpservo": no sequence to re-plan, and a stock vpServo does not test its input: a jump of the
-    contour's centroid or area beyond what one step explains (a bump, an occluder) stops the run
-    ("feature-jump").
+  - "morph-vpservo": holds while vpFeatureMorph's aligner does not explain the view (its error is then zero, which
+    is not a goal reached); no sequence to re-plan, and a stock vpServo does not test its input: a jump of the
+    feature's fit beyond what one step explains (a bump, an occluder) stops the run ("feature-jump").
 */
 class vpMorphBenchController
 {
