@@ -601,7 +601,8 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphDatabase::calibrate: empty database");
   std::vector<double> within(T, 0.0);
   const std::size_t perRow = T > 1 ? T : 0;
-  std::vector<double> D(T * T, 0.0);
+  const bool rigid = m_distance.model() == vpMorphShapeDistance::RIGID;
+  std::vector<double> D(T * T, rigid ? kInf : 0.0); // RIGID fills only each row's nearest other template
   // Jobs 0..T-1: within(t); jobs T..2T-1: row t of the between-template matrix.
   m_distance.parallelFor(
       T + (perRow ? T : 0), threads,
@@ -609,7 +610,7 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
         if (k < T) {
           for (const vpMorphContour &p : perturbations(m_templates[k].contour()))
             within[k] = std::max(within[k], m_distance.distance(m_distance.prepare(p), m_shapes[k], matcher));
-        } else if (m_distance.model() == vpMorphShapeDistance::RIGID) {
+        } else if (rigid) {
           // The nearest other template by the two-stage search (the full matrix would take T^2 exact comparisons).
           const std::size_t i = k - T;
           const vpMorphRigidSearch::Outcome o =
@@ -624,10 +625,9 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
       },
       progress);
   std::vector<double> between(T, kInf);
-  const bool rigid = m_distance.model() == vpMorphShapeDistance::RIGID;
   for (std::size_t i = 0; i < T; ++i)
     for (std::size_t j = 0; j < T; ++j)
-      if (i != j && (!rigid || D[i * T + j] > 0.0 || j == i))
+      if (i != j)
         between[i] = std::min(between[i], D[i * T + j]);
   m_within = within;
   m_between = between;

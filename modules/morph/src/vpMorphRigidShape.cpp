@@ -8,6 +8,7 @@
 #include <visp3/morph/vpMorphException.h>
 
 #include "vpMorphRigidShapeData.h"
+#include "vpMorphSmoothing.h"
 
 namespace
 {
@@ -22,6 +23,9 @@ constexpr double kVoteRange = 1.2;
 constexpr int kIterations = 6;      // Gauss-Newton steps on the grid at most
 constexpr int kFirstIterations = 2; // of them, for every turn before the two best go on
 constexpr double kTwoPi = 2.0 * M_PI;
+// Scale of the coarse stage (fraction of the perimeter): the finest of the multiscale distance's, several times the
+// largest documented blur (1.5 px) on a part's outline of some hundreds of pixels.
+constexpr double kTurnScale = 0.01;
 
 vpMorphException badParameter(const std::string &m) { return vpMorphException(vpMorphException::badParameterError, m); }
 
@@ -77,13 +81,16 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
   c.regionCentroid(d->cx, d->cy);
   d->size = std::sqrt(c.regionArea());
   const vpMorphContour &P = d->polygon;
+  // The turn and shift are estimated on the outline smoothed at kTurnScale, where the details that blur and depth
+  // change alter (teeth of a few pixels) are gone from every view alike.
+  const vpMorphContour S = vpMorphSmoothed(c.outline().counterClockwise(), kTurnScale, 4 * kSamples);
   // Orientation histogram: each edge's length split between the two bins nearest its direction, smoothed by
   // [1 2 1] / 4 (a direction measured within a bin's width of another votes for both).
   std::array<double, kBins> h{};
   double total = 0.0;
-  for (std::size_t k = 0; k < P.size(); ++k) {
-    const std::size_t l = (k + 1) % P.size();
-    const double dx = P.x(l) - P.x(k), dy = P.y(l) - P.y(k), len = std::hypot(dx, dy);
+  for (std::size_t k = 0; k < S.size(); ++k) {
+    const std::size_t l = (k + 1) % S.size();
+    const double dx = S.x(l) - S.x(k), dy = S.y(l) - S.y(k), len = std::hypot(dx, dy);
     double f = std::atan2(dy, dx) / kTwoPi * kBins;
     f -= std::floor(f / kBins) * kBins;
     const int b0 = static_cast<int>(f) % kBins;
@@ -96,8 +103,8 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
     const float v = static_cast<float>((h[(k + kBins - 1) % kBins] + 2.0 * h[k] + h[(k + 1) % kBins]) / (4.0 * total));
     d->hist[k] = d->hist[k + kBins] = v;
   }
-  // Samples evenly along the outline (the measured one when there is one), with their tangent directions.
-  const vpMorphContour s = c.outline().counterClockwise().resampled(kSamples);
+  // Samples evenly along the smoothed outline, with their tangent directions.
+  const vpMorphContour s = S.resampled(kSamples);
   const std::size_t n = s.size();
   std::vector<int> count(kBins, 0);
   for (std::size_t i = 0; i < n; ++i) {

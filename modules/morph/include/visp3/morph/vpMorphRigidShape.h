@@ -27,9 +27,11 @@ struct vpMorphRigidShapeData; // the prepared data (internal)
   <b>Frame.</b> Coordinates are taken about the region's centroid in units of the square root of its area (the
   size), so a similarity between two shapes is near a pure turn in these units.
 
-  <b>Alignment of an input on a target</b> (alignOn()):
+  <b>Alignment of an input on a target</b> (alignOn()), on the outlines smoothed along their length by a Gaussian of
+  1 % of the perimeter (the details of a few pixels that blur and a change of depth alter differ from view to view;
+  the smoothed outlines do not):
   -# Turns: the circular correlation of the two orientation histograms (the outline's length per tangent direction,
-     72 bins: a turn moves it round, a shift and a scale do not); its three highest peaks are the candidate turns.
+     72 bins: a turn moves it round, a shift and a scale do not); its four highest peaks are the candidate turns.
   -# Shifts: per candidate turn, each input sample votes, with every target sample whose tangent direction agrees
      within 12.5 deg, for the shift that lays the one on the other (a generalised Hough transform); the part an
      occluder hides casts no vote and the occluder's edge votes at random. A hidden part also shrinks the input's

@@ -1,0 +1,46 @@
+/*
+  \file vpMorphSmoothing.h
+  \brief Internal to the morph module (not installed): an outline smoothed along its arc length.
+*/
+#ifndef VP_MORPH_SMOOTHING_H
+#define VP_MORPH_SMOOTHING_H
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include <visp3/morph/vpMorphContour.h>
+
+/*
+  Dense resampling by arc length, circular Gaussian smoothing (sigma as a fraction of the perimeter), then
+  resampling to n points: the outline at one scale (sigma <= 0: resampled only).
+*/
+inline vpMorphContour vpMorphSmoothed(const vpMorphContour &c, double sigma, std::size_t n)
+{
+  if (sigma <= 0.0)
+    return c.resampled(n);
+  const std::size_t dense = std::max<std::size_t>(4 * n, 256);
+  const vpMorphContour d = c.resampled(dense);
+  const double s = sigma * dense;
+  const int half = static_cast<int>(std::ceil(3.0 * s));
+  std::vector<double> w(2 * half + 1);
+  double sum = 0.0;
+  for (int k = -half; k <= half; ++k)
+    sum += (w[k + half] = std::exp(-0.5 * k * k / (s * s)));
+  std::vector<double> x(dense), y(dense);
+  const int N = static_cast<int>(dense);
+  for (int i = 0; i < N; ++i) {
+    double ax = 0.0, ay = 0.0;
+    for (int k = -half; k <= half; ++k) {
+      const int j = ((i + k) % N + N) % N;
+      ax += w[k + half] * d.x(j);
+      ay += w[k + half] * d.y(j);
+    }
+    x[i] = ax / sum;
+    y[i] = ay / sum;
+  }
+  return vpMorphContour(x, y, c.units()).resampled(n);
+}
+
+#endif
