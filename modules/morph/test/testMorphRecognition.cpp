@@ -21,6 +21,8 @@
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphShapeDistance.h>
 
+#include "testMorphImages.h"
+
 namespace
 {
 const char *kObjects[] = {"key", "pliers", "wedge", "wrench", "screwdriver", "hammer"};
@@ -87,16 +89,8 @@ cv::Mat view(const cv::Mat &src, double deg, double tx, double ty, double sigma,
   return out;
 }
 
-// The pixel boundary of the largest dark object.
-std::vector<cv::Point> largestBoundary(const cv::Mat &src)
-{
-  cv::Mat bin = src < 128;
-  std::vector<std::vector<cv::Point>> cs;
-  cv::findContours(bin, cs, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-  REQUIRE_FALSE(cs.empty());
-  return *std::max_element(cs.begin(), cs.end(),
-                           [](const auto &a, const auto &b) { return cv::contourArea(a) < cv::contourArea(b); });
-}
+using vpMorphTest::largestBoundary;
+using vpMorphTest::squareOccluder;
 
 // Hides \e fraction of the object's outline, the contiguous arc starting at \e where (fraction of the
 // perimeter), behind an occluder of the background colour with a straight edge: the region between the arc and
@@ -112,26 +106,6 @@ cv::Mat occlude(const cv::Mat &src, double where, double fraction)
   cv::Mat out = src.clone();
   cv::fillPoly(out, std::vector<std::vector<cv::Point>>{piece}, cv::Scalar(255));
   cv::polylines(out, std::vector<std::vector<cv::Point>>{piece}, false, cv::Scalar(255), 2);
-  return out;
-}
-
-// Hides \e share of the object's outline behind a grey square (neither background nor object) centred on the
-// outline point at \e where (fraction of the perimeter), grown until that share of the outline lies inside it: the
-// benchmark scene's occluder, which bites a notch into a straight side instead of cutting it off.
-cv::Mat squareOccluder(const cv::Mat &src, double where, double share)
-{
-  const std::vector<cv::Point> c = largestBoundary(src);
-  const cv::Point o = c[static_cast<std::size_t>(where * c.size()) % c.size()];
-  int h = 1;
-  for (;; ++h) {
-    std::size_t in = 0;
-    for (const cv::Point &p : c)
-      in += (std::abs(p.x - o.x) <= h && std::abs(p.y - o.y) <= h) ? 1 : 0;
-    if (in >= share * c.size())
-      break;
-  }
-  cv::Mat out = src.clone();
-  cv::rectangle(out, cv::Point(o.x - h, o.y - h), cv::Point(o.x + h, o.y + h), cv::Scalar(170), cv::FILLED);
   return out;
 }
 

@@ -19,6 +19,8 @@
 #include <visp3/morph/vpMorphRigidCheck.h>
 #include <visp3/morph/vpMorphRigidShape.h>
 
+#include "testMorphImages.h"
+
 namespace
 {
 const char *kObjects[] = {"key", "pliers", "wedge", "wrench", "screwdriver", "hammer"};
@@ -80,29 +82,6 @@ cv::Mat tilted(const cv::Mat &src, double deg, double roll)
                         cy - c.at<double>(1) / c.at<double>(2), 0, 0, 1);
   return similarity(src, roll, 1.0, 0, 0) * back * H;
 }
-
-// Hides \e fraction of the object's outline behind a grey square (the bench's card) centred on the outline point at
-// \e where (a fraction of the perimeter).
-cv::Mat card(const cv::Mat &src, double where, double fraction)
-{
-  cv::Mat bin = src < 128;
-  std::vector<std::vector<cv::Point>> cs;
-  cv::findContours(bin, cs, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-  const std::vector<cv::Point> &c = *std::max_element(
-      cs.begin(), cs.end(), [](const auto &a, const auto &b) { return cv::contourArea(a) < cv::contourArea(b); });
-  const cv::Point o = c[static_cast<std::size_t>(where * c.size()) % c.size()];
-  int h = 1;
-  for (;; ++h) {
-    std::size_t in = 0;
-    for (const cv::Point &p : c)
-      in += (std::abs(p.x - o.x) <= h && std::abs(p.y - o.y) <= h) ? 1 : 0;
-    if (in >= fraction * c.size())
-      break;
-  }
-  cv::Mat out = src.clone();
-  cv::rectangle(out, cv::Point(o.x - h, o.y - h), cv::Point(o.x + h, o.y + h), cv::Scalar(170), cv::FILLED);
-  return out;
-}
 } // namespace
 
 TEST_CASE("rigid shape: a view turned, shifted, scaled and noisy is laid on its template", "[rigid]")
@@ -139,7 +118,8 @@ TEST_CASE("rigid shape: a fifth of the outline under a card still lies on its te
     const cv::Mat src = readGray(name);
     const vpMorphRigidShape t(extract(src));
     for (double where : {0.1, 0.4, 0.7}) {
-      const cv::Mat v = warp(card(src, where, 0.2), similarity(src, 100.0 * where - 30, 0.9, 15, -10), 4, 5);
+      const cv::Mat v =
+          warp(vpMorphTest::squareOccluder(src, where, 0.2), similarity(src, 100.0 * where - 30, 0.9, 15, -10), 4, 5);
       const vpMorphRigidShape q(extract(v, true));
       const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(q, t, q.alignOn(t));
       CAPTURE(name, where, r.cost, r.targetShare, r.inputShare, r.outsideShare);
@@ -220,7 +200,7 @@ TEST_CASE("rigid recognition: the two-stage search gives the exhaustive search's
   for (int k = 0; k < 24; ++k) {
     cv::Mat v = images[k % 6];
     if (k % 3 == 0)
-      v = card(v, 0.13 * k, 0.15);
+      v = vpMorphTest::squareOccluder(v, 0.13 * k, 0.15);
     const vpMorphContour c = extract(warp(v, similarity(v, turn(rng), scale(rng), 0, 0), 5, k), k % 3 == 0);
     const vpMorphRecognition a = db.recognize(c, true), b = db.recognize(c, false);
     CAPTURE(k, db[a.index].name(), db[b.index].name(), a.distance, b.distance);
