@@ -196,35 +196,6 @@ public:
                                             unsigned int starts, unsigned int maxIterations = 200);
 
   /*!
-    The similarity of the part of a deformed object that is not deformed (a bent key's bow), near \e initial: its
-    pose, and above all its scale (the depth), which the largest overlap and an outline fit only average with the
-    bent part. Each of 12 windows along the input (a sixth of its length, half overlapping) is fitted alone (trimmed
-    point-to-edge ICP from \e initial) and gives the longest stretch of the input within \e tolerance of the target's
-    edges (gaps of 1/64 of the input bridged); the stretch chosen is the one whose scale a fit determines best (the
-    inverse of the scale's variance, from the normal equations and the residuals), so that neither a straight edge
-    (any scale fits along it) nor a limb that bends away slowly (larger residuals) outweighs a curved part that lies on
-    the target. Then refined as refineRigidPart() does. Pass dense outlines (the input is sampled every
-    perimeter / 256).
-    \param tolerance in the contours' units, > 0 (a few tenths of a pixel).
-    \param share if not null, receives the share of the input that the part's stretch covers, in [0, 1].
-    \throw vpMorphException on empty contours, different units, a bad tolerance, or an \e initial that maps the
-    input beyond the range of doubles.
-  */
-  static vpMorphRigidTransform fitRigidPart(const vpMorphContour &input, const vpMorphContour &target,
-                                            const vpMorphRigidTransform &initial, double tolerance,
-                                            double *share = nullptr);
-
-  /*!
-    fitRigidPart() without the search: the part is the longest stretch within \e tolerance under \e initial, fitted
-    (trimmed ICP with scale) on that stretch, and the stretch found again, twice. For a part already found, followed
-    from one image to the next (a fraction of the search's cost).
-    \throw vpMorphException as fitRigidPart().
-  */
-  static vpMorphRigidTransform refineRigidPart(const vpMorphContour &input, const vpMorphContour &target,
-                                               const vpMorphRigidTransform &initial, double tolerance,
-                                               double *share = nullptr);
-
-  /*!
     Checks that \e correspondence fits the two contours (non-empty contours, same units, sizes equal to the
     contours', indices in range, every vertex of each contour used at least once).
     \throw vpMorphException::badContourError on an empty contour, badParameterError otherwise.
