@@ -76,11 +76,11 @@ void vpServoMorph::setTarget(const vpMorphContour &target, double Zd)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpServoMorph::setTarget: the target must be a non-empty contour in pixels");
   checkPositive(Zd, "the desired depth Zd");
-  m_target = target;
-  m_Zd = Zd;
-  m_template = vpMorphTemplate();
-  m_opening = 0.0;
-  m_fixedPart = 0;
+  m_target.contour = target;
+  m_target.depth = Zd;
+  m_target.model = vpMorphTemplate();
+  m_target.opening = 0.0;
+  m_target.fixedPart = 0;
   restart();
 }
 
@@ -93,7 +93,7 @@ void vpServoMorph::setTarget(const vpMorphTemplate &t)
                            "with vpMorphTemplate::setPlanarPose() or use setTarget(contour, Zd)");
   setTarget(t.contour(), Zd);
   if (t.isArticulated())
-    m_template = t;
+    m_target.model = t;
 }
 
 void vpServoMorph::setGain(double gain)
@@ -101,30 +101,30 @@ void vpServoMorph::setGain(double gain)
   checkPositive(gain, "the gain");
   if (gain > 1.0)
     throw vpMorphException(vpMorphException::badParameterError, "vpServoMorph::setGain: the gain must be <= 1");
-  m_gain = gain;
+  m_set.gain = gain;
 }
 
 void vpServoMorph::setSamplingTime(double dt)
 {
   checkPositive(dt, "the sampling time");
-  m_dt = dt;
+  m_set.dt = dt;
 }
 
 void vpServoMorph::setControlLaw(ControlLaw law)
 {
-  m_law = law;
+  m_set.law = law;
   restart();
 }
 
 void vpServoMorph::setTiltCorrection(TiltCorrection mode)
 {
-  m_tiltMode = mode;
+  m_set.tilt = mode;
   restart();
 }
 
 void vpServoMorph::setMeasurement(Measurement m)
 {
-  m_measurement = m;
+  m_set.measurement = m;
   m_aligner.setMethod(m == PAPER ? vpMorphViewAligner::PAPER : vpMorphViewAligner::OUTLINE);
   m_planner.setRigidPath(m == PAPER ? vpMorphSubGoalPlanner::ABOUT_OBJECT_CENTROID
                                     : vpMorphSubGoalPlanner::CAMERA_STRAIGHT_LINE);
@@ -136,16 +136,16 @@ void vpServoMorph::setSubGoalThresholds(double rotationRad, double translationPx
 {
   checkPositive(rotationRad, "the sub-goal rotation threshold");
   checkPositive(translationPx, "the sub-goal translation threshold");
-  m_thr.subRotation = rotationRad;
-  m_thr.subPixels = translationPx;
+  m_set.thresholds.subRotation = rotationRad;
+  m_set.thresholds.subPixels = translationPx;
 }
 
 void vpServoMorph::setFinalThresholds(double rotationRad, double translationPx)
 {
   checkPositive(rotationRad, "the final rotation threshold");
   checkPositive(translationPx, "the final translation threshold");
-  m_thr.finalRotation = rotationRad;
-  m_thr.finalPixels = translationPx;
+  m_set.thresholds.finalRotation = rotationRad;
+  m_set.thresholds.finalPixels = translationPx;
 }
 
 void vpServoMorph::setFinalScaleThreshold(double relativeScale)
@@ -153,13 +153,13 @@ void vpServoMorph::setFinalScaleThreshold(double relativeScale)
   if (!(relativeScale >= 0.0 && relativeScale < 1.0))
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpServoMorph::setFinalScaleThreshold: the relative scale error must be in [0, 1)");
-  m_thr.finalScale = relativeScale;
+  m_set.thresholds.finalScale = relativeScale;
 }
 
 void vpServoMorph::setMinArea(double px2)
 {
   checkPositive(px2, "the minimum area");
-  m_minArea = px2;
+  m_set.minArea = px2;
 }
 
 void vpServoMorph::restart()
@@ -179,8 +179,8 @@ void vpServoMorph::restart()
   m_history.clear();
   m_ve = vpColVector(6, 0.0);
   m_vc = vpColVector(6, 0.0);
-  if (!m_target.empty())
-    m_aligner.setGoal(m_target); // the exploration turn's goal, until the first plan
+  if (!m_target.contour.empty())
+    m_aligner.setGoal(m_target.contour); // the exploration turn's goal, until the first plan
 }
 
 vpColVector vpServoMorph::stop(Status s)
@@ -209,21 +209,21 @@ bool vpServoMorph::plan(const vpMorphContour &current, bool replan, vpColVector 
     v = stop(m_guard.getHaltedStatus());
     return false;
   }
-  if (m_template.isArticulated())
-    m_target = m_template.viewFor(current, &m_opening, &m_fixedPart);
-  if (m_guard.targetMismatch(current, m_target, m_template.isArticulated())) {
+  if (m_target.model.isArticulated())
+    m_target.contour = m_target.model.viewFor(current, &m_target.opening, &m_target.fixedPart);
+  if (m_guard.targetMismatch(current, m_target.contour, m_target.model.isArticulated())) {
     v = stop(m_guard.halt(TARGET_MISMATCH));
     return false;
   }
   // The view laid on the target from the correspondence, searched (any rotation, a part hidden or bent).
-  m_aligner.setGoal(m_target);
+  m_aligner.setGoal(m_target.contour);
   const vpMorphViewAlignment a = m_aligner.align(current);
   if (!a.explained()) {
     m_started = false;
     v = stop(m_guard.hold(UNEXPLAINED_VIEW));
     return false;
   }
-  m_planner.plan(current, m_target, a.transform, m_camIso, m_Zd, m_handEye.get_eMc(),
+  m_planner.plan(current, m_target.contour, a.transform, m_camIso, m_target.depth, m_handEye.get_eMc(),
                  m_aligner.getTracker().correspondence());
   m_tilt.reset();
   // The plan's view is the current one: the map to each sub-goal is the fit to it now.
@@ -258,25 +258,25 @@ void vpServoMorph::residuals(const vpMorphViewAlignment &a, const vpMorphContour
 bool vpServoMorph::passed() const
 {
   const vpMorphRigidTransform &T = m_alignment.transform;
-  const bool translation = m_measurement == PAPER ? std::fabs(T.tx() * m_camIso.get_px()) < m_thr.subPixels &&
-                                                        std::fabs(T.ty() * m_camIso.get_py()) < m_thr.subPixels
-                                                  : m_res.pixels < m_thr.subPixels;
-  return m_res.rotation < m_thr.subRotation && translation && m_res.scalePixels < m_thr.subPixels;
+  const bool translation = m_set.measurement == PAPER ? std::fabs(T.tx() * m_camIso.get_px()) < m_set.thresholds.subPixels &&
+                                                        std::fabs(T.ty() * m_camIso.get_py()) < m_set.thresholds.subPixels
+                                                  : m_res.pixels < m_set.thresholds.subPixels;
+  return m_res.rotation < m_set.thresholds.subRotation && translation && m_res.scalePixels < m_set.thresholds.subPixels;
 }
 
 bool vpServoMorph::atGoal() const
 {
   const vpMorphRigidTransform &T = m_alignment.transform;
-  const bool translation = m_measurement == PAPER ? std::fabs(T.tx() * m_camIso.get_px()) < m_thr.finalPixels &&
-                                                        std::fabs(T.ty() * m_camIso.get_py()) < m_thr.finalPixels
-                                                  : m_res.pixels < m_thr.finalPixels;
-  return m_k + 1 == m_planner.size() && m_res.rotation < m_thr.finalRotation && translation &&
-         m_res.scalePixels < m_thr.finalPixels && (m_thr.finalScale == 0.0 || m_res.scale < m_thr.finalScale);
+  const bool translation = m_set.measurement == PAPER ? std::fabs(T.tx() * m_camIso.get_px()) < m_set.thresholds.finalPixels &&
+                                                        std::fabs(T.ty() * m_camIso.get_py()) < m_set.thresholds.finalPixels
+                                                  : m_res.pixels < m_set.thresholds.finalPixels;
+  return m_k + 1 == m_planner.size() && m_res.rotation < m_set.thresholds.finalRotation && translation &&
+         m_res.scalePixels < m_set.thresholds.finalPixels && (m_set.thresholds.finalScale == 0.0 || m_res.scale < m_set.thresholds.finalScale);
 }
 
 void vpServoMorph::observe(const vpMorphRigidTransform &T)
 {
-  if (!m_online || !m_obs.anchored)
+  if (!m_set.online || !m_obs.anchored)
     return;
   m_obs.accumulated = m_obs.accumulated * m_obs.last;
   const vpMorphRigidTransform Tobs = T.inverse() * m_obs.T; // anchor view -> current view
@@ -292,15 +292,15 @@ vpColVector vpServoMorph::lawVelocity(const vpMorphRigidTransform &T, const vpMo
 {
   const vpHomogeneousMatrix eMc = m_handEye.get_eMc();
   const double k = m_handEye.translationScale();
-  if (m_law == HOMOGENEOUS_TRANSFORMS) {
+  if (m_set.law == HOMOGENEOUS_TRANSFORMS) {
     const vpHomogeneousMatrix eMe =
         eMc * vpMorphSubGoalPlanner::cameraDisplacement(toIntrinsics(T), Zp, k) * eMc.inverse(); // Eq. 11
-    return m_gain * vpExponentialMap::inverse(eMe, m_dt);
+    return m_set.gain * vpExponentialMap::inverse(eMe, m_set.dt);
   }
   // A stock vpServo over vpFeatureMorph, to the current sub-goal: it measures its own error (vpFeatureMorph::error()).
   m_sd.buildFrom(m_planner.getSubGoal(m_k), m_camIso, m_planner.getDepth(m_k));
   m_s.buildFrom(currentN, Z);
-  m_task.setLambda(m_gain / m_dt);
+  m_task.setLambda(m_set.gain / m_set.dt);
   vpColVector vc = m_task.computeControlLaw();
   vc[0] *= k;
   vc[1] *= k;
@@ -326,7 +326,7 @@ void vpServoMorph::record()
 
 vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
 {
-  if (m_target.empty())
+  if (m_target.contour.empty())
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpServoMorph::computeControlLaw: no target; call setTarget() first");
   if (!current.empty() && current.units() != vpMorphContour::PIXEL)
@@ -339,7 +339,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
   if (current.empty()) // hold: the plan and the last fit are kept
     return stop(m_guard.hold(TARGET_LOST));
   const double area = current.area();
-  if (!std::isfinite(area) || area < m_minArea)
+  if (!std::isfinite(area) || area < m_set.minArea)
     return stop(m_guard.hold(DEGENERATE_CONTOUR));
   try {
     const vpMorphContour currentN = current.toNormalized(m_camIso);
@@ -347,11 +347,11 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     // The target checked on the task's first view, before anything moves (the exploration turn, then the plan).
     if (!m_checked) {
       m_checked = true;
-      if (m_guard.targetMismatch(current, m_target, m_template.isArticulated()))
+      if (m_guard.targetMismatch(current, m_target.contour, m_target.model.isArticulated()))
         return stop(m_guard.halt(TARGET_MISMATCH));
-      if (m_template.isArticulated()) { // posed at the opening the view shows, the exploration's goal too
-        m_target = m_template.viewFor(current, &m_opening, &m_fixedPart);
-        m_aligner.setGoal(m_target);
+      if (m_target.model.isArticulated()) { // posed at the opening the view shows, the exploration's goal too
+        m_target.contour = m_target.model.viewFor(current, &m_target.opening, &m_target.fixedPart);
+        m_aligner.setGoal(m_target.contour);
       }
     }
     if (m_exploration.isActive()) {
@@ -361,9 +361,9 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       const vpMorphViewAlignment a = m_aligner.align(current);
       const vpMorphSubGoalPlanner &p = m_planner;
       const vpMorphHandEyeExploration::Result r =
-          m_exploration.step(current, currentN, m_aligner.getGoalNormalized(), m_Zd,
+          m_exploration.step(current, currentN, m_aligner.getGoalNormalized(), m_target.depth,
                              a.explained() ? &a.transform : nullptr, m_camIso, m_tilt, m_handEye, p.getJointJacobian(),
-                             p.getJointPositions(), p.getJointMin(), p.getJointMax(), m_dt, m_guard.getJumpPixels(), v);
+                             p.getJointPositions(), p.getJointMin(), p.getJointMax(), m_set.dt, m_guard.getJumpPixels(), v);
       if (r == vpMorphHandEyeExploration::TURNING) {
         m_status = MOVING;
         m_ve = v;
@@ -380,14 +380,14 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
 
     // From the last fit moved by the share of it the last command executed (the view moved a step towards its goal).
     if (m_havePrev)
-      m_aligner.setStart(m_prevT.interpolated(1.0 - m_gain), m_alignment.sigmaPx);
+      m_aligner.setStart(m_prevT.interpolated(1.0 - m_set.gain), m_alignment.sigmaPx);
     m_alignment = m_aligner.align(current);
     if (!m_alignment.explained()) {
       m_havePrev = false;
       return stop(m_guard.hold(UNEXPLAINED_VIEW));
     }
     m_guard.resume();
-    if (m_havePrev && m_guard.viewJumped(m_alignment.transform, m_prevT, m_gain, m_camIso)) {
+    if (m_havePrev && m_guard.viewJumped(m_alignment.transform, m_prevT, m_set.gain, m_camIso)) {
       // The view jumped (the robot or the object was displaced): a new plan from it, bounded.
       plan(current, true, v);
       return v;
@@ -409,21 +409,21 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     // Out-of-plane part (identity when off or not estimated).
     const bool last = m_k + 1 == m_planner.size();
     const bool tiltOn =
-        m_measurement == OUTLINE && (m_tiltMode == TILT_ALWAYS || (m_tiltMode == TILT_FINAL_APPROACH && last));
+        m_set.measurement == OUTLINE && (m_set.tilt == TILT_ALWAYS || (m_set.tilt == TILT_FINAL_APPROACH && last));
     vpHomogeneousMatrix cMct;
     double Zp = Z;
     const bool tilt =
-        tiltOn && m_tilt.estimate(currentN, m_target.toNormalized(m_camIso), m_Zd, toTarget(T),
-                                  m_alignment.model == vpMorphViewAlignment::RIGID, last, m_gain, cMct, Zp);
+        tiltOn && m_tilt.estimate(currentN, m_target.contour.toNormalized(m_camIso), m_target.depth, toTarget(T),
+                                  m_alignment.model == vpMorphViewAlignment::RIGID, last, m_set.gain, cMct, Zp);
     // At the goal in the plane: stop, unless a tilt is seen and still being levelled (no estimate: the tilt is unknown,
     // and the verification says so).
     if (atGoal() && !(tiltOn && m_tilt.isEstimated() && !m_tilt.isVerified())) {
-      if (m_guard.targetMismatch(current, m_target, m_template.isArticulated())) // never CONVERGED on another shape
+      if (m_guard.targetMismatch(current, m_target.contour, m_target.model.isArticulated())) // never CONVERGED on another shape
         return stop(m_guard.halt(TARGET_MISMATCH));
       // The paper's measurement has no covariance: its thresholds alone decide.
-      const Status s = m_measurement == PAPER
+      const Status s = m_set.measurement == PAPER
                            ? CONVERGED
-                           : m_guard.verify(m_alignment, m_thr.finalRotation, m_thr.finalPixels, m_thr.finalPixels,
+                           : m_guard.verify(m_alignment, m_set.thresholds.finalRotation, m_set.thresholds.finalPixels, m_set.thresholds.finalPixels,
                                             m_res.radiusPx, m_camIso.get_px(), !tiltOn || m_tilt.isVerified());
       return stop(m_guard.halt(s));
     }
@@ -431,14 +431,14 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     const vpColVector vePlanar = lawVelocity(T, currentN, Z, tilt ? Zp : Z);
     vpColVector ve = vePlanar;
     if (tilt)
-      ve += m_gain * (vpVelocityTwistMatrix(m_handEye.get_eMc()) * vpExponentialMap::inverse(cMct, m_dt));
+      ve += m_set.gain * (vpVelocityTwistMatrix(m_handEye.get_eMc()) * vpExponentialMap::inverse(cMct, m_set.dt));
     if (!allFinite(ve))
       return stop(m_guard.hold(DEGENERATE_CONTOUR));
     m_ve = ve;
     m_vc = vpVelocityTwistMatrix(m_handEye.get_eMc().inverse()) * ve;
     // The hand-eye observation: the planar move commanded since an anchor (a fit to this sub-goal) against the image
     // motion; none spans a tilt command, which the planar model would misread.
-    m_obs.last = vpExponentialMap::direct(vePlanar, m_dt);
+    m_obs.last = vpExponentialMap::direct(vePlanar, m_set.dt);
     if (!m_obs.anchored) {
       m_obs.T = T;
       m_obs.Z = Z;

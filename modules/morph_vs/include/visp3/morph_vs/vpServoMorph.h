@@ -123,8 +123,8 @@ public:
   //! Initial hand-eye estimate; restarts the estimator.
   void set_eMc(const vpHomogeneousMatrix &eMc) { m_handEye.reset(eMc); }
   vpHomogeneousMatrix get_eMc() const { return m_handEye.get_eMc(); }
-  void setOnlineCalibration(bool on) { m_online = on; }
-  bool getOnlineCalibration() const { return m_online; }
+  void setOnlineCalibration(bool on) { m_set.online = on; }
+  bool getOnlineCalibration() const { return m_set.online; }
 
   /*!
     The goal: the target contour in pixels, seen from the desired pose at depth Zd (object plane parallel to the
@@ -138,42 +138,42 @@ public:
     \throw vpMorphException::badParameterError when the template has no desired pose.
   */
   void setTarget(const vpMorphTemplate &t);
-  const vpMorphContour &getTargetContour() const { return m_target; }
-  double getTargetDepth() const { return m_Zd; }
+  const vpMorphContour &getTargetContour() const { return m_target.contour; }
+  double getTargetDepth() const { return m_target.depth; }
   //! The opening the articulated target was posed at (radians; 0 for a rigid target).
-  double getTargetOpening() const { return m_opening; }
+  double getTargetOpening() const { return m_target.opening; }
   //! The part of the articulated target that stays where the taught view has it (0 or 1).
-  unsigned int getTargetFixedPart() const { return m_fixedPart; }
+  unsigned int getTargetFixedPart() const { return m_target.fixedPart; }
 
   //! Share of the step commanded per sampling period, in (0, 1] (default 0.5).
   void setGain(double gain);
-  double getGain() const { return m_gain; }
+  double getGain() const { return m_set.gain; }
   //! Sampling period (s, > 0, default 0.1).
   void setSamplingTime(double dt);
-  double getSamplingTime() const { return m_dt; }
+  double getSamplingTime() const { return m_set.dt; }
   void setControlLaw(ControlLaw law);
-  ControlLaw getControlLaw() const { return m_law; }
+  ControlLaw getControlLaw() const { return m_set.law; }
   //! Restarts.
   void setTiltCorrection(TiltCorrection mode);
-  TiltCorrection getTiltCorrection() const { return m_tiltMode; }
+  TiltCorrection getTiltCorrection() const { return m_set.tilt; }
   //! Restarts; PAPER also sets the planner's path and deformation frames and the aligner's method, OUTLINE resets them.
   void setMeasurement(Measurement m);
-  Measurement getMeasurement() const { return m_measurement; }
+  Measurement getMeasurement() const { return m_set.measurement; }
   //! Residual below which a sub-goal is passed (default: the paper's 0.10 rad and 5 px).
   void setSubGoalThresholds(double rotationRad, double translationPx);
-  double getSubGoalRotationThreshold() const { return m_thr.subRotation; }
-  double getSubGoalTranslationThreshold() const { return m_thr.subPixels; }
+  double getSubGoalRotationThreshold() const { return m_set.thresholds.subRotation; }
+  double getSubGoalTranslationThreshold() const { return m_set.thresholds.subPixels; }
   //! Residual below which the target is reached (default 0.001 rad and 0.1 px, the scale's error counted in pixels
   //! at the view's RMS radius).
   void setFinalThresholds(double rotationRad, double translationPx);
-  double getFinalRotationThreshold() const { return m_thr.finalRotation; }
-  double getFinalTranslationThreshold() const { return m_thr.finalPixels; }
+  double getFinalRotationThreshold() const { return m_set.thresholds.finalRotation; }
+  double getFinalTranslationThreshold() const { return m_set.thresholds.finalPixels; }
   //! Relative scale error below which the target is reached, on top (default 0: none).
   void setFinalScaleThreshold(double relativeScale);
-  double getFinalScaleThreshold() const { return m_thr.finalScale; }
+  double getFinalScaleThreshold() const { return m_set.thresholds.finalScale; }
   //! Smallest contour area (px^2, > 0, default 25): below, DEGENERATE_CONTOUR.
   void setMinArea(double px2);
-  double getMinArea() const { return m_minArea; }
+  double getMinArea() const { return m_set.minArea; }
 
   vpMorphViewAligner &getAligner() { return m_aligner; }
   const vpMorphViewAligner &getAligner() const { return m_aligner; }
@@ -262,6 +262,25 @@ private:
   {
     double rotation = 0.0, pixels = 0.0, scale = 0.0, scalePixels = 0.0, radiusPx = 0.0;
   };
+  // The target: its contour, its template (none for a rigid target), its depth, and the opening and fixed part an
+  // articulated one was posed at.
+  struct TargetState
+  {
+    vpMorphContour contour;
+    vpMorphTemplate model;
+    double depth = 0.5, opening = 0.0;
+    unsigned int fixedPart = 0;
+  };
+  // The user's settings of the law.
+  struct Settings
+  {
+    double gain = 0.5, dt = 0.1, minArea = 25.0;
+    ControlLaw law = HOMOGENEOUS_TRANSFORMS;
+    TiltCorrection tilt = TILT_OFF;
+    Measurement measurement = OUTLINE;
+    bool online = true;
+    Thresholds thresholds;
+  };
   // The hand-eye observation between fits to one sub-goal: the fit and depth at the anchor, the moves since.
   struct Observation
   {
@@ -285,16 +304,9 @@ private:
   void record();
 
   vpCameraParameters m_cam, m_camIso; // the intrinsics, and the square-pixel camera the views are compared in
-  vpMorphContour m_target, m_current;
-  vpMorphTemplate m_template; // the articulated template (none for a rigid target)
-  double m_opening = 0.0;
-  unsigned int m_fixedPart = 0;
-  double m_Zd = 0.5, m_gain = 0.5, m_dt = 0.1, m_minArea = 25.0;
-  ControlLaw m_law = HOMOGENEOUS_TRANSFORMS;
-  TiltCorrection m_tiltMode = TILT_OFF;
-  Measurement m_measurement = OUTLINE;
-  bool m_online = true;
-  Thresholds m_thr;
+  TargetState m_target;
+  Settings m_set;
+  vpMorphContour m_current;
 
   vpMorphViewAligner m_aligner;
   vpMorphSubGoalPlanner m_planner;
