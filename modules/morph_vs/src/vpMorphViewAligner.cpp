@@ -279,8 +279,10 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
   if (!result.perspective)
     m_haveHomography = false;
   if (result.explained()) {
+    // The next view moved by an unknown share of this alignment: its residuals' scale is measured anew there (a
+    // start at this one's noise would keep only the samples that did not move). setStart() may say better.
     m_start = result.transform;
-    m_startSigma = result.sigmaPx / std::max(m_cam.get_px(), m_cam.get_py());
+    m_startSigma = 0.0;
     m_haveStart = true;
   }
   m_last = result;
