@@ -473,11 +473,11 @@ public:
       // A view the feature's aligner does not explain gives a zero error: not a goal reached, a view not measured.
       if (!m_s.getAlignment().explained())
         return holdCommand(msSince(t0));
-      if (fitJumped(m_s.getAlignment().transform))
+      const vpColVector e = m_task->getError();
+      if (errorJumped(e))
         return stopCommand("feature-jump");
       cmd.v = vpVelocityTwistMatrix(m_ctx.eMc) * vc;
       // Stop rule: s - s* = (centroid, angle, log scale) as the outline's RMS displacement in pixels.
-      const vpColVector e = m_task->getError();
       const double r = radiusPx(c);
       cmd.converged = settled(std::sqrt(e[0] * e[0] * m_ctx.cam.get_px() * m_ctx.cam.get_px() +
                                         e[1] * e[1] * m_ctx.cam.get_py() * m_ctx.cam.get_py() +
@@ -497,25 +497,24 @@ public:
 private:
   /*!
     A stock vpServo has no plan to re-make and no test of its own input: a view that jumps (a bump, the camera
-    displaced, another shape taken for the object) would drag it anywhere. The feature's fit to the goal (rotation,
-    translation, scale) changes per period by about lambda dt of itself; twice that plus 2 deg, 15 px or 5 % in scale
-    is a jump, and the adapter stops ("feature-jump") before sending the command. On the fit, not on the contour's
-    centroid and area: an outline joined across an occluder's cut changes its bridge, and its area by 6-41 %, from one
-    image to the next while the fit (robust, see vpFeatureMorph) does not move.
+    displaced, another shape taken for the object) would drag it anywhere. Its law makes each component of the error
+    e = s - s* (centroid, angle, log scale) decrease by lambda dt of itself per period (L L+ = I for four features on
+    four motions); a change of a component beyond twice that, plus 15 px, 2 deg or 5 % in scale (the bump the adapter
+    detects), is a jump, and the adapter stops ("feature-jump") before sending the command. On the error, where the
+    law's prediction holds, rather than on the fit's parameters, whose translation about the view's centroid moves
+    with the rotation.
   */
-  bool fitJumped(const vpMorphRigidTransform &T)
+  bool errorJumped(const vpColVector &e)
   {
-    const double g = m_ctx.lambda * m_ctx.samplingTime, px = m_ctx.cam.get_px(), py = m_ctx.cam.get_py();
+    const double g = m_ctx.lambda * m_ctx.samplingTime;
+    const double bump[4] = {15.0 / m_ctx.cam.get_px(), 15.0 / m_ctx.cam.get_py(), vpMath::rad(2.0), 0.05};
     bool jump = false;
-    if (m_havePrev) {
-      const double dth = std::fabs(std::remainder(T.theta() - m_prevFit.theta(), 2.0 * M_PI));
-      const double dt = std::hypot((T.tx() - m_prevFit.tx()) * px, (T.ty() - m_prevFit.ty()) * py);
-      const double ds = std::fabs(std::log(T.scale() / m_prevFit.scale()));
-      jump = dth > 2.0 * g * std::fabs(m_prevFit.theta()) + vpMath::rad(2.0) ||
-             dt > 2.0 * g * std::hypot(m_prevFit.tx() * px, m_prevFit.ty() * py) + 15.0 ||
-             ds > 2.0 * g * std::fabs(std::log(m_prevFit.scale())) + 0.05;
-    }
-    m_prevFit = T;
+    if (m_havePrev)
+      for (unsigned int i = 0; i < 4 && !jump; ++i) {
+        const double change = i == 2 ? std::remainder(e[i] - m_prevError[i], 2.0 * M_PI) : e[i] - m_prevError[i];
+        jump = std::fabs(change + g * m_prevError[i]) > g * std::fabs(m_prevError[i]) + bump[i];
+      }
+    m_prevError = e;
     m_havePrev = true;
     return jump;
   }
@@ -535,7 +534,7 @@ private:
   bool m_built = false;
   unsigned int m_measured = 0;
   bool m_havePrev = false;
-  vpMorphRigidTransform m_prevFit; // the feature's fit at the last period
+  vpColVector m_prevError; // the task's error at the last period
 };
 
 //! IBVS on the 4 tag corners (ViSP's tutorial-ibvs-4pts set-up), depth of each corner from the tag pose.

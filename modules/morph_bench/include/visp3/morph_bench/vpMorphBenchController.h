@@ -63,7 +63,7 @@ class vpServoMorph;
     then "too-many-replans").
   - "morph-vpservo": holds while vpFeatureMorph's aligner does not explain the view (its error is then zero, which
     is not a goal reached); no sequence to re-plan, and a stock vpServo does not test its input: a jump of the
-    feature's fit beyond what one step explains (a bump, an occluder) stops the run ("feature-jump").
+    error beyond what one step of the law explains (a bump, an occluder) stops the run ("feature-jump").
 */
 class vpMorphBenchController
 {
