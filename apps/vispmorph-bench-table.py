@@ -16,8 +16,9 @@ over the runs and, in brackets, the median final error of the successful ones (m
 is computed from the files only: what it says is what the runs did. With --report: a table per robot of every set
 and controller: success with its 95 % interval (Wilson's; 3 / n for none) over the runs that could be set up and whose
 pose the taught view bounds, the false convergences, the views apart (unobservable: their runs, successes and false
-convergences; symmetric, scored modulo their symmetry), the set-up failures, the median final error, and the compute
-a period (median and 95th percentile, ms and over each run's machine yardstick; from timings.csv).
+convergences; symmetric, scored modulo their symmetry), the set-up failures, the median final error, the compute
+a period (median and 95th percentile, ms and over each run's machine yardstick; from timings.csv) and the mean CPU
+time of a whole run (rendering included: what a sweep costs).
 """
 
 import math
@@ -140,7 +141,7 @@ def report(paths):
     apart (unobservable: their successes and false convergences; symmetric), the set-up failures, the median final
     error and the compute per period (median / p95 and over the yardstick), from the runs and timings of \a paths."""
     columns = ("set", "robot", "controller", "success", "failure", "iterations", "final_t_mm", "final_r_deg",
-               "false_converged", "unobservable", "symmetry", "period_ms", "yardstick_ms")
+               "false_converged", "unobservable", "symmetry", "period_ms", "yardstick_ms", "run_cpu_s")
     rows = []
     for p in paths:
         try:
@@ -154,8 +155,8 @@ def report(paths):
         out += ["", "**%s**" % robot, "",
                 "| set | controller | success (95 % interval) | false-converged | unobservable: runs (successes, "
                 "false-converged) | symmetric | set-up failures | median final error (mm / deg) | compute a period, "
-                "median / p95 (ms) | over the yardstick, median / p95 |",
-                "|---|---|---|---|---|---|---|---|---|---|"]
+                "median / p95 (ms) | over the yardstick, median / p95 | CPU a run (s) |",
+                "|---|---|---|---|---|---|---|---|---|---|---|"]
         mine = [r for r in rows if r["robot"] == robot]
         for s in ordered([r["set"] for r in mine], SETS):
             for c in ordered([r["controller"] for r in mine if r["set"] == s], CONTROLLERS):
@@ -182,7 +183,8 @@ def report(paths):
 
                 def pair(a, b, fmt):
                     return "%s / %s" % (fmt % a if a is not None else "-", fmt % b if b is not None else "-")
-                out.append("| %s | %s | %s | %s | %s | %d | %d | %s | %s | %s |" % (
+                cpu = [v for v in (number(r.get("run_cpu_s")) for r in runs) if v is not None]
+                out.append("| %s | %s | %s | %s | %s | %d | %d | %s | %s | %s | %s |" % (
                     s, c,
                     "%d/%d (%.0f %%, %.0f-%.0f)" % (ok, len(main), 100.0 * ok / len(main), 100 * lo, 100 * hi)
                     if main else "-",
@@ -192,7 +194,8 @@ def report(paths):
                     sum(1 for r in main if (number(r["symmetry"]) or 1) != 1), len(setup),
                     pair(statistics.median(t) if t else None, statistics.median(d) if d else None, "%.3g"),
                     pair(quantile(periods, 0.5), quantile(periods, 0.95), "%.2f"),
-                    pair(quantile(ratios, 0.5), quantile(ratios, 0.95), "%.2f")))
+                    pair(quantile(ratios, 0.5), quantile(ratios, 0.95), "%.2f"),
+                    "%.2f" % statistics.mean(cpu) if cpu else "-"))
     return "\n".join(out[1:])
 
 

@@ -14,7 +14,7 @@ SETS = ["planar", "planar-hard", "6dof", "calib", "calib-no-tilt", "noise", "occ
         "calib-wide", "saturated", "low-contrast", "rough", "gradient", "plane-edge", "large-distractor", "res-1280",
         "res-320"]
 # Columns of timings.csv that read_runs() joins to the runs (they are not in runs.csv: they differ between runs).
-TIMING_COLUMNS = ("yardstick_ms", "measure_ms", "control_ms", "max_control_ms", "period_ms")
+TIMING_COLUMNS = ("yardstick_ms", "measure_ms", "control_ms", "max_control_ms", "run_cpu_s", "period_ms")
 CONTROLLERS = ["morph", "morph-planar", "morph-paper", "morph-vpservo", "ibvs-current", "ibvs-desired", "ibvs-mean",
                "pbvs", "moments", "moments-planar"]
 

@@ -13,6 +13,7 @@
 #include <visp3/morph_bench/vpMorphBenchObservability.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
+#include <visp3/morph_sim/vpMorphThreadCpuClock.h>
 
 #include "vpMorphBenchJoint.h"
 
@@ -143,6 +144,14 @@ vpMorphRecognition vpMorphBench::recognizeStart(const vpMorphBenchScenario &sc, 
 
 vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::string &controllerName,
                                      const FrameObserver &observer) const
+{
+  const vpMorphThreadCpuClock::time_point t0 = vpMorphThreadCpuClock::now();
+  vpMorphBenchResult res = runOnce(sc, controllerName);
+  res.runCpuS = vpMorphThreadCpuClock::millisecondsSince(t0) / 1000.0;
+  return res;
+}
+
+vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const std::string &controllerName) const
 {
   std::unique_ptr<vpMorphBenchController> controller = vpMorphBenchController::create(controllerName);
   vpMorphBenchResult res;

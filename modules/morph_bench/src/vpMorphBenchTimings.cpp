@@ -33,7 +33,7 @@ nlohmann::json jnum(double x) { return std::isfinite(x) ? nlohmann::json(x) : nl
 
 std::string vpMorphBenchTimings::header()
 {
-  return "set,robot,controller,scenario,object,yardstick_ms,measure_ms,control_ms,max_control_ms,period_ms";
+  return "set,robot,controller,scenario,object,yardstick_ms,measure_ms,control_ms,max_control_ms,run_cpu_s,period_ms";
 }
 
 void vpMorphBenchTimings::add(const vpMorphBenchResult &r, double yardstickMs)
@@ -48,6 +48,7 @@ void vpMorphBenchTimings::add(const vpMorphBenchResult &r, double yardstickMs)
   e.measure = r.measureMs;
   e.control = r.controlMs;
   e.maxControl = r.maxControlMs;
+  e.runCpu = r.runCpuS;
   e.periods = r.periodMs;
   m_entries.push_back(e);
 }
@@ -62,8 +63,8 @@ void vpMorphBenchTimings::readTimings(std::istream &in, const std::string &what)
     if (line.empty())
       continue;
     const std::vector<std::string> f = vpMorphBenchCsv::split(line);
-    if (f.size() != 10)
-      throw vpMorphException(vpMorphException::ioError, what + ": a row without its 10 fields: " + line);
+    if (f.size() != 11)
+      throw vpMorphException(vpMorphException::ioError, what + ": a row without its 11 fields: " + line);
     Entry e;
     e.set = f[0];
     e.robot = f[1];
@@ -74,7 +75,8 @@ void vpMorphBenchTimings::readTimings(std::istream &in, const std::string &what)
     e.measure = vpMorphBenchCsv::number(f[6]);
     e.control = vpMorphBenchCsv::number(f[7]);
     e.maxControl = vpMorphBenchCsv::number(f[8]);
-    std::istringstream periods(f[9]);
+    e.runCpu = vpMorphBenchCsv::number(f[9]);
+    std::istringstream periods(f[10]);
     double p;
     while (periods >> p)
       e.periods.push_back(p);
@@ -99,7 +101,8 @@ std::vector<std::string> vpMorphBenchTimings::rows() const
   for (const Entry &e : m_entries) {
     std::ostringstream os;
     os << e.set << ',' << e.robot << ',' << e.controller << ',' << e.scenario << ',' << e.object << ','
-       << num(e.yardstick) << ',' << num(e.measure) << ',' << num(e.control) << ',' << num(e.maxControl) << ',';
+       << num(e.yardstick) << ',' << num(e.measure) << ',' << num(e.control) << ',' << num(e.maxControl) << ','
+       << num(e.runCpu) << ',';
     for (std::size_t k = 0; k < e.periods.size(); ++k)
       os << (k ? " " : "") << num(e.periods[k]);
     out.push_back(os.str());
@@ -126,10 +129,11 @@ std::vector<vpMorphBenchTimings::Summary> vpMorphBenchTimings::summarize() const
     s.robot = g.second.front()->robot;
     s.controller = g.second.front()->controller;
     std::vector<double> ms, ratio;
-    double sumM = 0, sumC = 0;
+    double sumM = 0, sumC = 0, sumRun = 0;
     unsigned int measured = 0;
     for (const Entry *e : g.second) {
       ++s.runs;
+      sumRun += std::isfinite(e->runCpu) ? e->runCpu : 0.0;
       for (double p : e->periods) {
         ms.push_back(p);
         if (e->yardstick > 0)
@@ -149,6 +153,7 @@ std::vector<vpMorphBenchTimings::Summary> vpMorphBenchTimings::summarize() const
     s.p95Ratio = quantile(ratio, 0.95);
     s.meanMeasureMs = measured ? sumM / measured : kNaN;
     s.meanControlMs = measured ? sumC / measured : kNaN;
+    s.meanRunCpuS = s.runs ? sumRun / s.runs : kNaN;
     out.push_back(s);
   }
   return out;
@@ -173,7 +178,8 @@ std::string vpMorphBenchTimings::json(const std::map<std::string, std::string> &
                               {"p95_period_over_yardstick", jnum(s.p95Ratio)},
                               {"mean_measure_ms", jnum(s.meanMeasureMs)},
                               {"mean_control_ms", jnum(s.meanControlMs)},
-                              {"max_control_ms", jnum(s.maxControlMs)}});
+                              {"max_control_ms", jnum(s.maxControlMs)},
+                              {"mean_run_cpu_s", jnum(s.meanRunCpuS)}});
   return j.dump(2);
 }
 
@@ -181,12 +187,12 @@ std::string vpMorphBenchTimings::markdown() const
 {
   std::ostringstream os;
   os << "| set | robot | controller | periods | compute a period, median / p95 (ms) | over the yardstick, median / p95 "
-        "| mean measure / control (ms) |\n|---|---|---|---|---|---|---|\n";
+        "| mean measure / control (ms) | CPU a run (s) |\n|---|---|---|---|---|---|---|---|\n";
   auto dash = [](const std::string &x) { return x.empty() ? std::string("-") : x; };
   for (const Summary &s : summarize())
     os << "| " << s.set << " | " << s.robot << " | " << s.controller << " | " << s.periods << " | "
        << dash(num(s.medianMs, 3)) << " / " << dash(num(s.p95Ms, 3)) << " | " << dash(num(s.medianRatio, 3)) << " / "
        << dash(num(s.p95Ratio, 3)) << " | " << dash(num(s.meanMeasureMs, 3)) << " / " << dash(num(s.meanControlMs, 3))
-       << " |\n";
+       << " | " << dash(num(s.meanRunCpuS, 3)) << " |\n";
   return os.str();
 }

@@ -21,7 +21,8 @@ RUN_HEADER = ("set,robot,controller,scenario,seed,object,start_rotation_deg,star
               "faults,holds,replans,rerecognitions,max_speed_mps,max_rotation_speed_degps,goal,setup,converged,"
               "false_converged,truth,tag_size_mm,taught_tag_t_mm,taught_tag_r_deg,final_overlap_t_mm,"
               "final_overlap_r_deg,symmetry,unobservable")
-TIMINGS_HEADER = "set,robot,controller,scenario,object,yardstick_ms,measure_ms,control_ms,max_control_ms,period_ms"
+TIMINGS_HEADER = ("set,robot,controller,scenario,object,yardstick_ms,measure_ms,control_ms,max_control_ms,run_cpu_s,"
+                  "period_ms")
 
 
 def main():
@@ -64,7 +65,7 @@ def main():
                 runs.append(",".join(str(v) for v in fields))
                 period = float(measure) + float(control)
                 timings.append(",".join(str(v) for v in [
-                    s, robot, c, scenario, "pliers", 0.8, measure, control, control,
+                    s, robot, c, scenario, "pliers", 0.8, measure, control, control, "%.3g" % (0.01 * iters * period),
                     " ".join("%.4g" % (period * f) for f in (0.9, 1.0, 1.1))]))
                 if s == "noise" and c == "moments":
                     continue  # a run without curve

@@ -129,6 +129,7 @@ public:
 
 private:
   struct Taught;
+  vpMorphBenchResult runOnce(const vpMorphBenchScenario &scenario, const std::string &controller) const;
   const Taught &taught(const std::string &variant, const std::string &set) const;
 
   vpMorphBenchObjectSet m_objects;

@@ -71,21 +71,21 @@ public:
   //! What a controller is told at the start of a run.
   struct Context
   {
-    vpCameraParameters cam;                    //!< estimated intrinsics
-    vpHomogeneousMatrix eMc;                   //!< estimated hand-eye transform
-    vpHomogeneousMatrix cdMo;                  //!< desired object pose (taught with the template)
+    vpCameraParameters cam;   //!< estimated intrinsics
+    vpHomogeneousMatrix eMc;  //!< estimated hand-eye transform
+    vpHomogeneousMatrix cdMo; //!< desired object pose (taught with the template)
     //! The tag as the detector saw it in the taught view (rendered at cdMo): the stock controllers' desired
     //! features, measured like their current ones (teach by showing), so that the detector's own bias cancels.
     std::vector<vpImagePoint> taughtTagCorners; //!< pixels, detector order
-    vpHomogeneousMatrix taughtTagPose;           //!< cdMo as the detector estimated it
-    std::vector<vpPoint> tagCorners3D;         //!< tag corners in the object frame, detector order
-    int tagId = 0;                             //!< AprilTag 36h11 id
-    double tagSize = 0.08;                     //!< black-border side, m
-    vpHomogeneousMatrix oMt;                   //!< tag frame in the object frame
-    const vpMorphDatabase *database = nullptr; //!< templates (VISPMorph controllers)
-    std::string expectedObject;                //!< the object truly present (only to score the recognition)
-    double lambda = 2.5;                       //!< gain (1/s): the same for every controller
-    double samplingTime = 0.04;                //!< s
+    vpHomogeneousMatrix taughtTagPose;          //!< cdMo as the detector estimated it
+    std::vector<vpPoint> tagCorners3D;          //!< tag corners in the object frame, detector order
+    int tagId = 0;                              //!< AprilTag 36h11 id
+    double tagSize = 0.08;                      //!< black-border side, m
+    vpHomogeneousMatrix oMt;                    //!< tag frame in the object frame
+    const vpMorphDatabase *database = nullptr;  //!< templates (VISPMorph controllers)
+    std::string expectedObject;                 //!< the object truly present (only to score the recognition)
+    double lambda = 2.5;                        //!< gain (1/s): the same for every controller
+    double samplingTime = 0.04;                 //!< s
     //! Fault injection (WRONG_TEMPLATE): the first recognition returns this template, whatever it sees.
     std::string forcedTemplate;
     //! The robot's joint limits (infinite for the free camera, whose "joints" are its pose).
@@ -96,10 +96,10 @@ public:
   {
     vpColVector v = vpColVector(6, 0.0); //!< velocity, in \e frame
     vpRobot::vpControlFrameType frame = vpRobot::JOINT_STATE;
-    bool measured = true;   //!< features were measured in this image (false: zero velocity, hold)
-    bool stop = false;      //!< the controller gave up (see reason); zero velocity
-    bool converged = false; //!< the controller's own convergence test passed
-    std::string reason;     //!< short word when stop (e.g. "recognition", "unreliable-correspondence")
+    bool measured = true;      //!< features were measured in this image (false: zero velocity, hold)
+    bool stop = false;         //!< the controller gave up (see reason); zero velocity
+    bool converged = false;    //!< the controller's own convergence test passed
+    std::string reason;        //!< short word when stop (e.g. "recognition", "unreliable-correspondence")
     bool replanned = false;    //!< the view jumped and the controller re-planned from it (zero velocity)
     bool rerecognized = false; //!< the target was found wrong and the object recognised anew
     double measureMs = 0;      //!< CPU time to measure the features (tag masking for silhouettes excluded)

@@ -1,6 +1,7 @@
 /*!
   \file vpMorphBenchEvent.h
-  \brief A timed fault injected into a benchmark run: dropped frames, object absent, occluder, pose jump, wrong template.
+  \brief A timed fault injected into a benchmark run: dropped frames, object absent, occluder, pose jump, wrong
+  template.
 */
 #ifndef VP_MORPH_BENCH_EVENT_H
 #define VP_MORPH_BENCH_EVENT_H

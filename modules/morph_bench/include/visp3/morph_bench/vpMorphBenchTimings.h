@@ -21,7 +21,8 @@
   the tag's detection), control (the law). A period's compute is measure + control, for every measured period but the
   first (its recognition and plan; vpMorphBenchResult::periodMs), rendering excluded. Per group: the median and the
   95th percentile (nearest rank) of the periods, in ms and as a ratio to the machine yardstick of the run they came
-  from (each row carries its run's), the mean measure and control, the worst control.
+  from (each row carries its run's), the mean measure and control, the worst control, and the mean CPU time of a
+  whole run (rendering included: what a sweep of such runs costs).
 
   They are kept apart from runs.csv because they differ from one run to the next: merged shards give the results
   of one run to the byte, and these times as they were measured.
@@ -36,6 +37,7 @@ public:
     double medianMs = 0, p95Ms = 0;       //!< per period (NaN without periods)
     double medianRatio = 0, p95Ratio = 0; //!< per period, over its run's yardstick (NaN without one)
     double meanMeasureMs = 0, meanControlMs = 0, maxControlMs = 0; //!< over the runs that measured
+    double meanRunCpuS = 0; //!< CPU time of a whole run, rendering included (what a sweep costs), s
   };
 
   //! Adds a run's times, with the machine yardstick of its run (ms, 0: unknown).
@@ -57,7 +59,7 @@ private:
   {
     std::string set, robot, controller, object;
     int scenario = 0;
-    double yardstick = 0, measure = 0, control = 0, maxControl = 0;
+    double yardstick = 0, measure = 0, control = 0, maxControl = 0, runCpu = 0;
     std::vector<double> periods;
   };
   std::vector<Entry> m_entries;
