@@ -48,6 +48,15 @@ class vpServoMorph;
   other stock ones run EYEINHAND_L_cVe_eJe with cVe from the estimated eMc and eJe from the robot; all share the same
   constant gain.
 
+  <b>Convergence</b> (Command::converged: the controller declares itself done, and the run ends). "morph",
+  "morph-planar" and "morph-paper" when vpServoMorph reports CONVERGED. The others by a stop rule on their own error,
+  written as the RMS image displacement of the points their feature stands for (the tag's corners, or the outline under
+  the feature's similarity), within 3 times that displacement's own noise for 3 measured periods; the noise is 0.1 px
+  per edge point (vpMorphBenchObservability's noise model) through the feature's fit: sigma sqrt(4 / n) for a similarity
+  fitted to n outline points, 2 sigma / sqrt(L) for a tag corner where two fitted edges of L px meet. Every other stop
+  (a vpServoMorph status other than CONVERGED that stops, a feature jump, a lost view) is zero velocity and a failure
+  with its reason, never a convergence.
+
   <b>Faults</b> (vpMorphBenchEvent). Every controller holds (zero velocity, Command::measured false) on a
   missing frame or when its features are not in the image; the loop gives up after 10 such iterations in a row
   (feature-lost). The VISPMorph adapters add:
