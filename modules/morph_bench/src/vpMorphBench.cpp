@@ -146,12 +146,13 @@ vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::
                                      const FrameObserver &observer) const
 {
   const vpMorphThreadCpuClock::time_point t0 = vpMorphThreadCpuClock::now();
-  vpMorphBenchResult res = runOnce(sc, controllerName);
+  vpMorphBenchResult res = runOnce(sc, controllerName, observer);
   res.runCpuS = vpMorphThreadCpuClock::millisecondsSince(t0) / 1000.0;
   return res;
 }
 
-vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const std::string &controllerName) const
+vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const std::string &controllerName,
+                                         const FrameObserver &observer) const
 {
   std::unique_ptr<vpMorphBenchController> controller = vpMorphBenchController::create(controllerName);
   vpMorphBenchResult res;

@@ -129,7 +129,8 @@ public:
 
 private:
   struct Taught;
-  vpMorphBenchResult runOnce(const vpMorphBenchScenario &scenario, const std::string &controller) const;
+  vpMorphBenchResult runOnce(const vpMorphBenchScenario &scenario, const std::string &controller,
+                             const FrameObserver &observer) const;
   const Taught &taught(const std::string &variant, const std::string &set) const;
 
   vpMorphBenchObjectSet m_objects;
