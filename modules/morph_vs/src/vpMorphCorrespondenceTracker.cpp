@@ -1,5 +1,7 @@
 #include <visp3/morph_vs/vpMorphCorrespondenceTracker.h>
 
+#include "vpMorphParameterCheck.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,11 +23,7 @@ void vpMorphCorrespondenceTracker::setJumpFactor(double f)
 
 void vpMorphCorrespondenceTracker::setWorkFloor(double w)
 {
-  if (!std::isfinite(w) || w < 0.0) {
-    std::ostringstream os;
-    os << "vpMorphCorrespondenceTracker::setWorkFloor: the floor must be finite and >= 0, got " << w;
-    throw vpMorphException(vpMorphException::badParameterError, os.str());
-  }
+  vpMorphParameterCheck::nonNegative(w, "vpMorphCorrespondenceTracker::setWorkFloor", "the floor");
   m_workFloor = w;
 }
 

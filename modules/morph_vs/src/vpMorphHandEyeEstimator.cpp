@@ -1,5 +1,7 @@
 #include <visp3/morph_vs/vpMorphHandEyeEstimator.h>
 
+#include "vpMorphParameterCheck.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -36,11 +38,7 @@ void vpMorphHandEyeEstimator::setForgetting(double f)
 
 void vpMorphHandEyeEstimator::setPriorWeight(double w)
 {
-  if (!std::isfinite(w) || w <= 0.0) {
-    std::ostringstream os;
-    os << "vpMorphHandEyeEstimator::setPriorWeight: the weight must be finite and > 0, got " << w;
-    throw vpMorphException(vpMorphException::badParameterError, os.str());
-  }
+  vpMorphParameterCheck::positive(w, "vpMorphHandEyeEstimator::setPriorWeight", "the weight");
   m_prior = w;
   if (m_moves == 0)
     reset(m_eMc0);

@@ -1,5 +1,7 @@
 #include <visp3/morph_vs/vpMorphJointVelocity.h>
 
+#include "vpMorphParameterCheck.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -24,11 +26,7 @@ vpMorphJointVelocity::vpMorphJointVelocity(double samplingTime) : m_dt(0.0) { se
 
 void vpMorphJointVelocity::setSamplingTime(double samplingTime)
 {
-  if (!std::isfinite(samplingTime) || samplingTime <= 0.0) {
-    std::ostringstream os;
-    os << "vpMorphJointVelocity: the sampling time must be finite and > 0, got " << samplingTime;
-    throw vpMorphException(vpMorphException::badParameterError, os.str());
-  }
+  vpMorphParameterCheck::positive(samplingTime, "vpMorphJointVelocity", "the sampling time");
   m_dt = samplingTime;
 }
 

@@ -1,5 +1,7 @@
 #include <visp3/morph_vs/vpMorphServoGuard.h>
 
+#include "vpMorphParameterCheck.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -7,17 +9,13 @@
 
 void vpMorphServoGuard::setJumpPixels(double px)
 {
-  if (!std::isfinite(px) || px <= 0.0)
-    throw vpMorphException(vpMorphException::badParameterError,
-                           "vpMorphServoGuard::setJumpPixels: the jump threshold must be finite and > 0");
+  vpMorphParameterCheck::positive(px, "vpMorphServoGuard::setJumpPixels", "the jump threshold");
   m_jumpPx = px;
 }
 
 void vpMorphServoGuard::setJumpRotation(double rad)
 {
-  if (!std::isfinite(rad) || rad <= 0.0)
-    throw vpMorphException(vpMorphException::badParameterError,
-                           "vpMorphServoGuard::setJumpRotation: the jump threshold must be finite and > 0");
+  vpMorphParameterCheck::positive(rad, "vpMorphServoGuard::setJumpRotation", "the jump threshold");
   m_jumpRotation = rad;
 }
 

@@ -1,5 +1,7 @@
 #include <visp3/morph_vs/vpMorphTiltEstimator.h>
 
+#include "vpMorphParameterCheck.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,13 +15,6 @@ namespace
 {
 // Outline points of a homography fit (vpMorphHomography's default).
 const unsigned int kSamples = 200;
-
-void checkNonNegative(double v, const char *what)
-{
-  if (!std::isfinite(v) || v < 0.0)
-    throw vpMorphException(vpMorphException::badParameterError,
-                           std::string("vpMorphTiltEstimator: ") + what + " must be finite and >= 0");
-}
 
 // The largest standard deviation of a 2x2 covariance [c00 c01; c01 c11].
 double largestDeviation(double c00, double c01, double c11)
@@ -61,29 +56,25 @@ void beyondDeadZone(double ex, double ey, double fx, double fy, double s00, doub
 
 void vpMorphTiltEstimator::setPixelSize(double unitsPerPixel)
 {
-  if (!std::isfinite(unitsPerPixel) || unitsPerPixel <= 0.0)
-    throw vpMorphException(vpMorphException::badParameterError,
-                           "vpMorphTiltEstimator::setPixelSize: the pixel size must be finite and > 0");
+  vpMorphParameterCheck::positive(unitsPerPixel, "vpMorphTiltEstimator::setPixelSize", "the pixel size");
   m_pixel = unitsPerPixel;
 }
 
 void vpMorphTiltEstimator::setDeadZone(double rad)
 {
-  checkNonNegative(rad, "the dead zone");
+  vpMorphParameterCheck::nonNegative(rad, "vpMorphTiltEstimator", "the dead zone");
   m_deadZone = rad;
 }
 
 void vpMorphTiltEstimator::setOutlineDeadZone(double rad)
 {
-  checkNonNegative(rad, "the outline dead zone");
+  vpMorphParameterCheck::nonNegative(rad, "vpMorphTiltEstimator", "the outline dead zone");
   m_outlineDeadZone = rad;
 }
 
 void vpMorphTiltEstimator::setFinalThreshold(double rad)
 {
-  if (!std::isfinite(rad) || rad <= 0.0)
-    throw vpMorphException(vpMorphException::badParameterError,
-                           "vpMorphTiltEstimator: the final tilt threshold must be finite and > 0");
+  vpMorphParameterCheck::positive(rad, "vpMorphTiltEstimator", "the final tilt threshold");
   m_final = rad;
 }
 

@@ -1,5 +1,7 @@
 #include <visp3/morph_vs/vpMorphViewAligner.h>
 
+#include "vpMorphParameterCheck.h"
+
 #include <cmath>
 #include <limits>
 
@@ -50,9 +52,7 @@ void vpMorphViewAligner::setGoal(const vpMorphContour &goal)
 
 void vpMorphViewAligner::setStart(const vpMorphRigidTransform &currentToGoal, double sigmaPx)
 {
-  if (!std::isfinite(sigmaPx) || sigmaPx < 0.0)
-    throw vpMorphException(vpMorphException::badParameterError,
-                           "vpMorphViewAligner::setStart: sigma must be finite and >= 0");
+  vpMorphParameterCheck::nonNegative(sigmaPx, "vpMorphViewAligner::setStart", "sigma");
   m_start = currentToGoal;
   m_startSigma = sigmaPx / std::max(m_cam.get_px(), m_cam.get_py());
   m_haveStart = true;

@@ -31,9 +31,8 @@ double vpMorphViewAlignment::translationDeviation() const
 
 double vpMorphViewAlignment::scaleDeviation() const { return std::sqrt(covariance[3][3]); }
 
-std::vector<std::pair<vpImagePoint, vpImagePoint>> vpMorphViewAlignment::lines(const vpMorphContour &view,
-                                                                               const vpCameraParameters &cam,
-                                                                               std::size_t count) const
+std::vector<std::pair<vpImagePoint, vpImagePoint>>
+vpMorphViewAlignment::lines(const vpMorphContour &view, const vpCameraParameters &cam, std::size_t count) const
 {
   std::vector<std::pair<vpImagePoint, vpImagePoint>> out;
   if (view.empty() || !explained())

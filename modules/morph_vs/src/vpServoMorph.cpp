@@ -1,5 +1,7 @@
 #include <visp3/morph_vs/vpServoMorph.h>
 
+#include "vpMorphParameterCheck.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -12,15 +14,6 @@ namespace
 // Image motion between two fits to one sub-goal that makes a hand-eye observation (rad, px): two hundred times the
 // fits' noise (hundredths of a pixel), so that the regressors' noise does not shrink the estimated projection scale.
 const double kObservationRotation = 0.05, kObservationPixels = 8.0;
-
-void checkPositive(double v, const char *what)
-{
-  if (!std::isfinite(v) || v <= 0.0) {
-    std::ostringstream os;
-    os << "vpServoMorph: " << what << " must be finite and > 0, got " << v;
-    throw vpMorphException(vpMorphException::badParameterError, os.str());
-  }
-}
 
 bool allFinite(const vpColVector &v)
 {
@@ -40,7 +33,8 @@ double rmsRadius(const vpMorphContour &c)
 }
 } // namespace
 
-vpServoMorph::vpServoMorph() : m_cam(vpMorphViewAligner::getDefaultCameraParameters()), m_camIso(m_cam), m_ve(6, 0.0), m_vc(6, 0.0)
+vpServoMorph::vpServoMorph()
+  : m_cam(vpMorphViewAligner::getDefaultCameraParameters()), m_camIso(m_cam), m_ve(6, 0.0), m_vc(6, 0.0)
 {
   m_task.setServo(vpServo::EYEINHAND_CAMERA);
   m_task.setInteractionMatrixType(vpServo::CURRENT);
@@ -75,7 +69,7 @@ void vpServoMorph::setTarget(const vpMorphContour &target, double Zd)
   if (target.empty() || target.units() != vpMorphContour::PIXEL)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpServoMorph::setTarget: the target must be a non-empty contour in pixels");
-  checkPositive(Zd, "the desired depth Zd");
+  vpMorphParameterCheck::positive(Zd, "vpServoMorph", "the desired depth Zd");
   m_target.contour = target;
   m_target.depth = Zd;
   m_target.model = vpMorphTemplate();
@@ -98,7 +92,7 @@ void vpServoMorph::setTarget(const vpMorphTemplate &t)
 
 void vpServoMorph::setGain(double gain)
 {
-  checkPositive(gain, "the gain");
+  vpMorphParameterCheck::positive(gain, "vpServoMorph", "the gain");
   if (gain > 1.0)
     throw vpMorphException(vpMorphException::badParameterError, "vpServoMorph::setGain: the gain must be <= 1");
   m_set.gain = gain;
@@ -106,7 +100,7 @@ void vpServoMorph::setGain(double gain)
 
 void vpServoMorph::setSamplingTime(double dt)
 {
-  checkPositive(dt, "the sampling time");
+  vpMorphParameterCheck::positive(dt, "vpServoMorph", "the sampling time");
   m_set.dt = dt;
 }
 
@@ -134,16 +128,16 @@ void vpServoMorph::setMeasurement(Measurement m)
 
 void vpServoMorph::setSubGoalThresholds(double rotationRad, double translationPx)
 {
-  checkPositive(rotationRad, "the sub-goal rotation threshold");
-  checkPositive(translationPx, "the sub-goal translation threshold");
+  vpMorphParameterCheck::positive(rotationRad, "vpServoMorph", "the sub-goal rotation threshold");
+  vpMorphParameterCheck::positive(translationPx, "vpServoMorph", "the sub-goal translation threshold");
   m_set.thresholds.subRotation = rotationRad;
   m_set.thresholds.subPixels = translationPx;
 }
 
 void vpServoMorph::setFinalThresholds(double rotationRad, double translationPx)
 {
-  checkPositive(rotationRad, "the final rotation threshold");
-  checkPositive(translationPx, "the final translation threshold");
+  vpMorphParameterCheck::positive(rotationRad, "vpServoMorph", "the final rotation threshold");
+  vpMorphParameterCheck::positive(translationPx, "vpServoMorph", "the final translation threshold");
   m_set.thresholds.finalRotation = rotationRad;
   m_set.thresholds.finalPixels = translationPx;
 }
@@ -158,7 +152,7 @@ void vpServoMorph::setFinalScaleThreshold(double relativeScale)
 
 void vpServoMorph::setMinArea(double px2)
 {
-  checkPositive(px2, "the minimum area");
+  vpMorphParameterCheck::positive(px2, "vpServoMorph", "the minimum area");
   m_set.minArea = px2;
 }
 
@@ -258,20 +252,23 @@ void vpServoMorph::residuals(const vpMorphViewAlignment &a, const vpMorphContour
 bool vpServoMorph::passed() const
 {
   const vpMorphRigidTransform &T = m_alignment.transform;
-  const bool translation = m_set.measurement == PAPER ? std::fabs(T.tx() * m_camIso.get_px()) < m_set.thresholds.subPixels &&
-                                                        std::fabs(T.ty() * m_camIso.get_py()) < m_set.thresholds.subPixels
-                                                  : m_res.pixels < m_set.thresholds.subPixels;
+  const bool translation = m_set.measurement == PAPER
+                               ? std::fabs(T.tx() * m_camIso.get_px()) < m_set.thresholds.subPixels &&
+                                     std::fabs(T.ty() * m_camIso.get_py()) < m_set.thresholds.subPixels
+                               : m_res.pixels < m_set.thresholds.subPixels;
   return m_res.rotation < m_set.thresholds.subRotation && translation && m_res.scalePixels < m_set.thresholds.subPixels;
 }
 
 bool vpServoMorph::atGoal() const
 {
   const vpMorphRigidTransform &T = m_alignment.transform;
-  const bool translation = m_set.measurement == PAPER ? std::fabs(T.tx() * m_camIso.get_px()) < m_set.thresholds.finalPixels &&
-                                                        std::fabs(T.ty() * m_camIso.get_py()) < m_set.thresholds.finalPixels
-                                                  : m_res.pixels < m_set.thresholds.finalPixels;
+  const bool translation = m_set.measurement == PAPER
+                               ? std::fabs(T.tx() * m_camIso.get_px()) < m_set.thresholds.finalPixels &&
+                                     std::fabs(T.ty() * m_camIso.get_py()) < m_set.thresholds.finalPixels
+                               : m_res.pixels < m_set.thresholds.finalPixels;
   return m_k + 1 == m_planner.size() && m_res.rotation < m_set.thresholds.finalRotation && translation &&
-         m_res.scalePixels < m_set.thresholds.finalPixels && (m_set.thresholds.finalScale == 0.0 || m_res.scale < m_set.thresholds.finalScale);
+         m_res.scalePixels < m_set.thresholds.finalPixels &&
+         (m_set.thresholds.finalScale == 0.0 || m_res.scale < m_set.thresholds.finalScale);
 }
 
 void vpServoMorph::observe(const vpMorphRigidTransform &T)
@@ -360,10 +357,10 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       // and the turn goes on by its own rules.
       const vpMorphViewAlignment a = m_aligner.align(current);
       const vpMorphSubGoalPlanner &p = m_planner;
-      const vpMorphHandEyeExploration::Result r =
-          m_exploration.step(current, currentN, m_aligner.getGoalNormalized(), m_target.depth,
-                             a.explained() ? &a.transform : nullptr, m_camIso, m_tilt, m_handEye, p.getJointJacobian(),
-                             p.getJointPositions(), p.getJointMin(), p.getJointMax(), m_set.dt, m_guard.getJumpPixels(), v);
+      const vpMorphHandEyeExploration::Result r = m_exploration.step(
+          current, currentN, m_aligner.getGoalNormalized(), m_target.depth, a.explained() ? &a.transform : nullptr,
+          m_camIso, m_tilt, m_handEye, p.getJointJacobian(), p.getJointPositions(), p.getJointMin(), p.getJointMax(),
+          m_set.dt, m_guard.getJumpPixels(), v);
       if (r == vpMorphHandEyeExploration::TURNING) {
         m_status = MOVING;
         m_ve = v;
@@ -418,13 +415,15 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     // At the goal in the plane: stop, unless a tilt is seen and still being levelled (no estimate: the tilt is unknown,
     // and the verification says so).
     if (atGoal() && !(tiltOn && m_tilt.isEstimated() && !m_tilt.isVerified())) {
-      if (m_guard.targetMismatch(current, m_target.contour, m_target.model.isArticulated())) // never CONVERGED on another shape
+      if (m_guard.targetMismatch(current, m_target.contour,
+                                 m_target.model.isArticulated())) // never CONVERGED on another shape
         return stop(m_guard.halt(TARGET_MISMATCH));
       // The paper's measurement has no covariance: its thresholds alone decide.
       const Status s = m_set.measurement == PAPER
                            ? CONVERGED
-                           : m_guard.verify(m_alignment, m_set.thresholds.finalRotation, m_set.thresholds.finalPixels, m_set.thresholds.finalPixels,
-                                            m_res.radiusPx, m_camIso.get_px(), !tiltOn || m_tilt.isVerified());
+                           : m_guard.verify(m_alignment, m_set.thresholds.finalRotation, m_set.thresholds.finalPixels,
+                                            m_set.thresholds.finalPixels, m_res.radiusPx, m_camIso.get_px(),
+                                            !tiltOn || m_tilt.isVerified());
       return stop(m_guard.halt(s));
     }
 
