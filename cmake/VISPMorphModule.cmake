@@ -1,9 +1,11 @@
-# vispmorph_add_module(<name> DEPS <vispmorph modules> VISP <visp targets> PRIVATE_LIBS <libs>)
+# vispmorph_add_module(<name> DEPS <vispmorph modules> VISP <visp targets> PRIVATE_LIBS <libs> [LOOP_TESTS])
 #
 # Builds modules/<name> as the library vispmorph_<name> (exported as VISPMorph::<name>), ViSP style:
 # public headers in include/visp3/<name>/, sources in src/, unit tests in test/ (one Catch2 executable).
+# LOOP_TESTS: the module's Catch2 tests tagged [loop] (closed-loop runs of a simulated robot on rendered images, each
+# several seconds) get the ctest label `long`, which `./vispmorph test` leaves to `./vispmorph test-long`.
 function(vispmorph_add_module name)
-  cmake_parse_arguments(M "" "" "DEPS;VISP;PRIVATE_LIBS" ${ARGN})
+  cmake_parse_arguments(M "LOOP_TESTS" "" "DEPS;VISP;PRIVATE_LIBS" ${ARGN})
   file(GLOB_RECURSE srcs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
   file(GLOB_RECURSE hdrs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/include/visp3/${name}/*.h)
   set(target vispmorph_${name})
@@ -36,7 +38,14 @@ function(vispmorph_add_module name)
     target_link_libraries(test_${name} PRIVATE ${target} Catch2::Catch2)
     target_compile_definitions(test_${name} PRIVATE VISPMORPH_DATA_DIR="${VISPMORPH_DATA_DIR}"
                                                     VISPMORPH_DATASETS_DIR="${VISPMORPH_DATASETS_DIR}")
-    catch_discover_tests(test_${name} TEST_PREFIX "${name}: " WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+    if(M_LOOP_TESTS)
+      catch_discover_tests(test_${name} TEST_PREFIX "${name}: " TEST_SPEC "~[loop]"
+                           WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+      catch_discover_tests(test_${name} TEST_PREFIX "${name}: " TEST_SPEC "[loop]"
+                           WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR} PROPERTIES LABELS long)
+    else()
+      catch_discover_tests(test_${name} TEST_PREFIX "${name}: " WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+    endif()
   endif()
 endfunction()
 

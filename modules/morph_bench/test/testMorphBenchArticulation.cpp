@@ -68,7 +68,7 @@ TEST_CASE("bench: the opened pliers are laid by either arm and recognised at the
   CHECK(fixture::start("deformable/key/168").scene().alternativePlacements().empty());
 }
 
-TEST_CASE("bench: vpServoMorph and vpFeatureMorph align opened pliers by either arm", "[bench][articulation]")
+TEST_CASE("bench: vpServoMorph and vpFeatureMorph align opened pliers by either arm", "[bench][articulation][loop]")
 {
   // Before the articulated template these views were rejected by recognition (and, given the closed template,
   // vpServoMorph stopped on them: DEFORMATION_UNRESOLVED).
@@ -90,7 +90,7 @@ TEST_CASE("bench: vpServoMorph and vpFeatureMorph align opened pliers by either 
   }
 }
 
-TEST_CASE("bench: vpServoMorph takes a posed target's depth from its edges", "[bench][articulation]")
+TEST_CASE("bench: vpServoMorph takes a posed target's depth from its edges", "[bench][articulation][loop]")
 {
   // A development start of the opened pliers laid by arm 0, which the servo keeps still. The target posed at 32 deg
   // has its region drawn from its arms' outlines: with the depth from its area, the run ended 0.83 mm and 0.39 deg
@@ -107,7 +107,7 @@ TEST_CASE("bench: vpServoMorph takes a posed target's depth from its edges", "[b
   CHECK(r.finalTranslation < 0.0005);
 }
 
-TEST_CASE("bench: a malformed joint file is a clear error", "[bench][articulation]")
+TEST_CASE("bench: a malformed joint file is a clear error", "[bench][articulation][loop]")
 {
   namespace fs = std::filesystem;
   const fs::path dir = fs::current_path() / "joint-data";

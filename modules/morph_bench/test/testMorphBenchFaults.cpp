@@ -115,7 +115,7 @@ TEST_CASE("faults set: one fault per start, every kind for five starts of an obj
     CHECK(k.second.size() == 5); // five starts of each object: one of each kind
 }
 
-TEST_CASE("faults: dropped frames and an absent object hold, then resume on the same plan", "[bench][faults]")
+TEST_CASE("faults: dropped frames and an absent object hold, then resume on the same plan", "[bench][faults][loop]")
 {
   REQUIRE(clean().success);
   const vpMorphBenchEvent dropped = event(vpMorphBenchEvent::DROPPED_FRAMES, 20, 5);
@@ -148,7 +148,7 @@ TEST_CASE("faults: dropped frames and an absent object hold, then resume on the 
 }
 
 TEST_CASE("faults: a pose jump (20 mm, 10 deg) is detected, the morph re-planned, and the run converges",
-          "[bench][faults]")
+          "[bench][faults][loop]")
 {
   vpMorphBenchEvent jump = event(vpMorphBenchEvent::POSE_JUMP, 30);
   jump.cMcp = vpHomogeneousMatrix(0.02 * std::cos(1.0), 0.02 * std::sin(1.0), 0, 0, 0, vpMath::rad(10));
@@ -165,7 +165,7 @@ TEST_CASE("faults: a pose jump (20 mm, 10 deg) is detected, the morph re-planned
 }
 
 TEST_CASE("faults: a sudden occluder never gives a wild velocity, the run converges or stops with a reason",
-          "[bench][faults]")
+          "[bench][faults][loop]")
 {
   REQUIRE(clean().success);
   const std::set<std::string> reasons = {
@@ -184,7 +184,8 @@ TEST_CASE("faults: a sudden occluder never gives a wild velocity, the run conver
   }
 }
 
-TEST_CASE("faults: under a card that comes during the run, the servo aligns what it still sees", "[bench][faults]")
+TEST_CASE("faults: under a card that comes during the run, the servo aligns what it still sees",
+          "[bench][faults][loop]")
 {
   // Sudden occluders of the development faults set: a key and a hammer that a card covers at iterations 15-40. The
   // regions were judged alike at the start, and stayed so: the pose came from the area and centroid of what was
@@ -203,7 +204,7 @@ TEST_CASE("faults: under a card that comes during the run, the servo aligns what
   }
 }
 
-TEST_CASE("faults: a wrong template is re-recognised or stops the run, never converged on", "[bench][faults]")
+TEST_CASE("faults: a wrong template is re-recognised or stops the run, never converged on", "[bench][faults][loop]")
 {
   // The key is within its own threshold of the wedge (1.65 < 2.15): only the database's clear preference tells;
   // the hammer is beyond its threshold.

@@ -117,7 +117,7 @@ TEST_CASE("vpServoMorph reads the tilt from whole extracted outlines only", "[be
   CHECK(!estimate(scene, target, bare, tilt));
 }
 
-TEST_CASE("vpServoMorph stops following a tilt estimate that its own commands do not bring down", "[bench][tilt]")
+TEST_CASE("vpServoMorph stops following a tilt estimate that its own commands do not bring down", "[bench][tilt][loop]")
 {
   // A planar-hard start on the Viper850: the thin pliers, whose tilt about their long axis the outlines
   // barely show. Near the goal the estimate settled at 0.7-1.5 deg beyond its dead zone and stayed there while the
@@ -125,7 +125,7 @@ TEST_CASE("vpServoMorph stops following a tilt estimate that its own commands do
   CHECK(run("planar-hard/pliers/157", vpMorphSimRobot::VIPER850).success);
 }
 
-TEST_CASE("A half turn on the Viper850 is planned the way its wrist can turn", "[bench][roll]")
+TEST_CASE("A half turn on the Viper850 is planned the way its wrist can turn", "[bench][roll][loop]")
 {
   // A planar-hard start: the pliers turned -179.1 deg, joint 6 at 179.1 deg. Its rotation
   // was measured as a little over half a turn and planned +180.9 deg, which ends on the wrist's 360 deg limit
@@ -136,7 +136,7 @@ TEST_CASE("A half turn on the Viper850 is planned the way its wrist can turn", "
 }
 
 TEST_CASE("A thin tool bitten by an occluder is not read as tilted by a homography that bends the cut onto it",
-          "[bench][tilt]")
+          "[bench][tilt][loop]")
 {
   // An occluded start on the Viper850: a card bites the pliers. Near the goal, a homography
   // fitted from the polygons explained 99 % of the bitten outline at 0.49-0.50 px RMS with a 38-41 deg tilt, which was
@@ -148,7 +148,7 @@ TEST_CASE("A thin tool bitten by an occluder is not read as tilted by a homograp
 }
 
 TEST_CASE("A view judged unlike its target only because it was tilted is judged again once the tilt is corrected",
-          "[bench][tilt]")
+          "[bench][tilt][loop]")
 {
   // A 6dof start on the free camera: the key seen 22 deg tilted. Its region's moments are not the
   // target's, so the view was taken for a hidden or bent one for the whole run, and the tilt fits held to explain
@@ -158,7 +158,7 @@ TEST_CASE("A view judged unlike its target only because it was tilted is judged 
   CHECK(run("6dof/key/-38").success);
 }
 
-TEST_CASE("A thin object's tilt estimates are averaged over the final approach", "[bench][tilt]")
+TEST_CASE("A thin object's tilt estimates are averaged over the final approach", "[bench][tilt][loop]")
 {
   // Two planar-hard starts: the pliers, turned 157 and 175 deg, never tilted. Their tilt about
   // their long axis barely changes their outline, and its estimate jumped by up to 1.4 deg from one view to the next:
@@ -171,7 +171,7 @@ TEST_CASE("A thin object's tilt estimates are averaged over the final approach",
   }
 }
 
-TEST_CASE("A thin object's tilt is commanded only about the axes its outline shows it", "[bench][tilt]")
+TEST_CASE("A thin object's tilt is commanded only about the axes its outline shows it", "[bench][tilt][loop]")
 {
   // Two planar starts: the pliers, never tilted. The mean of their tilt estimates stayed
   // 0.5-0.8 deg off about their long axis for 40 periods (one period's deviation there 0.33 deg, about the short axis
@@ -241,7 +241,7 @@ Exploration explore(const vpHomogeneousMatrix &eMcBelieved, const vpHomogeneousM
 } // namespace
 
 TEST_CASE("The exploration turn reads the tilt of the camera on the hand and corrects eMc",
-          "[bench][tilt][calibration]")
+          "[bench][tilt][calibration][loop]")
 {
   // A screwdriver, thin: the final approach cannot read its tilt about its long axis (a development calib start: a
   // 13.5 deg turn with the mount 3.8 deg off tilted the camera by 0.81 deg, which it kept). Turned 90 deg and back,
@@ -277,7 +277,7 @@ TEST_CASE("The exploration turn reads the tilt of the camera on the hand and cor
 }
 
 TEST_CASE("The exploration turn is skipped near the image border or a joint limit and refused with a bad turn",
-          "[bench][tilt][safety]")
+          "[bench][tilt][safety][loop]")
 {
   vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA);
   // The screwdriver 70 mm aside at 0.5 m, within 40 px of the image border: no turn at all.
@@ -310,7 +310,7 @@ TEST_CASE("The exploration turn is skipped near the image border or a joint limi
   CHECK_NOTHROW(servo.getHandEyeExploration().setAngle(0.0, 0, 0)); // off: no image needed
 }
 
-TEST_CASE("An occluded object's depth at the goal comes from its edge outline", "[bench][outline]")
+TEST_CASE("An occluded object's depth at the goal comes from its edge outline", "[bench][outline][loop]")
 {
   // An occluded start (the wrench, 12 % of its outline under a card): the regions are not alike, so the scale comes
   // from the outline fit; on the polygons it stopped 1.19 mm deep (the success threshold is 1 mm).
@@ -324,7 +324,7 @@ TEST_CASE("An occluded object's depth at the goal comes from its edge outline", 
   CHECK(r.finalTranslation < 0.5e-3);
 }
 
-TEST_CASE("A small occluder that leaves the regions alike is found by the outline", "[bench][outline]")
+TEST_CASE("A small occluder that leaves the regions alike is found by the outline", "[bench][outline][loop]")
 {
   // Occluded starts where a card bites a little off one end (its moments barely change, so the regions were found
   // alike and the pose laid by areas and centroids): a wrench's jaw and a key's tip. Laid off by the missing area, the
@@ -338,7 +338,7 @@ TEST_CASE("A small occluder that leaves the regions alike is found by the outlin
   }
 }
 
-TEST_CASE("One occluded view measured wrong does not corrupt the online calibration", "[bench][outline]")
+TEST_CASE("One occluded view measured wrong does not corrupt the online calibration", "[bench][outline][loop]")
 {
   // An occluded start: a card over the pliers' handle. For one period the silhouette came out
   // 11 % smaller and 12 px off; the image motions to and from that view (8 and 10 mm of camera motion against
@@ -347,7 +347,7 @@ TEST_CASE("One occluded view measured wrong does not corrupt the online calibrat
   CHECK(run("occlusion/pliers/-171").success);
 }
 
-TEST_CASE("A tilted view does not pull the online calibration's translation scale to zero", "[bench][outline]")
+TEST_CASE("A tilted view does not pull the online calibration's translation scale to zero", "[bench][outline][loop]")
 {
   // A 6dof start: a pliers seen 21 deg tilted and turned 161 deg, the hand-eye estimate exact.
   // Read by the planar hand-eye model, its image motions were a camera moving tens of times further than commanded:
@@ -360,7 +360,7 @@ TEST_CASE("A tilted view does not pull the online calibration's translation scal
   CHECK(r.iterations < 380);
 }
 
-TEST_CASE("A tool cut in two by an occluder is not taken for a jump at its target", "[bench][outline]")
+TEST_CASE("A tool cut in two by an occluder is not taken for a jump at its target", "[bench][outline][loop]")
 {
   // An occluded start: a card across the wrench's handle. At the first fit to the target, the
   // outline fit started from the tracked correspondence fell into another basin (21 % off in scale, 20 px away),
@@ -372,7 +372,7 @@ TEST_CASE("A tool cut in two by an occluder is not taken for a jump at its targe
 }
 
 TEST_CASE("A background lifted past 255 on sharp edges biases the measured area, and vpServoMorph takes the band back",
-          "[bench][outline]")
+          "[bench][outline][loop]")
 {
   // Two noise starts of the pliers ended 1.5 mm off, all along the optical axis. Their
   // illumination gain lifts the background to 275-278 grey levels, clipped at 255, on edges blurred by 0.12-0.33 px
@@ -418,7 +418,7 @@ TEST_CASE("A background lifted past 255 on sharp edges biases the measured area,
 }
 
 TEST_CASE("A bent view nearer another template by the distance keeps the template that explains more of it",
-          "[bench][deformed]")
+          "[bench][deformed][loop]")
 {
   // A deformable start: a bent screwdriver at its goal is 0.89 from its template and 0.70
   // from the pliers by D_morph, but shows 0.65 of its own outline and 0.40 of theirs. The target check took it for a
@@ -430,7 +430,7 @@ TEST_CASE("A bent view nearer another template by the distance keeps the templat
 }
 
 TEST_CASE("An occluded wedge that its distance rejects is recognised by the share of its outline it shows",
-          "[bench][outline]")
+          "[bench][outline][loop]")
 {
   // An occluded start: a card bites a notch into the wedge's long side (14 % of its outline). D_morph
   // to its template is 1.70, beyond its threshold (1.15; the runner-up, the wrench, is at 1.95): the run stopped at
@@ -454,7 +454,7 @@ TEST_CASE("An occluded wedge that its distance rejects is recognised by the shar
 }
 
 TEST_CASE("An occluded wedge nearer another tool by the distance, both rejected, is re-ranked by its support",
-          "[bench][outline]")
+          "[bench][outline][loop]")
 {
   // An occluded start: a card over the wedge's thin end. D_morph puts the screwdriver nearest
   // (2.05, beyond its threshold 1.23; the wedge at 2.35), so the view was rejected at the first image although it
@@ -472,7 +472,7 @@ TEST_CASE("An occluded wedge nearer another tool by the distance, both rejected,
 }
 
 TEST_CASE("An occluded wedge whose card edge runs along its top is aligned by its template fitted onto it",
-          "[bench][outline]")
+          "[bench][outline][loop]")
 {
   // An occluded start: a card over the wedge's middle, its edge a few pixels under the wedge's
   // top, leaves a sliver joining the two ends. Fitted onto the template, the view's outline along the card's edge is
@@ -489,7 +489,8 @@ TEST_CASE("An occluded wedge whose card edge runs along its top is aligned by it
   CHECK(r.success);
 }
 
-TEST_CASE("Occluded wedges matched end for end are planned the way the outline they show lies", "[bench][outline]")
+TEST_CASE("Occluded wedges matched end for end are planned the way the outline they show lies",
+          "[bench][outline][loop]")
 {
   // Two occluded starts: with a card over the wedge, nearly symmetric end for end, the
   // least work matched the view half a turn round (planned 156 and 186 deg off the start's rotation), and the regions,
@@ -523,7 +524,7 @@ TEST_CASE("Occluded wedges matched end for end are planned the way the outline t
   }
 }
 
-TEST_CASE("An occluded view is planned on the outline it shows", "[bench][outline]")
+TEST_CASE("An occluded view is planned on the outline it shows", "[bench][outline][loop]")
 {
   // Occluded starts: a card over the pliers' jaws, and over the hammer's head. Planned
   // on the least squares over the corresponded vertices, whose scale carries the hidden part (the pliers 20 % large),
@@ -543,7 +544,8 @@ TEST_CASE("An occluded view is planned on the outline it shows", "[bench][outlin
   }
 }
 
-TEST_CASE("An outline joined across an occluder's cut is laid on the goal by its measured edges", "[bench][outline]")
+TEST_CASE("An outline joined across an occluder's cut is laid on the goal by its measured edges",
+          "[bench][outline][loop]")
 {
   // Occluded starts: a card over the screwdriver's ferrule cuts the shaft from the handle; a card over the hammer's
   // neck cuts the handle from the head. The silhouette joins the pieces back (no measured
@@ -585,7 +587,8 @@ TEST_CASE("An outline joined across an occluder's cut is laid on the goal by its
   CHECK(r.success);
 }
 
-TEST_CASE("vpServoMorph on the Viper850 never reports a bent view converged away from its goal", "[bench][deformed]")
+TEST_CASE("vpServoMorph on the Viper850 never reports a bent view converged away from its goal",
+          "[bench][deformed][loop]")
 {
   // A key bent at its bow and a hammer bent at its neck: the bend is smooth, so no part of either outline lies on the
   // template within the edges' noise everywhere; the servo converges to the goal or stops with a reason, never
@@ -599,7 +602,7 @@ TEST_CASE("vpServoMorph on the Viper850 never reports a bent view converged away
 }
 
 TEST_CASE("A sagging wedge's part is followed from where it was found when the edge fit changes basin",
-          "[bench][deformed]")
+          "[bench][deformed][loop]")
 {
   // A deformable start on the free camera: the edge fit of the sagging wedge has two basins,
   // 1.6 % apart in scale, and the polygon's correspondence picked one or the other from one period to the next. The
@@ -613,7 +616,7 @@ TEST_CASE("A sagging wedge's part is followed from where it was found when the e
 }
 
 TEST_CASE("A wedge whose top sags is laid on its template by the part of its outline that lies on it",
-          "[bench][deformed]")
+          "[bench][deformed][loop]")
 {
   // Four deformable starts of the bent wedge: its bend only takes area away, so it is not
   // found deformed (nothing of it lies outside the template) and the edge fit, pulled by the sagging top, put it
@@ -627,7 +630,7 @@ TEST_CASE("A wedge whose top sags is laid on its template by the part of its out
 }
 
 TEST_CASE("vpServoMorph never reports converged on opened pliers given the closed pliers' template",
-          "[bench][deformed]")
+          "[bench][deformed][loop]")
 {
   // The deformable set's opened pliers (arms 32 deg further apart) given the closed pliers' template, without a
   // target check (an articulated template poses itself at the opening: see the articulation tests): no rigid

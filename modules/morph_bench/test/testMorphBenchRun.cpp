@@ -30,7 +30,7 @@ std::size_t fields(const std::string &row)
 }
 } // namespace
 
-TEST_CASE("bench controllers: every name is created, unknown names are rejected", "[bench]")
+TEST_CASE("bench controllers: every name is created, unknown names are rejected", "[bench][loop]")
 {
   for (const std::string &n : vpMorphBenchController::names())
     CHECK(vpMorphBenchController::create(n)->name() == n);
@@ -65,7 +65,7 @@ TEST_CASE("bench templates are the rendered taught views, recognised among thems
   }
 }
 
-TEST_CASE("bench: VISPMorph aligns from 170 deg where 4-point IBVS with the current L fails", "[bench]")
+TEST_CASE("bench: VISPMorph aligns from 170 deg where 4-point IBVS with the current L fails", "[bench][loop]")
 {
   const vpMorphBenchScenario s = planarStart("wedge", 170, 0.03, -0.02);
   const vpMorphBenchResult morph = bench().run(s, "morph");
@@ -87,7 +87,7 @@ TEST_CASE("bench: VISPMorph aligns from 170 deg where 4-point IBVS with the curr
   CHECK(ibvs.recognized.empty());
 }
 
-TEST_CASE("bench: stock controllers converge on an easy start", "[bench]")
+TEST_CASE("bench: stock controllers converge on an easy start", "[bench][loop]")
 {
   const vpMorphBenchScenario s = planarStart("screwdriver", 15, 0.02, 0.01);
   for (const std::string c : {"pbvs", "ibvs-mean", "morph-vpservo"}) {
@@ -100,7 +100,7 @@ TEST_CASE("bench: stock controllers converge on an easy start", "[bench]")
   }
 }
 
-TEST_CASE("bench: moment-based servoing converges on the measured outline", "[bench][moments]")
+TEST_CASE("bench: moment-based servoing converges on the measured outline", "[bench][moments][loop]")
 {
   // On the approximating polygon, whose vertices move from one image to the next, none converged within 1 mm and
   // 0.5 deg: the loop wandered a millimetre and a degree about the goal (the planar starts' path ratios 15-50).
@@ -124,7 +124,7 @@ TEST_CASE("bench: moment-based servoing converges on the measured outline", "[be
   }
 }
 
-TEST_CASE("bench: vpFeatureMorph in a stock vpServo settles on the measured region and outline", "[bench]")
+TEST_CASE("bench: vpFeatureMorph in a stock vpServo settles on the measured region and outline", "[bench][loop]")
 {
   // A planar hammer: on the polygons alone its centroid, area and fitted angle moved with the vertices from
   // one image to the next, and the loop ran out of the budget 2.2 mm and 2 deg off.
@@ -137,7 +137,7 @@ TEST_CASE("bench: vpFeatureMorph in a stock vpServo settles on the measured regi
   CHECK(r.iterations < 150);
 }
 
-TEST_CASE("bench: vpFeatureMorph in a stock vpServo lays an occluded view by the part it shows", "[bench]")
+TEST_CASE("bench: vpFeatureMorph in a stock vpServo lays an occluded view by the part it shows", "[bench][loop]")
 {
   // Occluded development starts: a pliers that a card cuts in two (its outline joined across the cut, no region) and
   // a wedge whose end a card hides: with the regions' centroid and area the loop converged 17.6 and 20.6 mm off. A key
@@ -156,7 +156,7 @@ TEST_CASE("bench: vpFeatureMorph in a stock vpServo lays an occluded view by the
   }
 }
 
-TEST_CASE("bench: vpFeatureMorph in a stock vpServo never converges on a view it does not explain", "[bench]")
+TEST_CASE("bench: vpFeatureMorph in a stock vpServo never converges on a view it does not explain", "[bench][loop]")
 {
   // Bent development starts (a key bent at its bow, a hammer at its neck, a wrench at its handle): where the feature's
   // aligner does not explain the view its error is zero, which the adapter takes for a view not measured (a hold),
@@ -171,7 +171,7 @@ TEST_CASE("bench: vpFeatureMorph in a stock vpServo never converges on a view it
   }
 }
 
-TEST_CASE("bench: the tag controllers' goal is the taught view as the detector saw it", "[bench]")
+TEST_CASE("bench: the tag controllers' goal is the taught view as the detector saw it", "[bench][loop]")
 {
   // At the key's desired pose the detector's tag pose is 0.5 deg off the truth. Goal features from the
   // simulator's exact projection made IBVS and PBVS converge there (final-error 0.51 deg); taught by showing,
@@ -189,7 +189,7 @@ TEST_CASE("bench: the tag controllers' goal is the taught view as the detector s
   }
 }
 
-TEST_CASE("bench: unreachable starts are failures of every controller alike, never a crash", "[bench]")
+TEST_CASE("bench: unreachable starts are failures of every controller alike, never a crash", "[bench][loop]")
 {
   vpMorphBench::Settings st;
   st.robot = vpMorphSimRobot::AFMA6;
@@ -209,7 +209,7 @@ TEST_CASE("bench: unreachable starts are failures of every controller alike, nev
   CHECK(turned.iterations > 0);
 }
 
-TEST_CASE("bench: runAll is the same on one and two threads, in (scenario, controller) order", "[bench]")
+TEST_CASE("bench: runAll is the same on one and two threads, in (scenario, controller) order", "[bench][loop]")
 {
   vpMorphBench::Settings st;
   st.maxIterations = 40;
@@ -406,7 +406,7 @@ TEST_CASE("bench timings: per-period compute, median and 95th percentile, over t
   CHECK(back.summarize()[0].p95Ms == Approx(9.5));
 }
 
-TEST_CASE("bench: the settling iteration does not depend on recording the curves", "[bench]")
+TEST_CASE("bench: the settling iteration does not depend on recording the curves", "[bench][loop]")
 {
   vpMorphBench::Settings st;
   st.recordCurves = false;

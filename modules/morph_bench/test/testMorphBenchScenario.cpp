@@ -108,7 +108,7 @@ TEST_CASE("bench desired poses come from the seed and the name, the object and t
   }
 }
 
-TEST_CASE("bench: an object that leaves the tag no room is a set-up failure, not an abort", "[bench]")
+TEST_CASE("bench: an object that leaves the tag no room is a set-up failure, not an abort", "[bench][loop]")
 {
   // A 15 cm disc seen from 0.3 m fills the image but for 4.5 cm on either side: no tag of 4 cm or more (5 cm with its
   // quiet zone, 1 cm from the object) fits there.
