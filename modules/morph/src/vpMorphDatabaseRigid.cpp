@@ -1,0 +1,81 @@
+#include <visp3/morph/vpMorphDatabase.h>
+
+#include <limits>
+
+#include "vpMorphRigidSearch.h"
+
+// vpMorphDatabase with the RIGID distance: the two-stage search and the comparison with one template.
+
+namespace
+{
+constexpr double kInf = std::numeric_limits<double>::infinity();
+} // namespace
+
+bool vpMorphDatabase::rigidAccepted(const vpMorphRigidCheck::Result &r) const
+{
+  return r.fitted && r.targetShare >= m_minSupport && r.outsideShare <= maximumOutside();
+}
+
+std::vector<vpMorphRigidSearch::View> vpMorphDatabase::rigidViews(bool poses, std::size_t skip) const
+{
+  std::vector<vpMorphRigidSearch::View> views;
+  for (std::size_t k = 0; k < m_templates.size(); ++k) {
+    if (k == skip)
+      continue;
+    views.push_back(vpMorphRigidSearch::View{k, vpMorphRecognition::npos, &m_shapes[k].rigid[0]});
+    for (std::size_t p = 0; poses && p < m_poses[k].size(); ++p)
+      views.push_back(vpMorphRigidSearch::View{k, p, &m_poses[k][p].shape.rigid[0]});
+  }
+  return views;
+}
+
+vpMorphRigidCheck::Result vpMorphDatabase::rigidCheck(const vpMorphShapeDistance::Shape &q, std::size_t k,
+                                                      bool mirrored, bool poses) const
+{
+  std::vector<vpMorphRigidSearch::View> views;
+  views.push_back(vpMorphRigidSearch::View{k, vpMorphRecognition::npos, &m_shapes[k].rigid[0]});
+  for (std::size_t p = 0; poses && p < m_poses[k].size(); ++p)
+    views.push_back(vpMorphRigidSearch::View{k, p, &m_poses[k][p].shape.rigid[0]});
+  vpMorphRigidCheck::Result best;
+  for (std::size_t m = 0; m < (mirrored ? q.rigid.size() : 1); ++m) {
+    const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(q.rigid[m], views, 1);
+    if (m == 0 || o.best.cost < best.cost)
+      best = o.best;
+  }
+  return best;
+}
+
+vpMorphRecognition vpMorphDatabase::rigidSearch(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q,
+                                                bool prune, vpMorphMatcher &matcher, bool poses) const
+{
+  const std::vector<vpMorphRigidSearch::View> views = rigidViews(poses);
+  vpMorphRecognition r;
+  // The view as it is, then (mirrors on) its mirror image when that is not accepted: a part turned over.
+  for (std::size_t m = 0; m < q.rigid.size(); ++m) {
+    const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(q.rigid[m], views, prune ? rigidShortlist() : 0);
+    vpMorphRecognition a;
+    a.index = o.index;
+    a.distance = o.best.cost;
+    a.secondIndex = o.second;
+    a.secondDistance = o.second == vpMorphRecognition::npos ? kInf : o.runnerUp.cost;
+    a.margin = o.second == vpMorphRecognition::npos
+                   ? 1.0
+                   : (a.secondDistance > 0.0 ? (a.secondDistance - a.distance) / a.secondDistance : 0.0);
+    a.threshold = threshold(a.index);
+    a.support = o.best.targetShare;
+    a.mirrored = m == 1;
+    a.articulation = o.pose == vpMorphRecognition::npos ? 0.0 : m_poses[a.index][o.pose].angle;
+    a.evaluated = o.compared;
+    // Two templates that both explain the view within the cost's noise: no telling which.
+    const bool ambiguous = o.second != vpMorphRecognition::npos && rigidAccepted(o.runnerUp) &&
+                           o.runnerUp.cost - o.best.cost < ambiguity();
+    a.accepted = rigidAccepted(o.best) && !ambiguous;
+    if (m == 0 || a.accepted) {
+      r = a;
+      r.correspondence = matcher.match(c, templateView(r.index, o.pose));
+    }
+    if (r.accepted)
+      break;
+  }
+  return r;
+}
