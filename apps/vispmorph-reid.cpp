@@ -329,7 +329,18 @@ fs::path texture(const Shape &s, const fs::path &dir)
   for (unsigned int v = 0; v < H; ++v)
     for (unsigned int u = 0; u < W; ++u)
       T[v + m][u + m] = invert ? static_cast<unsigned char>(255 - I[v][u]) : I[v][u];
-  vpImageIo::write(T, path.string());
+  // Through a file of its own renamed in place: a failed run leaves no half-written texture.
+  const fs::path tmp = dir / (name + ".tmp.png");
+  std::error_code ec;
+  try {
+    vpImageIo::write(T, tmp.string());
+  } catch (const vpException &e) {
+    throw vpMorphException(vpMorphException::ioError,
+                           "cannot write texture '" + path.string() + "': " + e.getStringMessage());
+  }
+  fs::rename(tmp, path, ec);
+  if (ec)
+    throw vpMorphException(vpMorphException::ioError, "cannot write texture '" + path.string() + "': " + ec.message());
   return path;
 }
 
@@ -680,6 +691,39 @@ json summarise(const std::vector<Query> &queries, const std::vector<Entry> &entr
   return j;
 }
 
+/*!
+  Writes each (file name, text) of \e files into \e dir, every one to a temporary file first and all renamed in place
+  only once all are written: an error leaves none of them half-written, nor a mix of two runs' results.
+*/
+void writeResults(const fs::path &dir, const std::vector<std::pair<std::string, std::string>> &files)
+{
+  std::vector<fs::path> written;
+  auto discard = [&written] {
+    std::error_code ec;
+    for (const fs::path &p : written)
+      fs::remove(p, ec);
+  };
+  for (const auto &f : files) {
+    written.push_back(dir / ("." + f.first + ".tmp"));
+    std::ofstream out(written.back(), std::ios::binary | std::ios::trunc);
+    out << f.second;
+    out.close();
+    if (!out) {
+      discard();
+      throw vpMorphException(vpMorphException::ioError, "cannot write '" + written.back().string() + "'");
+    }
+  }
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    std::error_code ec;
+    fs::rename(written[k], dir / files[k].first, ec);
+    if (ec) {
+      discard();
+      throw vpMorphException(vpMorphException::ioError,
+                             "cannot write '" + (dir / files[k].first).string() + "': " + ec.message());
+    }
+  }
+}
+
 int reid(const Options &o)
 {
   const json split = readSplit(o.split);
@@ -693,12 +737,10 @@ int reid(const Options &o)
   fs::create_directories(o.out); // once the inputs are known to be there
   const unsigned int threads = static_cast<unsigned int>(o.threads);
   const std::vector<std::pair<std::string, std::string>> merged = mergeSimilar(classes, threads);
-  {
-    std::ofstream f(fs::path(o.out) / "merged.csv");
-    f << "shape,same_as\n";
-    for (const auto &m : merged)
-      f << m.first << ',' << m.second << '\n';
-  }
+  std::ostringstream mergedCsv;
+  mergedCsv << "shape,same_as\n";
+  for (const auto &m : merged)
+    mergedCsv << m.first << ',' << m.second << '\n';
   std::vector<Shape> shapes;
   std::vector<bool> present;
   for (std::size_t k = 0; k < o.classes + o.absent; ++k)
@@ -721,7 +763,7 @@ int reid(const Options &o)
   extractQueries(queries, entries, o.seed, threads);
   recognizeQueries(queries, dbs, threads);
 
-  std::ofstream rows(fs::path(o.out) / "queries.csv");
+  std::ostringstream rows;
   writeRows(rows, queries, entries, dbs, o.models);
   std::ostringstream md;
   md << "Re-identification: " << o.dataset << " " << o.pool << " pool, seed " << o.seed << ", " << o.classes
@@ -738,8 +780,10 @@ int reid(const Options &o)
   j["views_per_shape"] = o.views;
   j["merged_shapes"] = merged.size();
   j["results"] = table;
-  std::ofstream(fs::path(o.out) / "summary.json") << j.dump(1) << "\n";
-  std::ofstream(fs::path(o.out) / "summary.md") << md.str();
+  writeResults(o.out, {{"merged.csv", mergedCsv.str()},
+                       {"queries.csv", rows.str()},
+                       {"summary.json", j.dump(1) + "\n"},
+                       {"summary.md", md.str()}});
   std::cout << md.str();
   return 0;
 }
@@ -800,9 +844,7 @@ int timing(const Options &o)
                    {"mean_ms", mean(ms)}});
     }
   }
-  fs::create_directories(o.out);
-  std::ofstream(fs::path(o.out) / "timing.json") << j.dump(1) << "\n";
-  std::ofstream(fs::path(o.out) / "timing.md") << md.str();
+  writeResults(o.out, {{"timing.json", j.dump(1) + "\n"}, {"timing.md", md.str()}});
   std::cout << md.str();
   return 0;
 }

@@ -215,3 +215,49 @@ TEST_CASE("rigid recognition: the two-stage search gives the exhaustive search's
   CHECK(compared < all);
   WARN("two-stage RIGID search: " << compared << " exact comparisons of " << all);
 }
+
+TEST_CASE("rigid recognition: a saved and reloaded database gives identical answers", "[rigid][database]")
+{
+  // The tools and their bent drawings, calibrated; views turned, scaled, noisy, a third of them under a card.
+  vpMorphDatabase db(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
+  std::vector<cv::Mat> images;
+  for (const char *n : kObjects) {
+    images.push_back(readGray(n));
+    db.add(vpMorphTemplate(n, extract(images.back())));
+    db.add(vpMorphTemplate(std::string(n) + "-deformed", extract(readGray(std::string(n) + "-deformed"))));
+  }
+  db.calibrate(1);
+  const std::string file = "rigid-reload.json";
+  db.save(file);
+  const vpMorphDatabase back = vpMorphDatabase::load(file);
+  std::remove(file.c_str());
+  REQUIRE(back.size() == db.size());
+  CHECK(back.distance().model() == vpMorphShapeDistance::RIGID);
+  CHECK(back.distance().mirrors() == db.distance().mirrors());
+  CHECK(back.minimumSupport() == db.minimumSupport());
+  CHECK(back.withinDistances() == db.withinDistances());
+  CHECK(back.betweenDistances() == db.betweenDistances());
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> turn(-180, 180), scale(0.8, 1.2);
+  std::size_t accepted = 0;
+  for (int k = 0; k < 12; ++k) {
+    cv::Mat v = images[k % 6];
+    if (k % 3 == 0)
+      v = vpMorphTest::squareOccluder(v, 0.17 * k, 0.15);
+    const vpMorphContour c = extract(warp(v, similarity(v, turn(rng), scale(rng), 0, 0), 5, 40 + k), k % 3 == 0);
+    const vpMorphRecognition a = db.recognize(c), b = back.recognize(c);
+    CAPTURE(k, db[a.index].name(), back[b.index].name(), a.distance, b.distance);
+    CHECK(a.index == b.index);
+    CHECK(a.distance == b.distance);
+    CHECK(a.secondIndex == b.secondIndex);
+    CHECK(a.secondDistance == b.secondDistance);
+    CHECK(a.threshold == b.threshold);
+    CHECK(a.support == b.support);
+    CHECK(a.accepted == b.accepted);
+    CHECK(a.mirrored == b.mirrored);
+    CHECK(a.correspondence.pairs() == b.correspondence.pairs());
+    CHECK(db.accepts(c, a.index) == back.accepts(c, b.index));
+    accepted += a.accepted && db[a.index].name() == kObjects[k % 6];
+  }
+  CHECK(accepted >= 10); // the answers compared are mostly the right ones, not twelve rejections
+}
