@@ -28,6 +28,15 @@
   The correspondence is computed once (by vpMorphMatcher, or reused from a recognition) and is not changed
   by the rectification, as in the paper. All results are value types computed at construction or on demand;
   a vpMorph is immutable and safe to share between threads.
+
+  \code
+  vpMorphContour c = vpMorphContourExtractor().extract(I);     // the view, in pixels
+  vpMorphContour t = vpMorphContourExtractor().extract(Iref);  // the stored view
+  vpMorph morph(c, t);                                         // minimal-work correspondence, rigid fit
+  double d = morph.distance();                                 // D_morph (Eq. 4)
+  std::vector<vpMorphContour> subgoals = morph.sequence(10);   // rigid frames, then Eq. 1; the last is t
+  \endcode
+  \sa \ref page_method, \ref page_design_morph
 */
 class vpMorph
 {
@@ -61,16 +70,21 @@ public:
     Morph over a given correspondence and a rigid part estimated by the caller (estimator() is GIVEN), for an input
     whose corresponded vertices do not tell its pose: with part of the object hidden, the least-squares fit crowds the
     pairs of the hidden stretch onto the occluder's edge, and its scale carries the missing part into the rigid frames
-    (vpServoMorph fits those views on their edges instead).
+    (a fit of the view's edges does not).
     \throw vpMorphException as the constructor above.
   */
   vpMorph(const vpMorphContour &input, const vpMorphContour &target, const vpMorphCorrespondence &correspondence,
           const vpMorphRigidTransform &rigid);
 
+  //! The input contour, as given.
   const vpMorphContour &input() const { return m_input; }
+  //! The target contour, as given.
   const vpMorphContour &target() const { return m_target; }
+  //! How the rigid part was estimated.
   Estimator estimator() const { return m_estimator; }
+  //! Whether the rigid part includes a scale (a similarity) or not (rotation and translation only).
   bool withScale() const { return m_withScale; }
+  //! The vertex correspondence from the input to the target.
   const vpMorphCorrespondence &correspondence() const { return m_corr; }
   //! Work of the correspondence (D_morph when it came from vpMorphMatcher::match()).
   double distance() const { return m_corr.work(); }
@@ -87,7 +101,7 @@ public:
     \throw vpMorphException::badParameterError if t is not finite or outside [0, 1];
     badContourError if the interpolated polygon degenerates: without rectification (two views far apart in
     rotation), or between very different or very differently scaled shapes, where a vertex can run onto its
-    neighbour or all vertices become collinear (found by fuzzing; vpServoMorph then reports DEGENERATE_CONTOUR).
+    neighbour or all vertices become collinear.
   */
   vpMorphContour at(double t) const;
 

@@ -14,16 +14,21 @@
   \ingroup group_morph
   \brief The two rigid parts of a template's view and the pin they turn about (value type, PIXEL units).
 
-  Why: an opened pliers is no rigid placement of its closed template. Laid by the largest overlap, one arm lies on
-  the template's and the other sticks out; its outline is 1.6 times the template's, so no depth follows from it,
-  and no part of the closed view shows an arm whole (the jaws' tips merge). Knowing each arm's own outline in the
-  taught view and the pin, the template can be posed at the opening the camera sees (pose()), and the view is then
-  a similarity of that pose: recognition and the rigid servo apply unchanged.
+  An opened pliers is no rigid placement of its closed template. Knowing each arm's own outline in the taught view
+  and the pin, the template can be posed at the opening the camera sees (pose()), and the view is then a similarity
+  of that pose: recognition and rigid alignment apply unchanged.
 
   The opening is the turn of part 1 relative to part 0 from the taught view, in radians (counter-clockwise in the
   (x, y) axes), within [minAngle(), maxAngle()]. Which part stays where the template has it is the caller's choice
   (\e fixedPart): with the pin at the same place, the two choices lay the view on the template by one arm or the
   other, and for a symmetric tool no image tells which is meant.
+
+  \code
+  vpMorphArticulation a(arm0, arm1, vpImagePoint(240, 320), vpMath::rad(-8), vpMath::rad(60)); // each arm alone
+  double opening = a.estimate(view);               // radians, within the range
+  vpMorphContour goal = a.poseFor(view, opening);  // the template posed as the view shows it
+  \endcode
+  \sa vpMorphTemplate::setArticulation(), vpMorphJointFile, \ref page_design_recognition
 */
 class vpMorphArticulation
 {
@@ -43,16 +48,19 @@ public:
 
   //! True for a default-constructed articulation (a rigid template).
   bool empty() const { return m_parts[0].empty(); }
+  //! Part \e k (0 or 1) as taught. \throw vpMorphException::badParameterError when k > 1.
   const vpMorphContour &part(unsigned int k) const;
+  //! The pin in the taught view (u, v), pixels.
   const vpImagePoint &pivot() const { return m_pivot; }
+  //! The least opening (radians, <= 0).
   double minAngle() const { return m_min; }
+  //! The largest opening (radians, >= 0).
   double maxAngle() const { return m_max; }
 
   /*!
     The template's view at opening \e angle: part \e fixedPart where the taught view has it, the other turned about
     the pin, their union drawn (each pixel grey by the share of it covered, from 8 x 8 sub-pixels) and extracted by
     vpMorphContourExtractor, so that the result carries a measured region and edge outline as a camera's view does.
-    About 3 ms.
     \throw vpMorphException::badParameterError on an empty articulation, an angle out of the range or fixedPart > 1.
   */
   vpMorphContour pose(double angle, unsigned int fixedPart = 0) const;
@@ -63,10 +71,8 @@ public:
     each part laid alone on the view's edges (trimmed ICP with scale, three rounds), the turn between the two fits
     correcting the opening. The taught opening (0) is kept unless the estimate lays the view better by more than 0.02
     of intersection over union: an occluded view of the closed tool lies on another opening about as well.
-    \e overlap, if given, receives the intersection over union at the result. Why not the morph distance: on the
-    starts' views (21 vertices) it varied by 0.4 from one 2 deg step to the next and put a 32 deg opening at 38-40
-    deg; the overlap had one clear peak (0.93-0.96) at the true opening, and the part fits put it within 0.1 deg.
-    About 20 polygons and six ICPs: some 12 ms (vispmorph-perf-servo), once per plan.
+    \e overlap, if given, receives the intersection over union at the result. The overlap, not the morph distance,
+    has one clear peak at the opening (\ref page_design_recognition).
     \throw vpMorphException on an empty articulation or view.
   */
   double estimate(const vpMorphContour &view, double *overlap = nullptr) const;

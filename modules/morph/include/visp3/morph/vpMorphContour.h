@@ -26,6 +26,19 @@
   the constructors check this and throw vpMorphException otherwise, so every algorithm downstream can rely
   on it. Self-intersection is not rejected at construction (linear morphs may legitimately produce it):
   test it with isSimple().
+
+  A contour extracted from an image (vpMorphContourExtractor) also carries the region it approximates (grey-level
+  area, centroid and second moments, hasRegion()) and the object's dense edge outline (hasOutline()); geometric
+  operations carry both along.
+
+  \code
+  vpMorphContour c({0, 100, 100, 0}, {0, 0, 50, 50});        // a 100 x 50 px rectangle, counter-clockwise
+  double a = c.area();                                        // 5000 px^2
+  vpMorphContour m = c.transformed(M_PI / 2, 10, 0);          // turned about its centroid, moved 10 px in x
+  vpMorphContour n = c.toNormalized(cam);                     // x = (u - u0) / px, y = (v - v0) / py
+  \endcode
+  \throw vpMorphException::badContourError on an invalid polygon (constructors).
+  \sa vpMorphContourExtractor, \ref page_design_morph
 */
 class vpMorphContour
 {
@@ -38,6 +51,7 @@ public:
 
   //! Empty contour (size() == 0); the only invalid state, produced only by default construction.
   vpMorphContour() = default;
+  //! From the vertices' coordinates (same length). \throw vpMorphException::badContourError on an invalid polygon.
   vpMorphContour(const std::vector<double> &x, const std::vector<double> &y, Units units = PIXEL);
   //! From ViSP image points: x = get_u(), y = get_v().
   explicit vpMorphContour(const std::vector<vpImagePoint> &points, Units units = PIXEL);
@@ -45,21 +59,32 @@ public:
   //! Largest coordinate magnitude accepted (1e75): the moments of the region (fourth powers) must stay finite.
   static double maxCoordinate() { return 1e75; }
 
+  //! Number of vertices.
   std::size_t size() const { return m_x.size(); }
+  //! True only for a default-constructed contour.
   bool empty() const { return m_x.empty(); }
+  //! Coordinate system of the vertices.
   Units units() const { return m_units; }
+  //! x of vertex k (k < size(), unchecked).
   double x(std::size_t k) const { return m_x[k]; }
+  //! y of vertex k (k < size(), unchecked).
   double y(std::size_t k) const { return m_y[k]; }
+  //! All x coordinates.
   const std::vector<double> &xs() const { return m_x; }
+  //! All y coordinates.
   const std::vector<double> &ys() const { return m_y; }
   //! Vertex k as a ViSP image point (u = x, v = y).
   vpImagePoint point(std::size_t k) const { return vpImagePoint(m_y[k], m_x[k]); }
+  //! All vertices as ViSP image points (u = x, v = y).
   std::vector<vpImagePoint> points() const;
 
   //! Signed area (shoelace); positive when the vertices turn counter-clockwise in the (x, y) axes.
   double signedArea() const;
+  //! Area of the polygon (absolute value of signedArea()).
   double area() const;
+  //! True when the vertices turn counter-clockwise in the (x, y) axes.
   bool isCounterClockwise() const { return signedArea() > 0.0; }
+  //! Sum of the edge lengths, the closing edge included.
   double perimeter() const;
   /*!
     Area of the intersection of this polygon's region with \e other's (both simple; either orientation), exact
@@ -73,11 +98,10 @@ public:
 
   /*!
     Area, centroid and second-order central moments of the image region this polygon approximates, when they were
-    measured on the image (by vpMorphContourExtractor, to a fraction of a pixel). Why: the polygon's own area,
-    centroid and vertex-fitted angle move by a percent (or a few tenths of a degree) when a vertex appears or
-    shifts from one image to the next, which is millimetres of depth for a servo; the region's grey-level moments
-    do not. Geometric operations carry the region along (similarities, unit changes, mirroring, re-ordering,
-    resampling); constructors leave it unset.
+    measured on the image (by vpMorphContourExtractor, to a fraction of a pixel). Why: the polygon's own area and
+    centroid move when a vertex appears or shifts from one image to the next; the region's grey-level moments do not.
+    Geometric operations carry the region along (similarities, unit changes, mirroring, re-ordering, resampling);
+    constructors leave it unset.
   */
   bool hasRegion() const { return m_regionArea > 0.0; }
   /*!
@@ -94,10 +118,9 @@ public:
   /*!
     The object's edge as measured on the image, densely (about a point per boundary pixel, each from the grey
     levels across the edge, to a few hundredths of a pixel on a clean image), when vpMorphContourExtractor
-    measured it. Why: the out-of-plane tilt shows only in the perspective distortion of the outline, 0.16 px for
-    half a degree on a 15 cm object at 0.5 m, below what a polygon keeps (two polygonisations of one silhouette
-    differ by tenths of a pixel); vpServoMorph's tilt estimate reads it here. Geometric operations carry it along
-    as they carry the region; constructors leave it unset.
+    measured it. Why: an out-of-plane tilt shows only in the perspective distortion of the outline, a fraction of a
+    pixel, below what a polygon keeps. Geometric operations carry it along as they carry the region; constructors
+    leave it unset.
   */
   bool hasOutline() const { return static_cast<bool>(m_outline); }
   //! The measured edge outline, or this polygon when none was measured.
@@ -149,7 +172,6 @@ public:
 
 private:
   void validate() const;
-
 
   std::vector<double> m_x, m_y;
   Units m_units = PIXEL;

@@ -28,6 +28,12 @@
   rigid frames in blue and deformation frames in orange; the first and last tiles (initial and final pose)
   get a black border, as in the paper. Frame numbers use ViSP's built-in monospace vpFont.
   The y axis points down, as in images (pixel contours are drawn where they are in the image).
+
+  \code
+  vpMorph morph(input, target);
+  vpMorphDrawing::write(vpMorphDrawing::sequenceStrip(morph, 10), "out/morph.png"); // the paper's Figure 1 layout
+  \endcode
+  \sa vpMorph
 */
 class vpMorphDrawing
 {
@@ -77,6 +83,7 @@ public:
   //! The same on the display attached to \e I (vpDisplay: no-op without one), in the display's font.
   static vpRect displayTextBand(const vpImage<unsigned char> &I, const std::vector<std::string> &lines,
                                 const vpImagePoint &topLeft, const vpColor &color = vpColor::yellow);
+  //! Same on a colour image's display.
   static vpRect displayTextBand(const vpImage<vpRGBa> &I, const std::vector<std::string> &lines,
                                 const vpImagePoint &topLeft, const vpColor &color = vpColor::yellow);
 

@@ -16,10 +16,20 @@
 
   Derives from vpException so that a ViSP control loop that already catches vpException handles it.
   The message always says what was wrong and with which value, so a user can act on it.
+
+  \code
+  try {
+    vpMorphDatabase db = vpMorphDatabase::load("objects.json");
+  } catch (const vpMorphException &e) {
+    if (e.getCode() == vpMorphException::ioError)
+      std::cerr << e.getStringMessage() << std::endl; // what was wrong, with the file and the value
+  }
+  \endcode
 */
 class vpMorphException : public vpException
 {
 public:
+  //! What went wrong (getCode()).
   enum errorCodeEnum {
     badContourError = 100, //!< Fewer than 3 vertices, NaN, repeated vertices, zero area, self-intersection.
     badImageError,         //!< Empty, uniform, too small image, or no object found.
@@ -28,6 +38,7 @@ public:
     notFoundError          //!< Unknown object, name or index.
   };
 
+  //! An error of kind \e code (errorCodeEnum) with its message.
   vpMorphException(int code, const std::string &msg) : vpException(code, msg) {}
 };
 

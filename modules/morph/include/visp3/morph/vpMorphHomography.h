@@ -20,8 +20,8 @@
   Why: a similarity (vpMorphRigidTransform) describes two views of a plane only when both cameras look straight
   at it. When one of them is tilted, the outline is distorted projectively; the tilt and the true depth are in
   that distortion, and only a homography captures it. With normalised coordinates (x = X/Z) and the plane
-  fronto-parallel in the target view at depth d (the stored view of vpServoMorph), the homography gives the full
-  camera displacement, tilt included.
+  fronto-parallel in the target view at depth d (a stored view), the homography gives the full camera
+  displacement, tilt included.
 
   <b>Estimation</b> (fit()). The minimal-work correspondence is only a vertex association, and two polygonisations
   of one outline do not place their vertices at the same points, so it serves only to start:
@@ -47,6 +47,13 @@
   columns, scaled to unit norm, are the first two columns of \f${}^iR_t\f$ (the nearest orthonormal pair is
   taken: with wrong intrinsics they are not exactly orthonormal), their cross product the third, and the third
   column minus it is \f${}^it_t / d\f$. The sign is the one that puts the plane in front of the input camera.
+
+  \code
+  vpMorphContour cn = current.toNormalized(cam), tn = target.toNormalized(cam);
+  vpMorphHomography G = vpMorphHomography::fit(cn, tn, vpMorphMatcher().match(cn, tn), 0.5 / cam.get_px());
+  vpHomogeneousMatrix cMcd = G.inputMtarget(0.5); // the target view fronto-parallel at 0.5 m
+  \endcode
+  \sa vpMorphRigidTransform, \ref page_design_servo
 */
 class vpMorphHomography
 {
@@ -102,7 +109,7 @@ public:
   /*!
     Robust refinement of \e initial (step 2 of fit() alone: two-way point-to-segment Gauss-Newton, Huber then
     Tukey weights). Why: a homography known closely, from fit() on the polygons or from the previous image of a
-    servo, refined on dense outlines (vpMorphContour::outline(): a point per boundary pixel), is measured to a few
+    sequence, refined on dense outlines (vpMorphContour::outline(): a point per boundary pixel), is fixed to a few
     hundredths of a pixel, where polygons leave tenths. Nearest edges are found through a grid, so the cost grows
     with the samples, not with the outlines' sizes.
     \throw vpMorphException as fit() (no correspondence is involved).
@@ -112,8 +119,8 @@ public:
                                   unsigned int maxIterations = 20);
 
   /*!
-    The pose of the target camera in the input camera frame, iMt (for a servo whose input is the current view and
-    whose target is the desired one: cMcd, the displacement that reaches the goal), for a homography between
+    The pose of the target camera in the input camera frame, iMt (with the current view as input and the desired
+    one as target: cMcd, the displacement that reaches the goal), for a homography between
     normalised coordinates and the plane z = d of the target camera frame (fronto-parallel at depth d).
     \throw vpMorphException::badParameterError if d is not finite and > 0; badContourError if the homography has
     no such decomposition (rank-deficient columns).

@@ -16,9 +16,8 @@
   \ingroup group_morph
   \brief The joint of an articulated template, read from a JSON file (value type).
 
-  Why a file: the parts and the pin are known where the template's image is made (vispmorph-make-data writes
-  data/joints/pliers.json beside the drawing), and a database built from a folder of images (vispmorph-db build
-  --joints) or the benchmark's scenes take them from there.
+  Why a file: the parts and the pin are known where the template's image is made, and whatever builds a database
+  from that image (a folder of images, a scene) takes them from there.
 
   \code{.json}
   {"parts": ["pliers-part0.png", "pliers-part1.png"], "pivot": [320, 240], "range_deg": [-8, 60]}
@@ -29,7 +28,14 @@
   - "range_deg": the range of the opening, part 1's turn against part 0 from the template image, degrees
     (min <= 0 <= max, under a half turn either way).
 
-  Other keys are left to the caller (the benchmark keeps the turns of its deformed drawing there).
+  Other keys are left to the caller.
+
+  \code
+  vpMorphJointFile j = vpMorphJointFile::read("data/joints/pliers.json");
+  vpMorphTemplate t("pliers", vpMorphContourExtractor().extract(I));  // I: the template image, same frame
+  t.setArticulation(j.articulation());
+  \endcode
+  \sa vpMorphArticulation, \ref page_design_recognition
 */
 class vpMorphJointFile
 {
@@ -50,8 +56,9 @@ public:
   const std::string &part(unsigned int k) const;
   //! The pin in the template image's frame (pixels).
   const vpImagePoint &pivot() const { return m_pivot; }
-  //! The range of the opening (radians).
+  //! The least opening (radians, <= 0).
   double minAngle() const { return m_min; }
+  //! The largest opening (radians, >= 0).
   double maxAngle() const { return m_max; }
 
   /*!

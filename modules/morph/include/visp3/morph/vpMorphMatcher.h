@@ -43,26 +43,34 @@
   <b>Search.</b> Every closed path matches A's vertex 0, so the minimum over all m n starting pairs equals
   the minimum over the n paths that start at (0, b), b = 0..n-1, and end at (m, b + n) on the grid where B is
   doubled. matchFromStart() runs the O(mn) dynamic programme for one start; matchBruteForce() runs it for
-  every b (O(m n^2)); match() is exact and fast: optimal paths of different starts never need to cross
-  (uncrossing two crossing paths at their shared cell keeps both costs, since costs depend only on the cell
-  and the step into it), so Maes' divide and conquer solves the middle start, then recurses on each half
-  inside the band left between the bounding paths (O(mn log n)). Two refinements keep it exact: a range of at
-  most 8 starts is first given a lower bound, the same programme run from all its starts at once to any of
-  their ends (it contains every path of the range, so it cannot exceed their minimum), and is skipped when
-  that bound is no better than the best start found so far; a range of at most 4 starts is solved start by
-  start inside its band rather than split further.
-  matchWindow() does the same for the starts near a given one, for tracking from frame to frame.
+  every b (O(m n^2)); match() is exact and fast: optimal paths of different starts never need to cross, so Maes'
+  divide and conquer solves the middle start, then recurses on each half inside the band left between the
+  bounding paths (O(mn log n)), skipping a small range of starts whose lower bound (one programme from all its
+  starts at once) is no better than the best found. matchWindow() does the same for the starts near a given one,
+  for tracking from frame to frame.
 
   Not thread safe (it reuses its buffers); copy one per thread.
+
+  \code
+  vpMorphMatcher matcher;                              // vpMorphWorkModel defaults, scale normalized
+  vpMorphCorrespondence c = matcher.match(A, B);       // exact minimum over all starting pairs
+  double D = c.work();                                 // D_morph(A, B) == D_morph(B, A)
+  \endcode
+  \sa vpMorphWorkModel, vpMorph, \ref page_method, \ref page_design_morph
 */
 class vpMorphMatcher
 {
 public:
+  //! A matcher with the work model \e model, scaling both polygons to unit perimeter when \e normalizeScale.
   explicit vpMorphMatcher(const vpMorphWorkModel &model = vpMorphWorkModel(), bool normalizeScale = true);
 
+  //! The work model (Eq. 2-3).
   const vpMorphWorkModel &model() const { return m_model; }
+  //! Sets the work model.
   void setModel(const vpMorphWorkModel &model) { m_model = model; }
+  //! Whether both polygons are scaled to unit perimeter before matching (default true).
   bool scaleNormalization() const { return m_normalizeScale; }
+  //! Turns the scale normalization on or off.
   void setScaleNormalization(bool on) { m_normalizeScale = on; }
 
   //! Minimal-work correspondence with input vertex \e a matched first to target vertex \e b.
@@ -85,26 +93,22 @@ public:
     own fitted rotation agrees with that placement (within the 30 deg sampling's half step).
     Why: the work compares shapes, not placements. Two views of one object that differ by a deformation (a
     wedge whose top sags) can cost less work matched half a turn round, a correspondence under which no rigid
-    move lays one view on the other (measured: the sagging wedge matched 155 deg off, its regions' intersection
-    over union 0.72 against 0.90 for the unrotated placement); a servo told to turn that way turns the object
-    away from its goal. The placements are compared by intersection over union, both at the area-ratio scale
-    and refined on the overlap (vpMorphRigidTransform::refineOnOverlap()); the others are sampled every 30 deg
-    about the centroids, and only the best of them is refined. Views that the minimal-work placement already
-    covers to within \e minGain are not searched (the usual case: a rigid view covers itself to 1). Where the
-    regions cannot be compared (self-intersecting contours, a placement degenerate in floating point), the
+    move lays one view on the other (\ref page_design_morph). The placements are compared by intersection over union,
+    both at the area-ratio scale and refined on the overlap (vpMorphRigidTransform::refineOnOverlap()); the others are
+    sampled every 30 deg about the centroids, and only the best of them is refined. Views that the minimal-work
+    placement already covers to within \e minGain are not searched (the usual case: a rigid view covers itself to 1).
+    Where the regions cannot be compared (self-intersecting contours, a placement degenerate in floating point), the
     minimal work decides.
     A view whose regions leave the choice to the work is then checked on the outlines, half a turn round: an
     occluded view's region is not its target's, so no placement wins on the regions, and the work can match a
-    nearly symmetric outline end for end (wedges under a card, planned 156-186 deg off their goal). The share of
+    nearly symmetric outline end for end. The share of
     B's outline that A shows, laid from the work's robust fit and from that fit turned half a turn about B's centroid
     (each refined point to edge both ways, as vpMorphDatabase::support() measures it), picks the placement when it
-    wins by \e minGain and shows at least 3/4 of B's outline (measured: 0.83-0.86 against 0.23-0.24; a view in
-    perspective, not a similarity of B, shows less either way, and its fits can fall into another basin).
+    wins by \e minGain and shows at least 3/4 of B's outline (what an occluder hiding a fifth of it leaves).
     \param minGain the intersection over union, or the share of B's outline, the other placement must win by, in
     (0, 1].
     \param gain if not null, receives that win when the correspondence was replaced, else 0.
-    \param leastWork if not null, match(A, B) already computed by the caller (a tracker that has just compared it
-    with a window's), which is then not solved again.
+    \param leastWork if not null, match(A, B) already computed by the caller, which is then not solved again.
     \throw vpMorphException as match(), and on a bad \e minGain.
   */
   vpMorphCorrespondence matchOnRegions(const vpMorphContour &A, const vpMorphContour &B, double minGain = 0.1,

@@ -39,6 +39,7 @@
   vpMorphRigidTransform T = fit.fit(current, Tstart);  // Tstart in the right basin (e.g. from a correspondence)
   if (fit.getInlierShare() > 0.5) { double sd_theta = std::sqrt(fit.getCovariance()[0][0]); }
   \endcode
+  \sa vpMorphRigidTransform, \ref page_servo_measurement
 */
 class vpMorphOutlineFit
 {
@@ -51,15 +52,18 @@ public:
 
   //! Fit the common edge offset too (default true).
   void setEdgeOffset(bool on) { m_withOffset = on; }
+  //! Whether the common edge offset is fitted.
   bool getEdgeOffset() const { return m_withOffset; }
   /*!
     Also lay the goal's samples on the input's edges (default true): a fit of the input alone onto the goal can
     shrink it onto one of the goal's edges, where every sample lies on it; the goal's samples rule that out.
   */
   void setSymmetric(bool on) { m_symmetric = on; }
+  //! Whether the goal's samples are laid on the input's edges too.
   bool getSymmetric() const { return m_symmetric; }
   //! Fit the scale (default true; false: rotation and translation only).
   void setWithScale(bool on) { m_withScale = on; }
+  //! Whether the scale is fitted.
   bool getWithScale() const { return m_withScale; }
   /*!
     Floor of the robust scale, in the contours' units (>= 0, default 0: a rounding floor only). Outlines measured
@@ -67,6 +71,7 @@ public:
     \throw vpMorphException::badParameterError on a negative or non-finite value.
   */
   void setMinimumSigma(double sigma);
+  //! Floor of the robust scale (the contours' units).
   double getMinimumSigma() const { return m_minSigma; }
   /*!
     Largest robust scale of the noise, in the contours' units (> 0, default infinite). A fit whose scale settles above
@@ -76,13 +81,16 @@ public:
     \throw vpMorphException::badParameterError on a value that is not > 0.
   */
   void setMaximumSigma(double sigma);
+  //! Largest robust scale of the noise (the contours' units; infinite: none).
   double getMaximumSigma() const { return m_maxSigma; }
   //! Reweighting rounds at most (>= 1, default 20). \throw vpMorphException::badParameterError on 0.
   void setMaxIterations(unsigned int n);
+  //! Reweighting rounds at most.
   unsigned int getMaxIterations() const { return m_maxIterations; }
   //! Samples taken along the input, and along the goal (>= 8, default 256). \throw vpMorphException::badParameterError
   //! below 8.
   void setSampleCount(unsigned int n);
+  //! Samples taken along the input, and along the goal.
   unsigned int getSampleCount() const { return m_samples; }
 
   /*!

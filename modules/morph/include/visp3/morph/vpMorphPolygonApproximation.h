@@ -37,11 +37,9 @@
      deviation \f$ \frac{1}{n}\sum_i |d_i| \f$ stays within 3 t(phi)/4 and its maximal deviation within
      2 t(phi). 3 t(phi)/4 is the largest mean that digitisation alone can produce: a pixel's own error is
      uniform within +-t(phi)/2 (mean t(phi)/4), and the digitised chord ends shift the chord by at most
-     t(phi)/2. Being an L1 average, the test absorbs zero-mean boundary jitter (noise, threshold flicker)
-     that the max-based split over-segments, which keeps the vertex count stable under image noise;
-     the max bound (one pixel step beyond twice the sampling error) keeps narrow features such as a key tooth
-     that an average would hide.
-     Merging and L1 refinement alternate until no vertex is removed.
+     t(phi)/2. The L1 average absorbs zero-mean boundary jitter; the max bound (one pixel step beyond twice the
+     sampling error) keeps narrow features such as a key tooth. Merging and L1 refinement alternate until no
+     vertex is removed.
 
   The result keeps chain pixel centres as vertices, so it stays within about t(phi) of the boundary.
   It is returned counter-clockwise in the (x = u, y = v) axes (positive vpMorphContour::signedArea(); in the
@@ -49,11 +47,15 @@
   produces self-intersections (hair-thin parts where the chain runs back over itself), the previous stage's
   polygon is used, then vertices that create crossings are dropped.
 
-  Complexity for a chain of N pixels and V vertices: split and merge O(N V) in the worst case
-  (O(N log V) for balanced splits); one refinement sweep O(sum of L_k^2) where L_k is the number of pixels
-  between the two neighbours of vertex k, i.e. O(N^2 / V) for evenly spread vertices (a few milliseconds for
-  the 1000-3000 pixel boundaries of MPEG-7). It is not strictly linear like the cited method: exactness of
-  the L1 placement was preferred over a search window, which would be a parameter.
+  Complexity for a chain of N pixels and V vertices: split and merge O(N V) in the worst case; one refinement
+  sweep O(N^2 / V) for evenly spread vertices. It is not linear like the cited method: an exact L1 placement
+  needs no search window, which would be a parameter.
+
+  \code
+  std::vector<vpImagePoint> chain = vpMorphContourExtractor().boundary(I); // 8-connected pixel centres
+  vpMorphContour polygon = vpMorphPolygonApproximation::approximate(chain);
+  \endcode
+  \sa vpMorphContourExtractor, \ref page_design_morph
 */
 class vpMorphPolygonApproximation
 {

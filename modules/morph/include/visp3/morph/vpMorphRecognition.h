@@ -19,10 +19,18 @@
   the database's threshold (and, for a view the distance rejects, its \e support: an occluded view), and
   \e margin tells how clearly it beat the runner-up, so that a caller can ask for another view when two
   templates are nearly as good.
+
+  \code
+  vpMorphRecognition r = db.recognize(vpMorphContourExtractor().extract(I));
+  if (r.accepted && r.margin > 0.1)
+    std::cout << db[r.index].name() << " at distance " << r.distance << std::endl;
+  \endcode
+  \sa vpMorphDatabase, \ref page_design_recognition
 */
 class vpMorphRecognition
 {
 public:
+  //! No template (an index field that is not set).
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
   std::size_t index = npos;                                        //!< the template (the nearest unless reranked)
@@ -41,7 +49,7 @@ public:
   //! The distance's choice showed too little of its outline and was replaced by the template the query shows most
   //! (vpMorphDatabase, re-ranking); then secondIndex is the distance's choice and margin is 0.
   bool reranked = false;
-  bool mirrored = false;                                      //!< the template's mirror image matched best
+  bool mirrored = false; //!< the template's mirror image matched best
   //! An articulated template's opening that matched best (radians, vpMorphArticulation; 0: the taught view).
   double articulation = 0.0;
   /*!
@@ -50,7 +58,7 @@ public:
     another opening, to db[index].articulation().pose(articulation).
   */
   vpMorphCorrespondence correspondence;
-  std::size_t evaluated = 0; //!< templates whose distance was computed (the others were pruned by the bound)
+  std::size_t evaluated = 0; //!< templates whose distance is computed (the others pruned by the bound)
 };
 
 #endif

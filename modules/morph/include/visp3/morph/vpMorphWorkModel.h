@@ -21,6 +21,12 @@
   perimeter (see vpMorphMatcher), so an edge of a 30-vertex polygon is about 0.03 long; \f$k_b = 0.02\f$
   makes a 0.3 rad turning mismatch cost about as much as stretching such an edge by 40 %, so neither term
   dominates.
+
+  \code
+  vpMorphMatcher matcher(vpMorphWorkModel(1.0, 0.1, 0.5));  // the paper's model with a stiffer bending
+  double D = matcher.distance(A, B);
+  \endcode
+  \sa vpMorphMatcher, \ref page_method
 */
 class vpMorphWorkModel
 {
@@ -33,8 +39,11 @@ public:
   */
   explicit vpMorphWorkModel(double ks = 1.0, double kb = 0.02, double cs = 0.5);
 
+  //! Stretching stiffness \f$k_s\f$.
   double ks() const { return m_ks; }
+  //! Bending stiffness \f$k_b\f$.
   double kb() const { return m_kb; }
+  //! Collapse penalty \f$c_s\f$.
   double cs() const { return m_cs; }
 
   //! Eq. 2: work to stretch a segment of length \e lI into one of length \e lT (either may be 0, not both).
@@ -52,6 +61,7 @@ public:
     return m_kb * d * d;
   }
 
+  //! True when the three parameters are equal.
   bool operator==(const vpMorphWorkModel &o) const { return m_ks == o.m_ks && m_kb == o.m_kb && m_cs == o.m_cs; }
 
 private:
