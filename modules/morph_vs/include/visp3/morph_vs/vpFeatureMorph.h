@@ -84,7 +84,9 @@ public:
   //! in the object frame (z axis by default); a helper for simulations and pose-based set-ups.
   static void planeFromPose(const vpHomogeneousMatrix &cMo, double &A, double &B, double &C);
 
+  //! Resets to an unbuilt 4-component feature (vpBasicFeature's contract).
   void init() override;
+  //! The selected rows of the interaction matrix (see the class description). \throw vpMorphException when not built.
   vpMatrix interaction(unsigned int select = FEATURE_ALL) override;
   /*!
     Error \f$(x_g - x_g^*, y_g - y_g^*, -\theta_{fit}, \ln\sqrt{a/a^*})\f$ against a built vpFeatureMorph, with
@@ -107,6 +109,7 @@ public:
   */
   void display(const vpCameraParameters &cam, const vpImage<unsigned char> &I, const vpColor &color = vpColor::green,
                unsigned int thickness = 1) const override;
+  //! Same on a colour image's display.
   void display(const vpCameraParameters &cam, const vpImage<vpRGBa> &I, const vpColor &color = vpColor::green,
                unsigned int thickness = 1) const override;
   //! What display() draws, burnt into the pixels of \e I (vpImageDraw): for pictures and videos without a window.
@@ -116,27 +119,41 @@ public:
   vpFeatureMorph *duplicate() const override;
   //! Writes the selected components to std::cout (ViSP's contract for print(); only on the caller's request).
   void print(unsigned int select = FEATURE_ALL) const override;
+  //! Writes the selected components to \e os.
   void print(std::ostream &os, unsigned int select = FEATURE_ALL) const;
 
+  //! Selects \f$x_g\f$.
   static unsigned int selectXg() { return FEATURE_LINE[0]; }
+  //! Selects \f$y_g\f$.
   static unsigned int selectYg() { return FEATURE_LINE[1]; }
+  //! Selects \f$\theta\f$.
   static unsigned int selectTheta() { return FEATURE_LINE[2]; }
+  //! Selects \f$\sigma\f$.
   static unsigned int selectScale() { return FEATURE_LINE[3]; }
 
+  //! True once buildFrom() has been called.
   bool isBuilt() const { return !m_contour.empty(); }
+  //! \f$x_g\f$ (normalized).
   double get_xg() const { return s[0]; }
+  //! \f$y_g\f$ (normalized).
   double get_yg() const { return s[1]; }
+  //! \f$\theta\f$ (0: it has no absolute value).
   double get_theta() const { return s[2]; }
+  //! \f$\sigma = \ln \sqrt{a}\f$.
   double get_sigma() const { return s[3]; }
   //! Depth of the plane at the centroid, 1 / (A xg + B yg + C).
   double get_Z() const { return m_Z; }
+  //! Plane coefficient A of 1/Z = A x + B y + C.
   double get_A() const { return m_A; }
+  //! Plane coefficient B.
   double get_B() const { return m_B; }
+  //! Plane coefficient C.
   double get_C() const { return m_C; }
   //! The contour in normalised coordinates.
   const vpMorphContour &contour() const { return m_contour; }
   //! The measurement (its goal is the desired feature's contour).
   const vpMorphViewAligner &getAligner() const { return m_aligner; }
+  //! The measurement, to configure it.
   vpMorphViewAligner &getAligner() { return m_aligner; }
   //! The alignment measured by the last error() call (normalised coordinates, current -> desired).
   const vpMorphViewAlignment &getAlignment() const { return m_aligner.getLastAlignment(); }

@@ -19,9 +19,8 @@
   tracked from the previous iteration when that is reliable (vpMorphMatcher::matchWindow), with a full
   cyclic search (vpMorphMatcher::match) otherwise.
 
-  Why tracking: between two iterations of a servo loop the object moves a little, so the best starting pair
-  moves by at most a vertex or two; searching only a window of starts around the previous one is exact in
-  that window and much cheaper than the full search over all starts.
+  Why tracking: between two iterations the best starting pair moves by a vertex or two, and a window of starts
+  around the previous one is exact in that window and much cheaper than the full search.
 
   <b>Start of the window.</b> The previous starting input vertex is carried to the new contour as the vertex
   nearest to its previous position moved by the centroid displacement (the contour's numbering may change
@@ -46,6 +45,15 @@
   the best work D and the best work D_alt of the starts more than n/8 target vertices away from the best
   one (n the target size). A margin near 0 means two different alignments of the contour are almost equally
   good (a symmetric object): the correspondence, hence the rotation, is ambiguous.
+
+  \code
+  vpMorphCorrespondenceTracker tracker;
+  for (;;) {                                              // one call per control iteration
+    const vpMorphCorrespondence &c = tracker.update(vpMorphContourExtractor().extract(I), target);
+    if (tracker.margin() < 0.05) { }                      // ambiguous (a symmetric object)
+  }
+  \endcode
+  \sa vpMorphMatcher::matchWindow(), \ref page_design_servo
 */
 class vpMorphCorrespondenceTracker
 {
@@ -57,6 +65,7 @@ public:
     TRACKED //!< Windowed search around the previous start.
   };
 
+  //! A tracker running \e matcher (copied).
   explicit vpMorphCorrespondenceTracker(const vpMorphMatcher &matcher = vpMorphMatcher());
 
   /*!
@@ -67,7 +76,9 @@ public:
   //! Forgets the previous correspondence: the next update() runs a full search.
   void reset();
 
+  //! The last correspondence.
   const vpMorphCorrespondence &correspondence() const { return m_corr; }
+  //! Where the last correspondence came from.
   Source lastSource() const { return m_source; }
   //! Work of the last correspondence.
   double work() const { return m_corr.work(); }
@@ -75,7 +86,9 @@ public:
   double previousWork() const { return m_prevWork; }
   //! Margin measured at the last full search (1 if never measured; see the class description).
   double margin() const { return m_margin; }
+  //! Number of full searches run.
   unsigned int fullMatchCount() const { return m_fullCount; }
+  //! Number of tracked results kept.
   unsigned int trackedMatchCount() const { return m_trackedCount; }
   //! Number of tracked results rejected by the reliability test.
   unsigned int rejectedTrackCount() const { return m_rejectedCount; }
@@ -83,12 +96,15 @@ public:
   //! description); they are counted as full searches too.
   unsigned int confirmedJumpCount() const { return m_confirmedJumps; }
 
+  //! The jump test's factor.
   double jumpFactor() const { return m_jumpFactor; }
   //! Tracked work above jumpFactor * previous work + workFloor is a jump (default 1.5, >= 1).
   void setJumpFactor(double f);
+  //! The jump test's absolute slack.
   double workFloor() const { return m_workFloor; }
   //! Absolute slack of the jump test (default 1e-3, >= 0), so that near-zero works do not trigger it.
   void setWorkFloor(double w);
+  //! Whether full searches are checked against the regions.
   bool regionCheck() const { return m_regionCheck; }
   //! Full searches checked against the regions' overlap (default true, see the class description).
   void setRegionCheck(bool on) { m_regionCheck = on; }
@@ -96,6 +112,7 @@ public:
   unsigned int regionOverrideCount() const { return m_regionOverrides; }
   //! Half width of the tracking window in target vertices (0: automatic, max(2, n / 8)).
   void setWindowHalfWidth(std::size_t h) { m_halfWidth = h; }
+  //! The matcher, to configure it.
   vpMorphMatcher &matcher() { return m_matcher; }
 
 private:

@@ -42,12 +42,20 @@
 
   <b>Outliers.</b> A move whose observation the current estimate explains worse than the error it could have (the
   residual of its equations beyond twice |ta| plus |phi| x 0.1 m) is not added (rejectedMoveCount()): one view
-  measured wrong (a silhouette re-digitised across an occluder for one period) moved the camera in the image 30 times
-  more than commanded and would pull k to 0.01, after which the servo barely moves and never corrects it.
+  measured wrong would otherwise pull k towards 0, after which the servo barely moves and never corrects it.
+
+  \code
+  vpMorphHandEyeEstimator estimator(eMc_guess);
+  estimator.addMove(eMe_commanded, cMc_observed);  // after each move: commanded, and seen in the image
+  vpHomogeneousMatrix eMc = estimator.get_eMc();   // the planar part corrected
+  double k = estimator.translationScale();         // the projection's scale error
+  \endcode
+  \sa \ref page_design_servo
 */
 class vpMorphHandEyeEstimator
 {
 public:
+  //! Starts from the estimate \e eMc0.
   explicit vpMorphHandEyeEstimator(const vpHomogeneousMatrix &eMc0 = vpHomogeneousMatrix());
 
   //! Restarts from \e eMc0 (forgets all moves).
@@ -60,21 +68,25 @@ public:
 
   //! Current estimate of eMc.
   vpHomogeneousMatrix get_eMc() const { return m_eMc; }
+  //! The initial estimate.
   vpHomogeneousMatrix get_eMc0() const { return m_eMc0; }
   /*!
     Estimated scale k: true camera translation in the image plane = k * observed one (1 if intrinsics are right).
-    Kept in [1/2, 2]: intrinsics given for a calibrated camera are not off by more than a factor of 2 (the bench's
-    calib set: 20 %), and a view the planar model does not fit (seen tilted) otherwise pulled k towards 0.
+    Kept in [1/2, 2]: intrinsics given for a calibrated camera are not off by more than a factor of 2, and a view the
+    planar model does not fit (seen tilted) would otherwise pull k towards 0.
   */
   double translationScale() const { return std::hypot(m_u[2], m_u[3]); }
+  //! Number of moves added.
   unsigned int moveCount() const { return m_moves; }
   //! Moves rejected as outliers: the current estimate left more of the observed camera translation unexplained than
   //! twice the commanded one plus what the move's rotation does to a 0.1 m offset (see addMove()).
   unsigned int rejectedMoveCount() const { return m_rejected; }
 
+  //! The forgetting factor.
   double forgetting() const { return m_forget; }
   //! Forgetting factor in (0, 1] applied to the past moves at each new one (default 0.95).
   void setForgetting(double f);
+  //! The ridge weight towards the initial estimate (m^2).
   double priorWeight() const { return m_prior; }
   //! Ridge weight towards the initial estimate, in m^2 (default 1e-6: one 1 mm move outweighs it). Only
   //! before the first move (it restarts the estimator).

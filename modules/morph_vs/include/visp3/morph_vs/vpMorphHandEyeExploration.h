@@ -43,17 +43,19 @@
   vpMorphHandEyeExploration &turn = servo.getHandEyeExploration();
   turn.setAngle(M_PI / 2, 640, 480);    // before the first sequence
   \endcode
-  \sa vpServoMorph, vpMorphHandEyeEstimator
+  \sa vpServoMorph, vpMorphHandEyeEstimator, \ref page_design_servo
 */
 class vpMorphHandEyeExploration
 {
 public:
+  //! What a period of the turn asks of the caller.
   enum Result {
     TURNING,  //!< the turn goes on: send the velocity
     FINISHED, //!< back where it started (eMc corrected when the readings allowed), or not started
     DISPLACED //!< the view jumped during the turn: plan again from it
   };
 
+  //! No turn (getAngle() 0) until setAngle().
   vpMorphHandEyeExploration() = default;
 
   /*!
@@ -61,6 +63,7 @@ public:
     \throw vpMorphException::badParameterError otherwise.
   */
   void setAngle(double rad, unsigned int imageWidth, unsigned int imageHeight);
+  //! The turn (rad; 0: none).
   double getAngle() const { return m_angle; }
   //! Starts again (before a task): the turn pending when getAngle() > 0.
   void reset();
@@ -81,17 +84,17 @@ public:
               vpMorphHandEyeEstimator &handEye, const vpMatrix &eJe, const vpColVector &q, const vpColVector &qMin,
               const vpColVector &qMax, double dt, double jumpPx, vpColVector &ve);
 
-  static double getSpeed() { return 1.0; }           //!< rad/s
-  static double getBorderPx() { return 40.0; }       //!< px
-  static double getProbeAngle() { return 0.35; }     //!< rad
-  static double getDriftPx() { return 6.0; }         //!< px a period (the turn's own tilt drifts the view)
-  static double getAreaChange() { return 0.1; }      //!< relative
-  static unsigned int getJumpPeriods() { return 3; } //!< periods
-  static double getMaxDeviation() { return 0.006; }  //!< rad
-  static double getMinCorrection() { return 0.01; }  //!< rad, at the first turn
-  static double getCorrectionSigmas() { return 5.0; }
-  static double getRepeatAbove() { return 0.01; } //!< rad: a correction beyond it is read again by a second turn
-  static unsigned int getPasses() { return 2; }
+  static double getSpeed() { return 1.0; }            //!< rad/s
+  static double getBorderPx() { return 40.0; }        //!< px
+  static double getProbeAngle() { return 0.35; }      //!< rad
+  static double getDriftPx() { return 6.0; }          //!< px a period (the turn's own tilt drifts the view)
+  static double getAreaChange() { return 0.1; }       //!< relative
+  static unsigned int getJumpPeriods() { return 3; }  //!< periods
+  static double getMaxDeviation() { return 0.006; }   //!< rad
+  static double getMinCorrection() { return 0.01; }   //!< rad, at the first turn
+  static double getCorrectionSigmas() { return 5.0; } //!< standard deviations a correction must reach
+  static double getRepeatAbove() { return 0.01; }     //!< rad: a correction beyond it is read again by a second turn
+  static unsigned int getPasses() { return 2; }       //!< turns at most
 
 private:
   enum Phase { NONE, OUT, BACK, DONE };

@@ -16,9 +16,8 @@
 
   <b>Why.</b> A driver that holds \f$\dot q = {}^eJ_e(q_k)^+ v\f$ for the period moves the end-effector by
   \f${}^eJ_e(q(t))\,\dot q\f$, which leaves \e v as the Jacobian changes along the motion: the error is second order
-  per period and adds up along a long turn. On the Afma6 a 60 deg turn about the optical axis in 80 periods tilts the
-  camera by 0.39 deg. A full 6-dof law sees that tilt and takes it back; vpServoMorph's planar law does not, and the
-  tilt about a thin object's long axis does not show in its outline, so it stays in the final pose.
+  per period and adds up along a long turn into a tilt of the camera. A full 6-dof law sees that tilt and takes it
+  back; a planar law does not, and the tilt about a thin object's long axis does not show in its outline.
 
   <b>How.</b> The Jacobian at the middle of the coming step is extrapolated from the last two periods' Jacobians:
   \f[ J_{mid} = J_k + \tfrac{a}{2} (J_k - J_{k-1}), \quad
@@ -28,6 +27,13 @@
   positions), not the robot's kinematic model. The first period after construction or reset(), after a step of no
   motion, or after a step the coming one does not continue, uses \f$J_k\f$ alone (the plain conversion); \e a is kept
   within +-kMaxStepRatio, as the change of J is only known along the last step.
+
+  \code
+  vpMorphJointVelocity joints(0.04);                       // the driver holds each velocity for 40 ms
+  vpColVector qdot = joints.compute(eJe, q, servo.computeControlLaw(c));
+  robot.setVelocity(vpRobot::ARTICULAR_FRAME, qdot);
+  \endcode
+  \sa \ref page_design_servo
 */
 class vpMorphJointVelocity
 {
@@ -35,6 +41,7 @@ public:
   //! \param samplingTime : period the velocity is held for, seconds (finite, > 0).
   explicit vpMorphJointVelocity(double samplingTime = 0.04);
 
+  //! Period the velocity is held for (s).
   double samplingTime() const { return m_dt; }
   //! \throw vpMorphException::badParameterError unless finite and > 0.
   void setSamplingTime(double samplingTime);

@@ -43,32 +43,40 @@
   guard.setMaxLostIterations(8);
   guard.setTargetCheck(db, "pliers");
   \endcode
-  \sa vpServoMorph
+  \sa vpServoMorph, \ref page_servo_measurement
 */
 class vpMorphServoGuard : public vpMorphServoStatus
 {
 public:
+  //! Default limits, no target check.
   vpMorphServoGuard() = default;
 
   //! Holds in a row allowed before LOST_TOO_LONG (default 25).
   void setMaxLostIterations(unsigned int n) { m_maxLost = n; }
+  //! Holds in a row allowed.
   unsigned int getMaxLostIterations() const { return m_maxLost; }
   //! Re-plans allowed per task (default 3; 0: the first jump stops).
   void setMaxReplans(unsigned int n) { m_maxReplans = n; }
+  //! Re-plans allowed per task.
   unsigned int getMaxReplans() const { return m_maxReplans; }
   //! Translation of the fit beyond what the last command explains that is a jump (pixels, > 0, default 20).
   void setJumpPixels(double px);
+  //! The translation jump threshold (px).
   double getJumpPixels() const { return m_jumpPx; }
   //! Rotation of the fit beyond what the last command explains that is a jump (rad, > 0, default 0.1).
   void setJumpRotation(double rad);
+  //! The rotation jump threshold (rad).
   double getJumpRotation() const { return m_jumpRotation; }
   /*!
     Checks the view against \e db's template \e name, with the factor \e slack (>= 1) on its acceptance threshold.
     \throw vpMorphException::notFoundError for an unknown name, badParameterError for a slack below 1 or NaN.
   */
   void setTargetCheck(const vpMorphDatabase &db, const std::string &name, double slack = 1.25);
+  //! No target check from now on.
   void clearTargetCheck();
+  //! True when a target check is set.
   bool hasTargetCheck() const { return !m_db.empty(); }
+  //! The database of the target check (empty without).
   const vpMorphDatabase &getTargetDatabase() const { return m_db; }
   //! Another template replaces the target when it costs this much less work (1.2).
   static double getMismatchRatio() { return 1.2; }
@@ -77,6 +85,7 @@ public:
   void reset();
   //! The stop the servo is in (NOT_STARTED when it is not stopped).
   bool isHalted() const { return m_halted != NOT_STARTED; }
+  //! The stop latched (NOT_STARTED when none).
   Status getHaltedStatus() const { return m_halted; }
   //! Latches the stop \e s and returns it.
   Status halt(Status s);
@@ -85,6 +94,7 @@ public:
   Status hold(Status why);
   //! A period with a usable view: the holds in a row start again from 0.
   void resume() { m_lost = 0; }
+  //! Holds in a row so far.
   unsigned int getLostCount() const { return m_lost; }
 
   /*!
@@ -95,6 +105,7 @@ public:
                   const vpCameraParameters &cam) const;
   //! A re-plan after a jump: true when allowed (counted), false when it is one too many (halted, TOO_MANY_REPLANS).
   bool allowReplan();
+  //! Re-plans so far in this task.
   unsigned int getReplanCount() const { return m_replans; }
 
   /*!
@@ -103,6 +114,7 @@ public:
     then over the template's poses). The last distance to the target is kept (getTargetDistance()).
   */
   bool targetMismatch(const vpMorphContour &current, const vpMorphContour &target, bool articulated);
+  //! The last distance to the target's template (NaN before any check).
   double getTargetDistance() const { return m_targetDistance; }
 
   /*!

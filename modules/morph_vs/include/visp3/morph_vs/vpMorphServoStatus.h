@@ -20,10 +20,19 @@
     measurement, but the view does not pin the pose within the final thresholds at its noise: a part hidden that
     leaves the pose free, a tilt the outline does not show; the servo cannot vouch for the pose), LOST_TOO_LONG (too
     many holds in a row), TOO_MANY_REPLANS, TARGET_MISMATCH (the view is not the target's shape).
+
+  \code
+  vpColVector ve = servo.computeControlLaw(c);
+  if (servo.getStatus() == vpServoMorph::CONVERGED) { }           // done, verified
+  else if (vpServoMorph::isStop(servo.getStatus()))               // a safe stop: say why
+    std::cerr << vpServoMorph::statusName(servo.getStatus()) << std::endl;
+  \endcode
+  \sa \ref page_servo_measurement
 */
 class vpMorphServoStatus
 {
 public:
+  //! The outcome of a period (see the class description).
   enum Status {
     NOT_STARTED,        //!< No period yet.
     MOVING,             //!< Moving towards the current sub-goal.

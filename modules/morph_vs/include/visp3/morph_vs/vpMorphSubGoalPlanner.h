@@ -48,24 +48,31 @@
   planner.plan(current, target, currentToTarget, cam, Zd, eMc);   // currentToTarget: vpMorphViewAligner's
   for (std::size_t k = 0; k < planner.size(); ++k) { const vpMorphContour &g = planner.getSubGoal(k); }
   \endcode
+  \sa vpServoMorph, \ref page_method, \ref page_design_servo
 */
 class vpMorphSubGoalPlanner
 {
 public:
+  //! The camera path of the rigid frames.
   enum RigidPath {
     CAMERA_STRAIGHT_LINE, //!< the camera on a straight line, turning evenly (default)
     ABOUT_OBJECT_CENTROID //!< the paper's image-space interpolation about the view's centroid
   };
 
+  //! 10 sub-goals on the straight camera path, no deformation frames, no joints.
   vpMorphSubGoalPlanner() = default;
 
   //! Sub-goals per plan (0: the target only). \throw nothing.
   void setSubGoalCount(std::size_t n) { m_n = n; }
+  //! Sub-goals per plan.
   std::size_t getSubGoalCount() const { return m_n; }
+  //! The camera path of the rigid frames (default CAMERA_STRAIGHT_LINE).
   void setRigidPath(RigidPath p) { m_path = p; }
+  //! The camera path of the rigid frames.
   RigidPath getRigidPath() const { return m_path; }
   //! The paper's deformation frames after the rigid ones (default false).
   void setDeformationFrames(bool on) { m_deformation = on; }
+  //! Whether the deformation frames follow the rigid ones.
   bool getDeformationFrames() const { return m_deformation; }
   /*!
     The robot's joints: \e eJe at the joint positions \e q, and their limits (infinite: none). Read by plan().
@@ -73,10 +80,15 @@ public:
     or outside its limits.
   */
   void setJointState(const vpMatrix &eJe, const vpColVector &q, const vpColVector &qMin, const vpColVector &qMax);
+  //! True after setJointState().
   bool hasJointState() const { return m_q.size() > 0; }
+  //! eJe as last set.
   const vpMatrix &getJointJacobian() const { return m_eJe; }
+  //! q as last set.
   const vpColVector &getJointPositions() const { return m_q; }
+  //! The joints' lower limits.
   const vpColVector &getJointMin() const { return m_qMin; }
+  //! The joints' upper limits.
   const vpColVector &getJointMax() const { return m_qMax; }
   //! Share of a joint's range kept clear of its limits at a plan's predicted end (3 %: 21.6 deg of a +-360 deg wrist).
   static double getJointMargin() { return 0.03; }
@@ -93,10 +105,13 @@ public:
   //! Forgets the plan.
   void clear();
 
+  //! Number of sub-goals of the plan.
   std::size_t size() const { return m_goals.size(); }
+  //! True without a plan.
   bool empty() const { return m_goals.empty(); }
   //! Sub-goal k, in pixels (the last is the target).
   const vpMorphContour &getSubGoal(std::size_t k) const { return m_goals[k]; }
+  //! All sub-goals, in pixels.
   const std::vector<vpMorphContour> &getSubGoals() const { return m_goals; }
   //! The depth of the object's plane (its centroid) at which sub-goal k is seen.
   double getDepth(std::size_t k) const { return m_depths[k]; }
@@ -110,7 +125,7 @@ public:
   bool isLongWay() const { return m_longWay; }
   //! The joints' predicted end of the plan (empty without setJointState()).
   const vpColVector &getJointEnd() const { return m_qEnd; }
-  //! The camera displacement the plan's similarity stands for, at depth Z (see vpServoMorph: Eq. 5-10).
+  //! The camera displacement the plan's similarity stands for, at depth Z, with projection scale k (Eq. 5-10).
   static vpHomogeneousMatrix cameraDisplacement(const vpMorphRigidTransform &T, double Z, double k = 1.0);
 
 private:

@@ -45,7 +45,7 @@
   if (tilt.estimate(currentN, targetN, Zd, currentToTarget, rigid, true, gain, cMct, Zp)) { // add gain * cMct's twist
   }
   \endcode
-  \sa vpServoMorph
+  \sa vpServoMorph, vpMorphHomography, \ref page_design_servo
 */
 class vpMorphTiltEstimator
 {
@@ -53,32 +53,41 @@ public:
   //! One reading of the tilt for vpMorphHandEyeExploration: the plane normal's image-plane part and its covariance.
   struct Reading
   {
-    double nx = 0, ny = 0;            //!< n's x and y in the current camera frame
-    double c00 = 0, c01 = 0, c11 = 0; //!< their covariance
+    double nx = 0;  //!< n's x in the current camera frame
+    double ny = 0;  //!< n's y in the current camera frame
+    double c00 = 0; //!< covariance of nx
+    double c01 = 0; //!< covariance of nx and ny
+    double c11 = 0; //!< covariance of ny
   };
 
+  //! Default dead zones and thresholds for the default camera.
   vpMorphTiltEstimator() = default;
 
   //! The size of a pixel in normalised units (1 / px of the intrinsics; default 1/800), for the residuals' limits.
   void setPixelSize(double unitsPerPixel);
+  //! The size of a pixel in normalized units.
   double getPixelSize() const { return m_pixel; }
 
-  //! Dead zone on polygons without measured outlines (rad, >= 0, default 0.07: their homography sees 1-6 deg).
+  //! Dead zone on polygons without edge outlines (rad, >= 0, default 0.07: a polygon's homography sees a few deg).
   void setDeadZone(double rad);
+  //! Dead zone on polygons (rad).
   double getDeadZone() const { return m_deadZone; }
   //! Dead zone floor on measured outlines (rad, >= 0, default 0.0026: 0.15 deg).
   void setOutlineDeadZone(double rad);
+  //! Dead zone floor on edge outlines (rad).
   double getOutlineDeadZone() const { return m_outlineDeadZone; }
   //! Tilt below which the final goal can be reached (rad, > 0, default 0.002).
   void setFinalThreshold(double rad);
+  //! Tilt below which the final goal can be reached (rad).
   double getFinalThreshold() const { return m_final; }
   //! Standard deviations of the tilt's estimate within which it is not commanded (2).
   static double getSigmas() { return 2.0; }
-  //! Least inlier share and largest RMS residual (pixels) of a usable homography on a rigid view (0.9 and 0.5 px: the
-  //! outline's noise limit, vpMorphViewAligner::outlineSigmaLimitPx()), and the inlier share on a view that is not
-  //! (0.99: the whole outline; at half the residual).
+  //! Least inlier share of a usable homography on a rigid view (0.9).
   static double getMinInlierShare() { return 0.9; }
+  //! Least inlier share on a view that is not rigid (0.99: the whole outline; at half the residual).
   static double getMinInlierShareNotRigid() { return 0.99; }
+  //! Largest RMS residual of a usable homography (0.5 px: the outline's noise limit,
+  //! vpMorphViewAligner::outlineSigmaLimitPx()).
   static double getMaxResidualPx() { return 0.5; }
   //! Periods of the final approach fused at most (16).
   static unsigned int getWindow() { return 16; }

@@ -50,19 +50,23 @@
   vpMorphViewAlignment a = aligner.align(current);      // current view, pixels
   if (a.explained()) { double depthRatio = a.transform.scale(); }   // Z / Zd for the target
   \endcode
-  \sa vpMorphOutlineFit, vpMorphViewAlignment
+  \sa vpMorphOutlineFit, vpMorphViewAlignment, \ref page_servo_measurement
 */
 class vpMorphViewAligner
 {
 public:
+  //! How the view is aligned.
   enum Method {
     OUTLINE, //!< robust outline fit (default)
     PAPER    //!< the paper's elongation vectors over the correspondence
   };
 
+  //! OUTLINE, the default camera (getDefaultCameraParameters()), no goal.
   vpMorphViewAligner();
 
+  //! The intrinsics that convert pixels to normalized coordinates.
   void setCameraParameters(const vpCameraParameters &cam);
+  //! The intrinsics in use.
   const vpCameraParameters &getCameraParameters() const { return m_cam; }
   /*!
     The goal view (pixels or normalised). Forgets the last alignment (the next align() starts from the correspondence
@@ -74,6 +78,7 @@ public:
   const vpMorphContour &getGoal() const { return m_goalPx; }
   //! The goal in normalised coordinates.
   const vpMorphContour &getGoalNormalized() const { return m_goalN; }
+  //! True once a goal is set.
   bool hasGoal() const { return !m_goalPx.empty(); }
   /*!
     The start of the next align() (normalised coordinates, current -> goal), in place of the last alignment, with the
@@ -83,7 +88,9 @@ public:
   void setStart(const vpMorphRigidTransform &currentToGoal, double sigmaPx = 0.0);
   //! Forgets the last alignment and the correspondence (after a jump of the view).
   void reset();
+  //! The method (default OUTLINE); forgets the last alignment.
   void setMethod(Method m);
+  //! The method in use.
   Method getMethod() const { return m_method; }
 
   /*!

@@ -34,22 +34,31 @@
   - UNEXPLAINED: less than half of the view's region lies on the goal's, or less than half of the goal's outline on
     the view's, or the residuals' robust scale is beyond what edge noise makes: the part laid on the goal is not the
     larger part of the object (another shape, a deformation no rigid placement explains, a fit run off to a point).
+
+  \code
+  vpMorphViewAlignment a = aligner.align(current);
+  if (a.explained() && a.rotationDeviation() < 1e-3)
+    std::cout << vpMorphViewAlignment::modelName(a.model) << ": theta " << a.transform.theta() << std::endl;
+  \endcode
+  \sa vpMorphViewAligner, \ref page_servo_measurement
 */
 class vpMorphViewAlignment
 {
 public:
+  //! How the view relates to the goal (see the class description).
   enum Model {
     RIGID,       //!< the view is the goal seen again, within the noise
     PART_HIDDEN, //!< part of the goal is hidden
     PART_BENT,   //!< part of the view lies out of the goal
     UNEXPLAINED  //!< fewer than half of the view lies on the goal
   };
+  //! A short name ("rigid", "part hidden"...).
   static const char *modelName(Model m);
 
   vpMorphRigidTransform transform; //!< current -> goal, normalised coordinates
   //! Covariance of (theta, tx, ty, ln s), 4 x 4; infinite diagonal when the inliers do not determine them.
   vpMatrix covariance = vpMatrix(4, 4, 0.0);
-  Model model = UNEXPLAINED;
+  Model model = UNEXPLAINED; //!< which model explains the residuals
   double sigmaPx = 0.0;      //!< robust scale of the residuals, pixels
   double edgeOffsetPx = 0.0; //!< the goal's edges moved outwards by this to lie on the view's (pixels)
   double inlierShare = 0.0;  //!< share of the view's samples on the goal's edges, [0, 1]
@@ -63,10 +72,11 @@ public:
   double work = std::numeric_limits<double>::quiet_NaN();   //!< work of the correspondence, when it was run
   double margin = std::numeric_limits<double>::quiet_NaN(); //!< its margin after a full search (NaN: tracked)
 
-  //! Standard deviations of the rotation (rad), of the translation (along its worse axis, normalised units) and of
-  //! the relative scale.
+  //! Standard deviation of the rotation (rad).
   double rotationDeviation() const;
+  //! Standard deviation of the translation along its worse axis (normalized units).
   double translationDeviation() const;
+  //! Standard deviation of the relative scale.
   double scaleDeviation() const;
   //! The view is explained: the larger part of it lies on the goal within the noise.
   bool explained() const { return model != UNEXPLAINED; }

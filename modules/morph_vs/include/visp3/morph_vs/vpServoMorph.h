@@ -96,8 +96,11 @@ public:
   //! One period, for plots.
   struct Iteration
   {
+    //! period number from the restart
     unsigned int iteration = 0;
+    //! sub-goal chased
     std::size_t subGoal = 0;
+    //! status after the period
     Status status = NOT_STARTED;
     double rotationResidual = 0;                                           //!< |theta| to the sub-goal (rad)
     double translationResidual = 0;                                        //!< |t| to the sub-goal (px)
@@ -119,11 +122,15 @@ public:
     aspect ratio has; the intrinsics turn the measured similarity into a camera motion.
   */
   void setCameraParameters(const vpCameraParameters &cam);
+  //! The intrinsics the servo uses.
   const vpCameraParameters &getCameraParameters() const { return m_cam; }
   //! Initial hand-eye estimate; restarts the estimator.
   void set_eMc(const vpHomogeneousMatrix &eMc) { m_handEye.reset(eMc); }
+  //! The current hand-eye estimate.
   vpHomogeneousMatrix get_eMc() const { return m_handEye.get_eMc(); }
+  //! Whether the hand-eye estimate is updated on line (default true).
   void setOnlineCalibration(bool on) { m_set.online = on; }
+  //! Whether the hand-eye estimate is updated on line.
   bool getOnlineCalibration() const { return m_set.online; }
 
   /*!
@@ -138,7 +145,9 @@ public:
     \throw vpMorphException::badParameterError when the template has no desired pose.
   */
   void setTarget(const vpMorphTemplate &t);
+  //! The target contour (pixels), as set or posed at its opening.
   const vpMorphContour &getTargetContour() const { return m_target.contour; }
+  //! The target's depth Zd (m).
   double getTargetDepth() const { return m_target.depth; }
   //! The opening the articulated target was posed at (radians; 0 for a rigid target).
   double getTargetOpening() const { return m_target.opening; }
@@ -147,46 +156,69 @@ public:
 
   //! Share of the step commanded per sampling period, in (0, 1] (default 0.5).
   void setGain(double gain);
+  //! Share of the step commanded per period.
   double getGain() const { return m_set.gain; }
   //! Sampling period (s, > 0, default 0.1).
   void setSamplingTime(double dt);
+  //! Sampling period (s).
   double getSamplingTime() const { return m_set.dt; }
+  //! How the error becomes a velocity (default HOMOGENEOUS_TRANSFORMS).
   void setControlLaw(ControlLaw law);
+  //! How the error becomes a velocity.
   ControlLaw getControlLaw() const { return m_set.law; }
   //! Restarts.
   void setTiltCorrection(TiltCorrection mode);
+  //! When the out-of-plane correction runs.
   TiltCorrection getTiltCorrection() const { return m_set.tilt; }
   //! Restarts; PAPER also sets the planner's path and deformation frames and the aligner's method, OUTLINE resets them.
   void setMeasurement(Measurement m);
+  //! Which measurement the servo runs on.
   Measurement getMeasurement() const { return m_set.measurement; }
   //! Residual below which a sub-goal is passed (default: the paper's 0.10 rad and 5 px).
   void setSubGoalThresholds(double rotationRad, double translationPx);
+  //! Rotation residual below which a sub-goal is passed (rad).
   double getSubGoalRotationThreshold() const { return m_set.thresholds.subRotation; }
+  //! Translation residual below which a sub-goal is passed (px).
   double getSubGoalTranslationThreshold() const { return m_set.thresholds.subPixels; }
   //! Residual below which the target is reached (default 0.001 rad and 0.1 px, the scale's error counted in pixels
   //! at the view's RMS radius).
   void setFinalThresholds(double rotationRad, double translationPx);
+  //! Rotation residual below which the target is reached (rad).
   double getFinalRotationThreshold() const { return m_set.thresholds.finalRotation; }
+  //! Translation residual below which the target is reached (px).
   double getFinalTranslationThreshold() const { return m_set.thresholds.finalPixels; }
   //! Relative scale error below which the target is reached, on top (default 0: none).
   void setFinalScaleThreshold(double relativeScale);
+  //! Relative scale error below which the target is reached (0: none).
   double getFinalScaleThreshold() const { return m_set.thresholds.finalScale; }
   //! Smallest contour area (px^2, > 0, default 25): below, DEGENERATE_CONTOUR.
   void setMinArea(double px2);
+  //! Smallest contour area (px^2).
   double getMinArea() const { return m_set.minArea; }
 
+  //! The measurement (vpMorphViewAligner).
   vpMorphViewAligner &getAligner() { return m_aligner; }
+  //! The measurement (vpMorphViewAligner).
   const vpMorphViewAligner &getAligner() const { return m_aligner; }
   //! Its settings take effect at the next plan (restart()); setJointState() every period.
   vpMorphSubGoalPlanner &getPlanner() { return m_planner; }
+  //! The sub-goal planner.
   const vpMorphSubGoalPlanner &getPlanner() const { return m_planner; }
+  //! The out-of-plane (tilt) estimator.
   vpMorphTiltEstimator &getTiltEstimator() { return m_tilt; }
+  //! The out-of-plane (tilt) estimator.
   const vpMorphTiltEstimator &getTiltEstimator() const { return m_tilt; }
+  //! The online hand-eye estimator.
   vpMorphHandEyeEstimator &getHandEyeEstimator() { return m_handEye; }
+  //! The online hand-eye estimator.
   const vpMorphHandEyeEstimator &getHandEyeEstimator() const { return m_handEye; }
+  //! The hand-eye tilt exploration turn.
   vpMorphHandEyeExploration &getHandEyeExploration() { return m_exploration; }
+  //! The hand-eye tilt exploration turn.
   const vpMorphHandEyeExploration &getHandEyeExploration() const { return m_exploration; }
+  //! The guard: holds, stops, re-plans, the target check.
   vpMorphServoGuard &getGuard() { return m_guard; }
+  //! The guard: holds, stops, re-plans, the target check.
   const vpMorphServoGuard &getGuard() const { return m_guard; }
 
   //! Forgets the plan, the history and the stops: the next period plans from the then current view.
@@ -198,19 +230,27 @@ public:
   */
   vpColVector computeControlLaw(const vpMorphContour &current);
 
+  //! The status after the last period.
   Status getStatus() const { return m_status; }
+  //! Index of the sub-goal chased (the last one is the target).
   std::size_t getSubGoalIndex() const { return m_k; }
+  //! The sub-goals of the current plan (pixels).
   const std::vector<vpMorphContour> &getSubGoals() const { return m_planner.getSubGoals(); }
   //! The last alignment to the current sub-goal.
   const vpMorphViewAlignment &getAlignment() const { return m_alignment; }
+  //! |theta| from the view to the sub-goal (rad).
   double getRotationResidual() const { return m_res.rotation; }
+  //! |t| from the view to the sub-goal (px).
   double getTranslationResidual() const { return m_res.pixels; }
+  //! |s - 1| times the view's RMS radius (px).
   double getScaleResidual() const { return m_res.scalePixels; }
   //! The last contour given (pixels; empty after a hold without one).
   const vpMorphContour &getCurrentContour() const { return m_current; }
+  //! The last velocity commanded (end-effector frame, v then w).
   const vpColVector &getEndEffectorVelocity() const { return m_ve; }
   //! The last velocity in the estimated camera frame.
   const vpColVector &getCameraVelocity() const { return m_vc; }
+  //! One entry per period since the last restart.
   const std::vector<Iteration> &getHistory() const { return m_history; }
 
   /*!
@@ -241,6 +281,7 @@ public:
   void display(const vpImage<unsigned char> &I, const vpColor &currentColor = vpColor::red,
                const vpColor &subGoalColor = vpColor::orange, const vpColor &targetColor = vpColor::green,
                unsigned int thickness = 1) const;
+  //! Same on a colour image's display.
   void display(const vpImage<vpRGBa> &I, const vpColor &currentColor = vpColor::red,
                const vpColor &subGoalColor = vpColor::orange, const vpColor &targetColor = vpColor::green,
                unsigned int thickness = 1) const;
