@@ -29,10 +29,12 @@
   vpImageIo::write(b.image, "objects/apple-7-deformed.png");
   vpImageIo::write(b.undeformedMask, "objects/apple-7-deformed-mask.png");
   \endcode
+  \sa vpMorphSilhouetteLayout, \ref page_benchmarks
 */
 class vpMorphBendGenerator
 {
 public:
+  //! A bent variant and its undeformed part.
   struct Bend
   {
     vpImage<unsigned char> image;          //!< the bent object, black on white, the input's size
@@ -41,6 +43,7 @@ public:
     double angleDeg = 0;                   //!< theta, signed
   };
   /*!
+    The bent variant of \e object (black on white, as laid out), drawn by \e seed (see the class description).
     \throw vpMorphException::badImageError for an image without object, or whose bend finds no room in the canvas.
   */
   static Bend generate(const vpImage<unsigned char> &object, unsigned int seed);

@@ -45,6 +45,16 @@
   <b>Determinism:</b> no clock and no global state: the same scene, faults, pose and frame index give the
   same image bit for bit. The noise generator is seeded with (seed, frame) so a sequence gets fresh noise.
   Distractors and the occluder depend only on the seed and the fault settings.
+
+  \code
+  vpMorphPlanarScene scene("data/objects/pliers.png");          // 15 cm pliers, an 8 cm tag beside them
+  vpMorphPlanarScene::Faults f;
+  f.noiseSigma = 2; f.occludedShare = 0.1; f.seed = 7;
+  scene.setFaults(f);
+  vpImage<unsigned char> I;
+  scene.render(vpHomogeneousMatrix(0, 0, 0.5, 0, 0, vpMath::rad(30)), I);   // cMo
+  \endcode
+  \sa vpMorphSimRobot, vpMorphTagPoseEstimator, \ref page_simulation
 */
 class vpMorphPlanarScene
 {
@@ -71,22 +81,25 @@ public:
     //! The plane ends: beyond the line through (planeEdgeX, planeEdgeY) of the object frame whose outward normal
     //! has angle planeEdgeAngle (rad, object frame), a dark floor (grey 70) is seen instead.
     bool planeEdge = false;
-    double planeEdgeX = 0.0, planeEdgeY = 0.0, planeEdgeAngle = 0.0; //!< See planeEdge (m, rad).
+    double planeEdgeX = 0.0;     //!< See planeEdge (m).
+    double planeEdgeY = 0.0;     //!< See planeEdge (m).
+    double planeEdgeAngle = 0.0; //!< See planeEdge (rad).
     //! A dark distractor larger than the object: a rectangle of largeDistractorArea m^2 (0: none), aspect
     //! largeDistractorAspect (>= 1), centred at (largeDistractorX, largeDistractorY) of the object frame, its long
     //! side at largeDistractorAngle (rad).
     double largeDistractorArea = 0.0;
-    double largeDistractorAspect = 1.5;
-    double largeDistractorX = 0.0, largeDistractorY = 0.0, largeDistractorAngle = 0.0; //!< See largeDistractorArea.
+    double largeDistractorAspect = 1.5; //!< See largeDistractorArea.
+    double largeDistractorX = 0.0;      //!< See largeDistractorArea (m).
+    double largeDistractorY = 0.0;      //!< See largeDistractorArea (m).
+    double largeDistractorAngle = 0.0;  //!< See largeDistractorArea (rad).
   };
 
   /*!
     \param objectImage : template image (dark object on light background, e.g. data/objects/pliers.png).
     \param objectSize : longest side of the object's bounding box, metres (> 0).
     \param tagId : AprilTag 36h11 id.
-    \param tagSize : black-border side of the tag, metres (> 0). 8 cm by default because the tilt of a smaller tag
-    is poorly observable at 0.5 m (a 6 cm tag gives up to 1.4 deg of error from 0.1 px corner errors, an 8 cm
-    one 0.15 deg): the tag is there to measure the truth, so it is sized for that.
+    \param tagSize : black-border side of the tag, metres (> 0). 8 cm by default: the tag measures the truth, and
+    a smaller tag's tilt is poorly observable at 0.5 m from 0.1 px corner errors.
     \throw vpMorphException notFoundError for a missing file, badImageError for an image without object,
     badParameterError for non-positive or NaN sizes.
   */
@@ -104,7 +117,7 @@ public:
     longest side) from another image of the same size, instead of from the object image itself, so that a deformed
     variant is placed against its template rather than by its own centroid and size (which move with the bend).
     - SHARED_FRAME: the object's texture keeps its place in the shared texture frame, so the pose that aligns the
-      part drawn undeformed (as vispmorph-make-data draws a bent key: its bow) with the template's is the
+      part drawn undeformed (a bent key's bow) with the template's is the
       template's pose. Which part stayed still is a choice of the drawing, not visible in an image: bending the
       blade about the bow or the bow about the blade gives the same shape.
     - BEST_OVERLAP: the object's texture is moved by the rigid motion under which its silhouette covers the most
@@ -156,17 +169,23 @@ public:
   bool placeTagInView(const vpHomogeneousMatrix &cMo, const std::vector<double> &tagSizes, double margin = 10.0);
   //! Changes the tag's black-border side (m, > 0); its placement is kept (automatic placement is redone).
   void setTagSize(double tagSize);
-  //! Tag centre in the object frame (x, y), m.
+  //! Tag centre's x in the object frame, m.
   double tagX() const { return m_tagX; }
+  //! Tag centre's y in the object frame, m.
   double tagY() const { return m_tagY; }
   //! The corners of the tag's whole texture (quiet zone included) in the object frame.
   std::vector<vpPoint> tagTextureCorners3D() const;
+  //! Sets the image faults (see Faults).
   void setFaults(const Faults &faults);
+  //! The image faults.
   const Faults &faults() const { return m_faults; }
   //! Camera intrinsics and image size used by render() (default: defaultCamera(), 640 x 480).
   void setCamera(const vpCameraParameters &cam, unsigned int width, unsigned int height);
+  //! Camera intrinsics of render().
   const vpCameraParameters &camera() const { return m_cam; }
+  //! Image width of render() (px).
   unsigned int imageWidth() const { return m_width; }
+  //! Image height of render() (px).
   unsigned int imageHeight() const { return m_height; }
   //! The benchmark camera: px = py = 800, u0 = 320, v0 = 240, no distortion.
   static vpCameraParameters defaultCamera() { return vpCameraParameters(800.0, 800.0, 320.0, 240.0); }
@@ -195,8 +214,11 @@ public:
   std::vector<vpImagePoint> projectedTagCorners(const vpHomogeneousMatrix &cMo) const;
   //! Pose of the tag frame in the object frame (a pure translation).
   vpHomogeneousMatrix oMt() const;
+  //! The tag's 36h11 id.
   int tagId() const { return m_tagId; }
+  //! The tag's black-border side (m).
   double tagSize() const { return m_tagSize; }
+  //! Longest side of the object's bounding box (m).
   double objectSize() const { return m_objectSize; }
   //! Metres per template pixel.
   double metresPerTexel() const { return m_metresPerTexel; }

@@ -29,6 +29,7 @@
   const vpMorphSilhouetteLayout layout(vpMorphSilhouetteLayout::read("mpeg7/apple-7.png"));
   vpImageIo::write(layout.image(), "objects/apple-7.png");
   \endcode
+  \sa vpMorphPlanarScene, vpMorphBendGenerator
 */
 class vpMorphSilhouetteLayout
 {
@@ -45,7 +46,9 @@ public:
 
   //! The template laid out (a copy).
   const vpImage<unsigned char> &image() const { return m_image; }
+  //! Longest side of the laid-out object (pixels).
   unsigned int objectPixels() const { return m_objectPixels; }
+  //! Free pixels around the object's square.
   unsigned int margin() const { return m_margin; }
   //! Output pixels per source pixel.
   double scale() const { return m_scale; }

@@ -42,11 +42,28 @@
 
   <b>Joint limits:</b> a step that would cross a limit stops the joint on the limit; status() becomes
   JOINT_LIMIT (sticky until reset by a new start pose) and jointLimitHits() counts such steps.
+
+  \code
+  vpMorphSimRobot robot(vpMorphSimRobot::VIPER850, 0.04);
+  robot.setDesiredPose(cdMo);                                    // the object placed for the goal
+  robot.initialiseCameraRelativeToDesired(cdMc);                 // the start
+  for (;;) {
+    scene.render(robot.get_cMo(), I);                            // what the camera sees
+    robot.setVelocity(vpRobot::END_EFFECTOR_FRAME, servo.computeControlLaw(extract(I)));
+  }
+  \endcode
+  \sa vpMorphPlanarScene, \ref page_simulation
 */
 class vpMorphSimRobot
 {
 public:
-  enum Kind { FREE_CAMERA, VIPER850, AFMA6 };
+  //! The robot simulated.
+  enum Kind {
+    FREE_CAMERA, //!< a free-flying end-effector
+    VIPER850,    //!< ViSP's Viper850 arm
+    AFMA6        //!< ViSP's Afma6 gantry
+  };
+  //! The outcome of the commands so far.
   enum Status {
     OK,          //!< Every command so far executed in full.
     JOINT_LIMIT, //!< A command was clipped at a joint limit.
@@ -59,11 +76,16 @@ public:
   */
   explicit vpMorphSimRobot(Kind kind, double samplingTime = 0.04);
   ~vpMorphSimRobot();
+  //! A copy in the same state (its own kinematic model).
   vpMorphSimRobot(const vpMorphSimRobot &other);
+  //! Copies the state of \e other.
   vpMorphSimRobot &operator=(const vpMorphSimRobot &other);
 
+  //! The robot simulated.
   Kind kind() const { return m_kind; }
+  //! "camera", "viper850" or "afma6".
   static std::string kindName(Kind kind);
+  //! The integration period (s).
   double samplingTime() const { return m_dt; }
 
   /*!
@@ -73,7 +95,9 @@ public:
     setDesiredPose().
   */
   void setCameraMount(const vpHomogeneousMatrix &eMcTrue, const vpHomogeneousMatrix &eMcNominal);
+  //! The true camera mount.
   const vpHomogeneousMatrix &eMcTrue() const { return m_eMcTrue; }
+  //! The mount the robot controller uses for camera-frame commands.
   const vpHomogeneousMatrix &eMcNominal() const { return m_eMcNominal; }
   //! A transform offset by (dt metres along x, y, z and dr rad about an axis (1,1,1)/sqrt 3): a hand-eye error.
   static vpHomogeneousMatrix perturbed(const vpHomogeneousMatrix &eMc, double dt, double dr);
@@ -131,22 +155,30 @@ public:
   vpMatrix get_eJe() const;
   //! Twist transform from the end-effector to the TRUE camera (what a perfectly calibrated controller would use).
   vpVelocityTwistMatrix get_cVe() const;
+  //! Pose of the end-effector in the fixed frame.
   vpHomogeneousMatrix get_fMe() const;
   //! Pose of the true camera in the fixed frame.
   vpHomogeneousMatrix get_fMc() const;
   //! True object pose in the camera frame (the simulator's ground truth).
   vpHomogeneousMatrix get_cMo() const;
+  //! Pose of the object in the fixed frame.
   const vpHomogeneousMatrix &get_fMo() const { return m_fMo; }
+  //! The joint positions (the free camera: its pose as 6 values).
   vpColVector getJointPositions() const;
+  //! The joints' lower limits (infinite: none).
   vpColVector getJointMin() const;
+  //! The joints' upper limits (infinite: none).
   vpColVector getJointMax() const;
   //! The configuration at which setDesiredPose() puts the desired camera pose (and near which IK solutions are sought).
   vpColVector referenceJointPositions() const;
   //! Changes it (6 finite joint positions within the limits); for the free camera, ignored.
   void setReferenceJointPositions(const vpColVector &q);
 
+  //! The status (sticky since the last start pose).
   Status status() const { return m_status; }
+  //! Steps clipped at a joint limit since the last start pose.
   unsigned int jointLimitHits() const { return m_limitHits; }
+  //! setVelocity() calls since the last start pose.
   unsigned int steps() const { return m_steps; }
   //! Length of the path travelled by the true camera centre since the last start pose, metres.
   double cameraPathLength() const { return m_path; }

@@ -23,6 +23,16 @@
   checking that they agree, shows that the truth used to score controllers is also measurable. The detector is
   set with setZAlignedWithCameraAxis(true) so that the tag frame has z along the viewing direction, like the
   object frame of the scenes (x right, y down, z into the plane); the object pose is cMo = cMt * oMt^-1.
+
+  \code
+  vpMorphTagPoseEstimator tag(scene.tagId(), scene.tagSize(), scene.oMt(), scene.camera());
+  vpHomogeneousMatrix cMo;
+  std::vector<vpImagePoint> corners;
+  if (tag.estimate(I, cMo, &corners)) {
+    vpMorphContour c = vpMorphTagPoseEstimator::silhouette(I, corners);   // the object, tag masked
+  }
+  \endcode
+  \sa vpMorphPlanarScene, \ref page_simulation
 */
 class vpMorphTagPoseEstimator
 {
@@ -48,7 +58,7 @@ public:
   /*!
     Paints the detected tag's black square (its \e corners, grown by \e margin pixels) with the grey level of
     its white quiet zone, which is left as it is: the quiet zone may touch the object, and painting it would eat
-    into the silhouette (measured: -1.3 % of the area of a hammer 1 cm from the tag). Why: an 8 cm tag is a larger dark
+    into the silhouette. Why: an 8 cm tag is a larger dark
     region than most objects, so an automatic silhouette extraction (largest region) would take the tag; a real bench
     removes it the same way, from the detector's corners, never from the simulator's truth. Throws vpMorphException
     unless there are 4 corners.
@@ -58,9 +68,8 @@ public:
     The object's silhouette in a scene image, as every controller of a scene gets it: the tag masked with
     maskTag() when its 4 detected \e corners are given (none: nothing is masked), then the largest object's
     polygon by vpMorphContourExtractor::extractJoined(): the pieces an occluder cut from it are joined back (a
-    single piece keeps its measured region). The largest piece alone was recognised as another tool on 6 of 10
-    occlusion starts (a cut-off pliers head looks like a wedge); joined, the servo aligns the joined outline by
-    vpServoMorph's trimmed outline fit. Empty when the image shows no object (the
+    single piece keeps its measured region): the largest piece alone may look like another object. Empty when the
+    image shows no object (the
     extractor's bad-image errors), so that a control loop can hold or stop instead of unwinding. \e extractionMs,
     when given, receives the CPU time of the extraction alone (vpMorphThreadCpuClock): masking the tag is an artefact
     of the scene.
@@ -76,8 +85,11 @@ public:
   static void poseDifference(const vpHomogeneousMatrix &aMo, const vpHomogeneousMatrix &bMo, double &translation,
                              double &rotation);
 
+  //! The 36h11 id looked for.
   int tagId() const { return m_tagId; }
+  //! Side of the tag's black border square (m).
   double tagSize() const { return m_tagSize; }
+  //! Pose of the tag in the object frame.
   const vpHomogeneousMatrix &oMt() const { return m_oMt; }
 
 private:

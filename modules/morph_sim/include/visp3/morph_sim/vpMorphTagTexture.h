@@ -22,6 +22,12 @@
   texture side, not 0.8. At 0.5 m a 1 % size error is a 5 mm depth error, larger than the ground-truth
   tolerance; tagSizeForTextureSide() and textureSideForTagSize() give the exact relation (the black square
   stays centred in the texture).
+
+  \code
+  vpImage<unsigned char> tag = vpMorphTagTexture::create(0);                // id 0, 100 x 100 px
+  double side = vpMorphTagTexture::textureSideForTagSize(0.08);             // texture side for an 8 cm tag
+  \endcode
+  \sa vpMorphPlanarScene, vpMorphTagPoseEstimator
 */
 class vpMorphTagTexture
 {

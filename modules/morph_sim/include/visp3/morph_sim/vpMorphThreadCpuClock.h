@@ -13,9 +13,8 @@
   \ingroup group_morph_sim
   \brief The CPU time the calling thread has used (POSIX CLOCK_THREAD_CPUTIME_ID), as a std::chrono clock.
 
-  Why: the benchmark runs its starts on every core, and wall time then also counts the periods a run waits while
-  another one has the core (up to 20 % more, differing from one run to the next). The CPU time of the thread that
-  computes is the cost of the code itself, comparable with Google Benchmark's CPU time (vispmorph-perf-servo).
+  Why: with runs on every core, wall time also counts the periods a run waits while another one has the core. The
+  CPU time of the thread that computes is the cost of the code itself, comparable with Google Benchmark's CPU time.
   Only differences between two now() of one thread mean anything.
   \code
   const vpMorphThreadCpuClock::time_point t0 = vpMorphThreadCpuClock::now();
@@ -26,12 +25,18 @@
 class vpMorphThreadCpuClock
 {
 public:
+  //! Nanoseconds (std::chrono clock requirements).
   typedef std::chrono::nanoseconds duration;
+  //! Tick count type.
   typedef duration::rep rep;
+  //! Tick period.
   typedef duration::period period;
+  //! A point in this thread's CPU time.
   typedef std::chrono::time_point<vpMorphThreadCpuClock> time_point;
+  //! A thread's CPU time never goes back.
   static constexpr bool is_steady = true;
 
+  //! The calling thread's CPU time so far.
   static time_point now() noexcept
   {
     timespec ts{};
