@@ -49,19 +49,28 @@
   without features count as holds (vpMorphBenchResult::holds), re-plans and re-recognitions are counted too.
 
   Thread safety: run() is const; the databases are taught under a lock, so runs can go on several threads.
+
+  \code
+  vpMorphBenchObjectSet objects = vpMorphBenchObjectSet::tools("data", "out/objects");
+  vpMorphBench bench(objects, 100, vpMorphBench::Settings());         // development seed 100
+  std::vector<vpMorphBenchScenario> starts = vpMorphBenchScenario::generate("planar", 10, 100, objects);
+  std::vector<vpMorphBenchResult> results = bench.runAll(starts, {"morph", "pbvs"});
+  \endcode
+  \sa vpMorphBenchReport, \ref page_benchmarks
 */
 class vpMorphBench
 {
 public:
+  //! The run's settings, the same for every controller.
   struct Settings
   {
-    vpMorphSimRobot::Kind robot = vpMorphSimRobot::FREE_CAMERA;
-    double lambda = 2.5;               //!< gain of every controller (1/s)
-    double samplingTime = 0.04;        //!< s
-    unsigned int maxIterations = 600;  //!< iteration budget
-    double successTranslation = 0.001; //!< m
-    double successRotationDeg = 0.5;   //!< deg
-    bool recordCurves = true;          //!< keep the error per iteration
+    vpMorphSimRobot::Kind robot = vpMorphSimRobot::FREE_CAMERA; //!< the robot simulated
+    double lambda = 2.5;                                        //!< gain of every controller (1/s)
+    double samplingTime = 0.04;                                 //!< s
+    unsigned int maxIterations = 600;                           //!< iteration budget
+    double successTranslation = 0.001;                          //!< m
+    double successRotationDeg = 0.5;                            //!< deg
+    bool recordCurves = true;                                   //!< keep the error per iteration
   };
   //! Called after each finished run with (runs done, runs in all, the run).
   using Progress = std::function<void(std::size_t, std::size_t, const vpMorphBenchResult &)>;
@@ -74,8 +83,11 @@ public:
   vpMorphBench(const vpMorphBenchObjectSet &objects, unsigned int seed, const Settings &settings);
   ~vpMorphBench();
 
+  //! The settings.
   const Settings &settings() const { return m_settings; }
+  //! The objects.
   const vpMorphBenchObjectSet &objects() const { return m_objects; }
+  //! The set seed.
   unsigned int seed() const { return m_seed; }
   /*!
     The calibrated database of the templates of \e variant ("" or "rough") taught with the camera of set \e set
@@ -103,12 +115,13 @@ public:
   //! One period of a run as a picture of it needs it (run()'s observer).
   struct Frame
   {
-    unsigned int iteration;                   //!< from 0
-    const vpImage<unsigned char> &image;      //!< the camera image the controller was given
-    const vpMorphBenchController &controller; //!< after its step on \e image
-    const vpMorphBenchController::Command &command;
-    vpHomogeneousMatrix cMo; //!< the truth
+    unsigned int iteration;                         //!< from 0
+    const vpImage<unsigned char> &image;            //!< the camera image the controller was given
+    const vpMorphBenchController &controller;       //!< after its step on \e image
+    const vpMorphBenchController::Command &command; //!< what the controller commanded
+    vpHomogeneousMatrix cMo;                        //!< the truth
   };
+  //! Called at each period of a run (see run()).
   using FrameObserver = std::function<void(const Frame &)>;
 
   /*!

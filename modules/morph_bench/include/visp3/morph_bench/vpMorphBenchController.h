@@ -73,6 +73,14 @@ class vpServoMorph;
   - "morph-vpservo": holds while vpFeatureMorph's aligner does not explain the view (its error is then zero, which
     is not a goal reached); no sequence to re-plan, and a stock vpServo does not test its input: a jump of the
     error beyond what one step of the law explains (a bump, an occluder) stops the run ("feature-jump").
+
+  \code
+  std::unique_ptr<vpMorphBenchController> c = vpMorphBenchController::create("ibvs-current");
+  c->start(ctx);                                            // intrinsics, eMc, the taught features, the database
+  vpMorphBenchController::Command cmd = c->step(I, robot.get_eJe(), robot.getJointPositions());
+  robot.setVelocity(cmd.frame, cmd.v);
+  \endcode
+  \sa vpMorphBench, \ref page_benchmarks
 */
 class vpMorphBenchController
 {
@@ -97,14 +105,16 @@ public:
     double samplingTime = 0.04;                 //!< s
     //! Fault injection (WRONG_TEMPLATE): the first recognition returns this template, whatever it sees.
     std::string forcedTemplate;
-    //! The robot's joint limits (infinite for the free camera, whose "joints" are its pose).
-    vpColVector jointMin, jointMax;
+    //! The robot's lower joint limits (infinite for the free camera, whose "joints" are its pose).
+    vpColVector jointMin;
+    //! The robot's upper joint limits.
+    vpColVector jointMax;
   };
   //! One command.
   struct Command
   {
-    vpColVector v = vpColVector(6, 0.0); //!< velocity, in \e frame
-    vpRobot::vpControlFrameType frame = vpRobot::JOINT_STATE;
+    vpColVector v = vpColVector(6, 0.0);                      //!< velocity, in \e frame
+    vpRobot::vpControlFrameType frame = vpRobot::JOINT_STATE; //!< the frame of \e v
     bool measured = true;      //!< features were measured in this image (false: zero velocity, hold)
     bool stop = false;         //!< the controller gave up (see reason); zero velocity
     bool converged = false;    //!< the controller's own convergence test passed
@@ -116,6 +126,7 @@ public:
   };
 
   virtual ~vpMorphBenchController() = default;
+  //! The controller's name (one of names()).
   virtual std::string name() const = 0;
   //! Starts a run (resets every state).
   virtual void start(const Context &ctx) = 0;

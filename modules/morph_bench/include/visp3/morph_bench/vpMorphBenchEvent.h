@@ -29,13 +29,29 @@
   - WRONG_TEMPLATE: the first recognition is forced to return the template \e wrongTemplate (another
     object's), whatever \e iteration says (vpMorphBenchController::Context::forcedTemplate); controllers that do
     not recognise ignore it.
+
+  \code
+  vpMorphBenchEvent e;
+  e.kind = vpMorphBenchEvent::NO_OBJECT;
+  e.iteration = 20;
+  e.frames = 5;                          // the object hidden for 5 periods from period 20
+  scenario.events.push_back(e);
+  \endcode
+  \sa vpMorphBench, \ref page_hardening
 */
 class vpMorphBenchEvent
 {
 public:
-  enum Kind { DROPPED_FRAMES, NO_OBJECT, SUDDEN_OCCLUDER, POSE_JUMP, WRONG_TEMPLATE };
+  //! The fault (see the class description).
+  enum Kind {
+    DROPPED_FRAMES,  //!< no image for a while
+    NO_OBJECT,       //!< the object hidden for a while
+    SUDDEN_OCCLUDER, //!< an occluder from then on
+    POSE_JUMP,       //!< the camera bumped
+    WRONG_TEMPLATE   //!< the first recognition forced to another template
+  };
 
-  Kind kind = DROPPED_FRAMES;
+  Kind kind = DROPPED_FRAMES;    //!< the fault
   unsigned int iteration = 0;    //!< iteration at which it starts
   unsigned int frames = 1;       //!< DROPPED_FRAMES, NO_OBJECT: how many iterations it lasts
   double occludedShare = 0.15;   //!< SUDDEN_OCCLUDER: share of the outline hidden, (0, 0.9]

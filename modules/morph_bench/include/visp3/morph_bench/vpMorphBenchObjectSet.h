@@ -28,6 +28,13 @@
   - poolImages(): the images of a pool of data/pools/split.json (see there).
   Every object gets a rough-edged variant WORK/objects/NAME-rough.png (vpMorphSilhouetteLayout::roughened(),
   kRoughPixels across), the "rough" set's object and template.
+
+  \code
+  std::vector<vpMorphBenchObjectSet::Source> src = vpMorphBenchObjectSet::listImages("my-silhouettes");
+  vpMorphBenchObjectSet objects = vpMorphBenchObjectSet::images(src, "out/objects", 100);
+  for (const auto &s : objects.skipped()) std::cerr << s.source << ": " << s.reason << std::endl;
+  \endcode
+  \sa vpMorphSilhouetteLayout, vpMorphBenchScenario, \ref page_benchmarks
 */
 class vpMorphBenchObjectSet
 {
@@ -38,28 +45,32 @@ public:
     TRUTH_OVERLAP,    //!< the placement of largest overlap with the template (no mask)
     TRUTH_ARTICULATED //!< either part of an articulated object on the template's (its joint file)
   };
+  //! One object and its images.
   struct Object
   {
-    std::string name;          //!< file stem
-    std::string image;         //!< template image
-    std::string deformedImage; //!< deformable set's image
-    std::string deformedMask;  //!< its undeformed part (TRUTH_PART), else empty
-    std::string roughImage;    //!< rough set's image (object and template)
-    std::string jointFile;     //!< TRUTH_ARTICULATED: the joint file
-    Truth truth = TRUTH_OVERLAP;
-    double undeformedShare = 0; //!< generated bends: the undeformed part's share of the area
+    std::string name;            //!< file stem
+    std::string image;           //!< template image
+    std::string deformedImage;   //!< deformable set's image
+    std::string deformedMask;    //!< its undeformed part (TRUTH_PART), else empty
+    std::string roughImage;      //!< rough set's image (object and template)
+    std::string jointFile;       //!< TRUTH_ARTICULATED: the joint file
+    Truth truth = TRUTH_OVERLAP; //!< how the deformable set's truth is held
+    double undeformedShare = 0;  //!< generated bends: the undeformed part's share of the area
     //! A desired pose of its own (a user's taught pose) instead of vpMorphBenchScenario::desiredPose()'s.
     bool fixedPose = false;
-    vpHomogeneousMatrix desiredPose;
+    vpHomogeneousMatrix desiredPose; //!< that pose, cdMo, when fixedPose
   };
+  //! An input that could not be used.
   struct Skipped
   {
-    std::string source, reason;
+    std::string source; //!< the input (a path)
+    std::string reason; //!< why it is not used
   };
   //! An image to lay out and the object's name.
   struct Source
   {
-    std::string path, name;
+    std::string path; //!< the image file
+    std::string name; //!< the object's name
   };
   //! Low-resolution sources of the "rough" set: pixels across the object's longest side.
   static constexpr unsigned int kRoughPixels = 64;
@@ -94,9 +105,13 @@ public:
   static std::vector<Source> poolImages(const std::string &splitFile, const std::string &datasetsDir,
                                         const std::string &pool, unsigned int perClass);
 
+  //! The objects, in order.
   const std::vector<Object> &objects() const { return m_objects; }
+  //! The inputs skipped, with their reasons.
   const std::vector<Skipped> &skipped() const { return m_skipped; }
+  //! Number of objects.
   std::size_t size() const { return m_objects.size(); }
+  //! True without objects.
   bool empty() const { return m_objects.empty(); }
   //! \throw vpMorphException::notFoundError for an unknown name.
   const Object &operator[](const std::string &name) const;

@@ -22,8 +22,8 @@
   lies off the true edge along its normal by (1) an independent error of sigma = kPointNoisePx = 0.1 px: 6 grey
   levels of sensor noise (the bench's noisiest rendering) over a 170-level edge, summed over the 7 pixels across it,
   6 sqrt(7) / 170 = 0.093 px; and (2) a slowly varying offset shared by neighbouring points, up to kOutlineBiasPx =
-  0.25 px: the edge level moved by blur and clipping (0.06-0.15 px measured) and by an illumination gradient across
-  the object. The first averages out over the outline, the second does not.
+  0.25 px: the edge level moved by blur, clipping and an illumination gradient across the object. The first averages out
+  over the outline, the second does not.
 
   <b>Symmetry</b> (symmetryOrder()). The outline turned about its centroid by 2 pi / k (k = 2..12) and refined
   (rotation and translation, point-to-edge least squares) lies on itself within 2 sigma RMS: a turn no single point
@@ -47,6 +47,7 @@
   const vpMorphBenchObservability o(templateContour, cam, cdMo);
   if (!o.observable(true)) std::cout << o.reason(true) << std::endl;  // e.g. "tilt"
   \endcode
+  \sa \ref page_servo_measurement, \ref page_benchmarks
 */
 class vpMorphBenchObservability
 {
@@ -69,14 +70,18 @@ public:
   unsigned int symmetryOrder() const { return m_order; }
   //! True when a turn outside the symmetry explains the outline within 2 x kOutlineBiasPx.
   bool nearlySymmetric() const { return m_nearResidual <= 2.0 * kOutlineBiasPx; }
-  //! That turn (rad) and its RMS residual (px): the best turn outside the symmetry.
+  //! That turn (rad): the best turn outside the symmetry.
   double nearTurn() const { return m_nearTurn; }
+  //! Its RMS residual (px).
   double nearResidualPx() const { return m_nearResidual; }
   //! 3-sigma bounds: in-plane translation and depth of the object (m), rotation about the optical axis and tilt (rad)
   //! (\e tilt: with the tilt estimated; without, the tilt bound is 0).
   double translationBound(bool tilt) const { return tilt ? m_bound6[0] : m_bound4[0]; }
+  //! 3-sigma bound of the depth (m).
   double depthBound(bool tilt) const { return tilt ? m_bound6[1] : m_bound4[1]; }
+  //! 3-sigma bound of the rotation about the optical axis (rad).
   double rotationBound(bool tilt) const { return tilt ? m_bound6[2] : m_bound4[2]; }
+  //! 3-sigma bound of the tilt (rad; 0 without \e tilt).
   double tiltBound(bool tilt) const { return tilt ? m_bound6[3] : 0.0; }
   //! True when the pose is bounded within the tolerance and not nearly symmetric (\e tilt: the task needs the tilt).
   bool observable(bool tilt) const { return reason(tilt).empty(); }

@@ -29,35 +29,55 @@
   intervals (Wilson's; for a count of 0 the upper bound is 3 / n), the median settling iteration, camera path and
   path ratio of the successful runs, the median final errors (truth, tag, largest overlap) of the runs that started,
   and the failure reasons with their counts.
+
+  \code
+  vpMorphBenchReport report;
+  for (const vpMorphBenchResult &r : bench.runAll(starts, {"morph", "pbvs"}))
+    report.add(r);
+  std::cout << report.summaryMarkdown();                 // one line per (set, robot, controller)
+  \endcode
+  \sa vpMorphBenchTimings, \ref page_benchmarks
 */
 class vpMorphBenchReport
 {
 public:
+  //! One group's figures (see the class description).
   struct Summary
   {
-    std::string set, robot, controller;
-    unsigned int runs = 0;   //!< rows
-    unsigned int setups = 0; //!< rows that could not be set up (failure "setup"): out of the rates
-    unsigned int successes = 0;
-    unsigned int falseConverged = 0;
-    double successLow = 0, successHigh = 0; //!< 95 % interval of the success rate
-    double falseConvergedHigh = 0;          //!< upper end of the false-convergence rate's 95 % interval
-    double medianIterations = 0;            //!< settling iteration of the successful runs (NaN if none)
-    double medianPathLength = 0;            //!< m, successful runs
-    double medianPathRatio = 0;             //!< successful runs with a defined ratio (NaN if none)
-    double medianFinalTranslation = 0, medianFinalRotation = 0;       //!< truth, runs that started (m, rad)
-    double medianFinalTagTranslation = 0, medianFinalTagRotation = 0; //!< tag, runs that started where it was seen
-    double medianFinalOverlapTranslation = 0, medianFinalOverlapRotation = 0; //!< largest overlap (part truth)
-    std::map<std::string, unsigned int> failures;                             //!< reason -> count (without "none")
-    unsigned int holds = 0, replans = 0, rerecognitions = 0;                  //!< sums over the runs (timed faults)
+    std::string set;                              //!< the set, with its fault kinds or its scoring ("planar/symmetric")
+    std::string robot;                            //!< robot kind name
+    std::string controller;                       //!< controller name
+    unsigned int runs = 0;                        //!< rows
+    unsigned int setups = 0;                      //!< rows that could not be set up (failure "setup"): out of the rates
+    unsigned int successes = 0;                   //!< successful runs
+    unsigned int falseConverged = 0;              //!< runs converged with the truth out of tolerance
+    double successLow = 0;                        //!< low end of the success rate's 95 % interval
+    double successHigh = 0;                       //!< high end of the success rate's 95 % interval
+    double falseConvergedHigh = 0;                //!< upper end of the false-convergence rate's 95 % interval
+    double medianIterations = 0;                  //!< settling iteration of the successful runs (NaN if none)
+    double medianPathLength = 0;                  //!< m, successful runs
+    double medianPathRatio = 0;                   //!< successful runs with a defined ratio (NaN if none)
+    double medianFinalTranslation = 0;            //!< truth, runs that started (m)
+    double medianFinalRotation = 0;               //!< truth, runs that started (rad)
+    double medianFinalTagTranslation = 0;         //!< tag, runs that started where it was seen (m)
+    double medianFinalTagRotation = 0;            //!< tag (rad)
+    double medianFinalOverlapTranslation = 0;     //!< largest overlap, part truth (m)
+    double medianFinalOverlapRotation = 0;        //!< largest overlap, part truth (rad)
+    std::map<std::string, unsigned int> failures; //!< reason -> count (without "none")
+    unsigned int holds = 0;                       //!< holds summed over the runs (timed faults)
+    unsigned int replans = 0;                     //!< re-plans summed over the runs
+    unsigned int rerecognitions = 0;              //!< re-recognitions summed over the runs
     //! Runs that could be set up.
     unsigned int attempted() const { return runs - setups; }
+    //! successes over attempted().
     double successRate() const { return attempted() ? double(successes) / attempted() : 0.0; }
   };
 
   vpMorphBenchReport();
   ~vpMorphBenchReport();
+  //! A copy of the rows and records.
   vpMorphBenchReport(const vpMorphBenchReport &other);
+  //! Copies the rows and records of \e other.
   vpMorphBenchReport &operator=(const vpMorphBenchReport &other);
 
   //! Adds a run (its row).
@@ -76,9 +96,13 @@ public:
   //! Summaries in the order: set, robot (first seen), controller (vpMorphBenchController::names() order).
   std::vector<Summary> summarize() const;
 
+  //! The header line of runs.csv.
   static std::string runsHeader();
+  //! The runs.csv row of a result.
   static std::string runsRow(const vpMorphBenchResult &r);
+  //! The header line of curves.csv.
   static std::string curvesHeader();
+  //! The curves.csv rows of a result (one per iteration).
   static std::string curvesRows(const vpMorphBenchResult &r);
   /*!
     Sorts curves.csv rows (without header) into the canonical order of sortRows(), iterations ascending.

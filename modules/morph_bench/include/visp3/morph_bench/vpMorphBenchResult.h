@@ -29,18 +29,24 @@
   False convergence (\e falseConverged): the controller declared itself done (vpMorphBenchController::Command::
   converged) while the truth is out of tolerance. A stop that is not a convergence is a failure, never a false
   convergence.
+
+  \code
+  vpMorphBenchResult r = bench.run(scenario, "morph");
+  if (!r.success) std::cout << r.failure << (r.falseConverged ? " (false convergence)" : "") << std::endl;
+  \endcode
+  \sa vpMorphBenchReport, \ref page_benchmarks
 */
 class vpMorphBenchResult
 {
 public:
-  vpMorphBenchScenario scenario;
-  std::string robot;      //!< robot kind name
-  std::string controller; //!< controller name
-  bool success = false;
-  std::string failure = "none"; //!< see the class description
-  std::string setup;            //!< failure "setup": why (vpMorphBenchScenario::setup, or the taught view's tag)
-  bool converged = false;       //!< the controller declared itself done
-  bool falseConverged = false;  //!< converged with the truth out of tolerance
+  vpMorphBenchScenario scenario; //!< the start
+  std::string robot;             //!< robot kind name
+  std::string controller;        //!< controller name
+  bool success = false;          //!< see the class description
+  std::string failure = "none";  //!< see the class description
+  std::string setup;             //!< failure "setup": why (vpMorphBenchScenario::setup, or the taught view's tag)
+  bool converged = false;        //!< the controller declared itself done
+  bool falseConverged = false;   //!< converged with the truth out of tolerance
   //! The taught view's symmetry (vpMorphBenchObservability::symmetryOrder(): 1 none, 0 continuous); the errors are
   //! measured modulo it.
   unsigned int symmetry = 1;
@@ -70,8 +76,8 @@ public:
   double taughtTagRotation = 0;    //!< rad
   //! TRUTH_PART deformable runs: the final error against the largest overlap's placement (NaN otherwise).
   double finalOverlapTranslation = std::numeric_limits<double>::quiet_NaN();
-  double finalOverlapRotation = std::numeric_limits<double>::quiet_NaN();
-  unsigned int jointLimitHits = 0;
+  double finalOverlapRotation = std::numeric_limits<double>::quiet_NaN(); //!< rad
+  unsigned int jointLimitHits = 0;                                        //!< steps clipped at a joint limit
   double maxSpeed = 0;                  //!< largest commanded translation speed (end-effector twist), m/s
   double maxRotationSpeed = 0;          //!< largest commanded rotation speed, rad/s
   unsigned int holds = 0;               //!< iterations without features (missing frames included): zero velocity
@@ -82,6 +88,7 @@ public:
 
   //! path length / straight line, or NaN when the straight line is shorter than 1 mm (pure rotation).
   double pathRatio() const;
+  //! True when no template was chosen or the one chosen is the object's.
   bool recognitionCorrect() const { return recognized.empty() || recognized == scenario.object; }
 };
 

@@ -63,6 +63,12 @@
 
   A start is redrawn (from the same seeded stream, at most 1000 times) until the object and the tag are
   entirely in view, 10 px from the border (at 640 px across), at the start pose.
+
+  \code
+  std::vector<vpMorphBenchScenario> starts = vpMorphBenchScenario::generate("planar-hard", 20, 100, objects);
+  std::string json = starts[3].toJson();      // replayed to the bit by vpMorphBenchScenario::fromJson()
+  \endcode
+  \sa vpMorphBench, \ref page_benchmarks
 */
 class vpMorphBenchScenario
 {
@@ -92,15 +98,19 @@ public:
   vpMorphPlanarScene::Faults faults; //!< image faults and scene look
 
   vpCameraParameters camera = vpMorphPlanarScene::defaultCamera(); //!< the true intrinsics
-  unsigned int width = 640, height = 480;                          //!< image size
-  //! The tag: black-border side (m) and centre in the object frame; tagAuto leaves it to the scene's default.
-  double tagSize = 0.08, tagX = 0, tagY = 0;
-  bool tagAuto = true;
+  unsigned int width = 640;                                        //!< image width (px)
+  unsigned int height = 480;                                       //!< image height (px)
+  double tagSize = 0.08;                                           //!< the tag's black-border side (m)
+  double tagX = 0;                                                 //!< the tag's centre in the object frame, x (m)
+  double tagY = 0;                                                 //!< the tag's centre in the object frame, y (m)
+  bool tagAuto = true; //!< the tag left to the scene's default placement (tagX, tagY ignored)
 
-  double focalScaleX = 1, focalScaleY = 1;         //!< intrinsics given to the controllers: px, py times these
-  double principalShiftU = 0, principalShiftV = 0; //!< and u0, v0 shifted by these (px)
-  vpHomogeneousMatrix eMcError;                    //!< hand-eye estimate given to the controllers: eMcTrue * eMcError
-  std::vector<vpMorphBenchEvent> events;           //!< timed faults of the run (set "faults")
+  double focalScaleX = 1;                //!< intrinsics given to the controllers: px times this
+  double focalScaleY = 1;                //!< and py times this
+  double principalShiftU = 0;            //!< and u0 shifted by this (px)
+  double principalShiftV = 0;            //!< and v0 shifted by this (px)
+  vpHomogeneousMatrix eMcError;          //!< hand-eye estimate given to the controllers: eMcTrue * eMcError
+  std::vector<vpMorphBenchEvent> events; //!< timed faults of the run (set "faults")
 
   /*!
     The scene of this scenario: objectImage with the faults, its camera and tag. A deformed object is placed against

@@ -25,19 +25,35 @@
   whole run (rendering included: what a sweep of such runs costs).
 
   They are kept apart from runs.csv because they differ from one run to the next: merged shards give the results
-  of one run to the byte, and these times as they were measured.
+  of one run to the byte, and these times as they were taken.
+
+  \code
+  vpMorphBenchTimings timings;
+  for (const vpMorphBenchResult &r : results)
+    timings.add(r, yardstickMs);                   // the machine's yardstick of this run
+  std::cout << timings.markdown();
+  \endcode
+  \sa vpMorphThreadCpuClock, \ref page_benchmarks
 */
 class vpMorphBenchTimings
 {
 public:
+  //! One group's times.
   struct Summary
   {
-    std::string set, robot, controller;
-    unsigned int runs = 0, periods = 0;
-    double medianMs = 0, p95Ms = 0;       //!< per period (NaN without periods)
-    double medianRatio = 0, p95Ratio = 0; //!< per period, over its run's yardstick (NaN without one)
-    double meanMeasureMs = 0, meanControlMs = 0, maxControlMs = 0; //!< over the runs that measured
-    double meanRunCpuS = 0; //!< CPU time of a whole run, rendering included (what a sweep costs), s
+    std::string set;          //!< the set
+    std::string robot;        //!< robot kind name
+    std::string controller;   //!< controller name
+    unsigned int runs = 0;    //!< runs
+    unsigned int periods = 0; //!< periods measured
+    double medianMs = 0;      //!< median compute per period (NaN without periods)
+    double p95Ms = 0;         //!< 95th percentile per period
+    double medianRatio = 0;   //!< median per period over its run's yardstick (NaN without one)
+    double p95Ratio = 0;      //!< 95th percentile of that ratio
+    double meanMeasureMs = 0; //!< mean measure time over the runs that measured
+    double meanControlMs = 0; //!< mean control time
+    double maxControlMs = 0;  //!< worst control time
+    double meanRunCpuS = 0;   //!< CPU time of a whole run, rendering included (what a sweep costs), s
   };
 
   //! Adds a run's times, with the machine yardstick of its run (ms, 0: unknown).
@@ -46,12 +62,16 @@ public:
   void readTimings(std::istream &in, const std::string &what = "timings.csv");
   //! Canonical order: set, scenario, robot, controller (as vpMorphBenchReport::sortRows()).
   void sortRows();
+  //! The timings.csv rows, without the header.
   std::vector<std::string> rows() const;
+  //! Summaries per set, robot and controller.
   std::vector<Summary> summarize() const;
 
+  //! The header line of timings.csv.
   static std::string header();
   //! JSON: \e meta (the runs' machine, command, wall time, yardsticks) and the summaries.
   std::string json(const std::map<std::string, std::string> &meta) const;
+  //! A markdown table, one line per summary.
   std::string markdown() const;
 
 private:
