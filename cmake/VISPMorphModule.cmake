@@ -38,13 +38,27 @@ function(vispmorph_add_module name)
     target_link_libraries(test_${name} PRIVATE ${target} Catch2::Catch2)
     target_compile_definitions(test_${name} PRIVATE VISPMORPH_DATA_DIR="${VISPMORPH_DATA_DIR}"
                                                     VISPMORPH_DATASETS_DIR="${VISPMORPH_DATASETS_DIR}")
+    # The test cases tagged [datasets] read the shape datasets in place: one ctest runs them all, reported as
+    # skipped (exit code 77) where VISPMORPH_DATASETS_DIR does not exist.
     if(M_LOOP_TESTS)
-      catch_discover_tests(test_${name} TEST_PREFIX "${name}: " TEST_SPEC "~[loop]"
+      catch_discover_tests(test_${name} TEST_PREFIX "${name}: " TEST_SPEC "~[loop]~[datasets]"
                            WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
-      catch_discover_tests(test_${name} TEST_PREFIX "${name}: " TEST_SPEC "[loop]"
+      catch_discover_tests(test_${name} TEST_PREFIX "${name}: " TEST_SPEC "[loop]~[datasets]"
                            WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR} PROPERTIES LABELS long)
     else()
-      catch_discover_tests(test_${name} TEST_PREFIX "${name}: " WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+      catch_discover_tests(test_${name} TEST_PREFIX "${name}: " TEST_SPEC "~[datasets]"
+                           WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+    endif()
+    set(dataset_tests)
+    foreach(t ${tests})
+      file(STRINGS ${t} tagged REGEX "\\[datasets\\]")
+      list(APPEND dataset_tests ${tagged})
+    endforeach()
+    if(dataset_tests)
+      add_test(NAME "${name}: tests on the shape datasets"
+               COMMAND sh -c "test -d '${VISPMORPH_DATASETS_DIR}' || { echo 'SKIPPED: no shape datasets in ${VISPMORPH_DATASETS_DIR} (-DVISPMORPH_DATASETS_DIR=DIR)'; exit 77; }; exec \"$<TARGET_FILE:test_${name}>\" '[datasets]'"
+               WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+      set_tests_properties("${name}: tests on the shape datasets" PROPERTIES SKIP_RETURN_CODE 77 LABELS datasets)
     endif()
   endif()
 endfunction()
