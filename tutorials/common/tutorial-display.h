@@ -62,13 +62,16 @@ public:
   //! The options, for a tutorial's usage line.
   static const char *options() { return "[-c] [-d] [--save-display FILE]"; }
   /*!
-    True when at most \e most arguments are left in \e rest for the tutorial; else prints the usage (\e more: the
-    tutorial's own arguments) and returns false.
+    True when at most \e most arguments are left in \e rest for the tutorial, none of them an option; else (--help,
+    an unknown option, too many arguments) prints the usage (\e more: the tutorial's own arguments) and returns false.
   */
   static bool accepts(const std::vector<std::string> &rest, std::size_t most, const char *program,
                       const std::string &more = "")
   {
-    if (rest.size() <= most)
+    bool option = false;
+    for (const std::string &a : rest)
+      option = option || (a.size() > 1 && a[0] == '-');
+    if (rest.size() <= most && !option)
       return true;
     std::cout << "Usage: " << program << " " << (more.empty() ? "" : more + " ") << options() << std::endl;
     return false;
