@@ -40,10 +40,12 @@
   const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(q, t, q.alignOn(t).transform);
   // r.targetShare: share of the template's outline the view shows; r.cost: ranks templates
   \endcode
+  \sa vpMorphRigidShape, vpMorphDatabase, \ref page_design_recognition
 */
 class vpMorphRigidCheck
 {
 public:
+  //! The comparison of a view with a template.
   struct Result
   {
     double cost = 1.0;        //!< two-way truncated quadratic mean, in [0, 1]

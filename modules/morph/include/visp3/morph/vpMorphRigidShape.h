@@ -52,6 +52,7 @@ struct vpMorphRigidShapeData; // the prepared data (internal)
   const vpMorphRigidShape t(templateContour), q(viewContour);
   const vpMorphRigidShape::Alignment a = q.alignOn(t); // a.transform: view pixels -> template pixels
   \endcode
+  \sa vpMorphRigidCheck, \ref page_design_recognition
 */
 class vpMorphRigidShape
 {
@@ -59,13 +60,14 @@ public:
   //! A similarity from the input's coordinates to the target's, and the alignment's cost (see the description).
   struct Alignment
   {
-    vpMorphRigidTransform transform;
-    double cost = 2.0;
+    vpMorphRigidTransform transform; //!< input pixels to target pixels
+    double cost = 2.0;               //!< the alignment's cost, in [0, 2] (see the class description)
     //! The other refined hypothesis when it turns more than 10 deg away (a nearly symmetric outline), else none.
     vpMorphRigidTransform alternative;
-    bool hasAlternative = false;
+    bool hasAlternative = false; //!< whether \e alternative is set
   };
 
+  //! An empty shape (empty() is true).
   vpMorphRigidShape() = default;
   /*!
     Prepares \e c (its measured region and outline when it has them, else its polygon): a few tenths of a millisecond.

@@ -24,7 +24,7 @@
   Angles are in radians, counter-clockwise in the (x, y) axes (clockwise on screen for pixel contours,
   whose y axis points down), normalised to (-pi, pi] so that interpolation takes the short way round.
 
-  <b>Scale.</b> The paper's rigid part is rotation + translation. We estimate a scale too by default,
+  <b>Scale.</b> The paper's rigid part is rotation + translation. A scale is estimated too by default,
   because for an eye-in-hand camera a depth change between the current and the desired view is a uniform
   scale of the image, not a deformation: leaving it to Eq. 1 would make the intermediate contours shrink
   or grow non-uniformly. Pass withScale = false for the paper's rotation + translation (scale fixed to 1).
@@ -38,6 +38,15 @@
   - fitLeastSquares(): weighted 2-D Procrustes (Umeyama, closed form in 2-D) over all pairs, made robust
     by iteratively reweighted least squares. More accurate on noisy contours and well posed for shapes
     with isotropic moments (a square, a disc), where the elongation axis does not exist.
+
+  \code
+  vpMorphCorrespondence c = vpMorphMatcher().match(input, target);
+  vpMorphRigidTransform T = vpMorphRigidTransform::fitLeastSquares(input, target, c, true,
+                                                                   vpMorphRigidTransform::TUKEY, 30, 0.5);
+  vpMorphContour rectified = T.apply(input);          // laid on the target, about the input's centroid
+  vpMorphRigidTransform half = T.interpolated(0.5);   // half the turn, half the shift, sqrt of the scale
+  \endcode
+  \sa vpMorph, vpMorphOutlineFit, \ref page_design_morph
 */
 class vpMorphRigidTransform
 {
@@ -60,12 +69,19 @@ public:
   */
   vpMorphRigidTransform(double theta, double tx, double ty, double scale = 1.0, double cx = 0.0, double cy = 0.0);
 
+  //! Rotation (radians, in (-pi, pi]).
   double theta() const { return m_theta; }
+  //! Translation along x (the contours' units).
   double tx() const { return m_tx; }
+  //! Translation along y.
   double ty() const { return m_ty; }
+  //! Uniform scale (> 0).
   double scale() const { return m_scale; }
+  //! Centre's x.
   double cx() const { return m_cx; }
+  //! Centre's y.
   double cy() const { return m_cy; }
+  //! The centre (cx, cy).
   void centre(double &cx, double &cy) const
   {
     cx = m_cx;
@@ -84,7 +100,7 @@ public:
     alpha*t, scale s^alpha (geometric, so that halving twice equals quartering). alpha = 0 is the identity,
     alpha = 1 this transform.
     With \e longWay, the angle turns the other way round, alpha*(theta - 2 pi sign(theta)) (theta = 0: a whole turn):
-    the same end, for a robot whose joints cannot go the short way (see vpServoMorph::setJointState()).
+    the same end, for a robot whose joints cannot go the short way.
     \throw vpMorphException::badParameterError if alpha is not finite or outside [0, 1].
   */
   vpMorphRigidTransform interpolated(double alpha, bool longWay = false) const;
@@ -154,9 +170,9 @@ public:
     \param edgeOffset when given, the target's edges are also moved along their normals (the left of each edge,
     as the target runs) by one common offset, fitted with the similarity and returned there (target units; 0 if the
     fit failed). Why: an edge level biased by the image (a background clipped at the sensor's limit) measures an
-    outline grown or shrunk all round. That changes the area and a plain fit's scale with the outline's width (a
-    thin tool: 0.58 % of area, 1.5 mm of depth at 0.5 m, for a twentieth of a pixel), whereas an offset does not
-    stretch the outline along its length: fitted apart, it leaves the scale to the outline's extent.
+    outline grown or shrunk all round. That changes the area and a plain fit's scale with the outline's width,
+    whereas an offset does not stretch the outline along its length: fitted apart, it leaves the scale to the
+    outline's extent.
     \throw vpMorphException on empty contours, different units, a bad \e minSigma or \e maxIterations.
   */
   static vpMorphRigidTransform refineOnOutline(const vpMorphContour &input, const vpMorphContour &target,

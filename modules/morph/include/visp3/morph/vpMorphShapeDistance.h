@@ -25,21 +25,18 @@
   D_morph itself (vpMorphMatcher) depends on how the outline was turned into a polygon. Recognition needs
   that choice to be explicit, named and saved with a template database, so that a database is always
   queried with the distance it was calibrated with. Models:
-  - POLYGON: the parameterless polygons themselves (vpMorphContourExtractor), no mirror image. The robot's
-    default: the correspondence is between the very vertices that the morph and the servo use, and a
-    planar object lying on a table is never seen mirrored.
+  - POLYGON: the parameterless polygons themselves (vpMorphContourExtractor), no mirror image: the correspondence
+    is between the very vertices a morph uses, and a planar object lying on a table is never seen mirrored.
   - PAPER: the paper's recognition set-up as used in the retrieval literature: both outlines resampled to
     points() vertices equally spaced by arc length (64), mirror images included (distance = the smaller of
-    the two), vpMorphWorkModel with only the bending weight tuned (kb = 0.1: best of 0.003-1 on Kimia-99).
+    the two), vpMorphWorkModel with only the bending weight changed (kb = 0.1).
   - MULTISCALE (default of vpMorphDatabase): the sum of D_morph over several versions of the outline, smoothed
     by a circular Gaussian of width 1 %, 5 % and 10 % of the perimeter and resampled to 48 vertices (the same
     mirror choice at every scale), kb = 0.2. Fine scales see details, coarse ones the overall form, which a
     single polygon weighs badly: one spurious notch costs as much as a real limb at a single scale. The finest
     width is not 0 on purpose: 1 % is about half the sample spacing, so the samples do not alias small
-    features (with no smoothing, D_morph between a key and the same key sampled from another start is 1.3,
-    more than the distance to another tool; with 1 % it is 0.05). Widths and kb were chosen on Kimia-99 and
-    on a third of the MPEG-7 classes (README).
-  - RIGID (default of vpMorphDatabase): not D_morph. The view laid on the template by a plane homography
+    features. Widths and kb: \ref page_design_recognition.
+  - RIGID: not D_morph. The view laid on the template by a plane homography
     (vpMorphRigidShape::alignOn() for the start, then vpMorphRigidCheck) and the two-way truncated quadratic cost of
     what does not coincide, in [0, 1]: a rigid part's view coincides with its own template to the outline's
     measurement noise wherever it is not hidden, and a look-alike's differences stay uncovered, where the
@@ -56,10 +53,18 @@
   least as much as the cheapest step that could enter its vertex, so the sum over vertices of those minima (for either
   polygon, take the larger) bounds D_morph from below; mirror images have the same lengths and turning angles so the
   bound holds for them too. Used to skip templates that cannot win a recognition, without changing its result.
+
+  \code
+  const vpMorphShapeDistance d(vpMorphShapeDistance::MULTISCALE);
+  std::vector<vpMorphShapeDistance::Shape> shapes = d.prepareAll(contours);
+  std::vector<double> D = d.matrix(shapes);             // N x N, row-major, on all cores
+  \endcode
+  \sa vpMorphDatabase, vpMorphMatcher, \ref page_design_recognition
 */
 class vpMorphShapeDistance
 {
 public:
+  //! The contours D_morph is computed on (see the class description).
   enum Model {
     POLYGON,    //!< Parameterless polygons as extracted, no mirror.
     PAPER,      //!< 64 points by arc length, mirrors included.
@@ -88,14 +93,19 @@ public:
   //! Name of the model, as accepted by fromName().
   std::string name() const;
 
+  //! The model.
   Model model() const { return m_model; }
+  //! The work model of the D_morph models.
   const vpMorphWorkModel &workModel() const { return m_work; }
+  //! Sets the work model.
   void setWorkModel(const vpMorphWorkModel &w) { m_work = w; }
   //! Vertices per resampled outline (0 for POLYGON: the polygon as it is).
   std::size_t points() const { return m_points; }
   //! \throw vpMorphException::badParameterError if n < 8 for a resampling model.
   void setPoints(std::size_t n);
+  //! Whether mirror images are tried.
   bool mirrors() const { return m_mirrors; }
+  //! Tries mirror images too (or not).
   void setMirrors(bool on) { m_mirrors = on; }
   //! Gaussian widths (fractions of the perimeter) of the scales; {0} for a single unsmoothed scale.
   const std::vector<double> &scales() const { return m_scales; }
@@ -118,8 +128,8 @@ public:
   //! Convenience: distance between two contours.
   double distance(const vpMorphContour &a, const vpMorphContour &b) const;
   /*!
-    Valid lower bound of distance(a, b) (see the class description): an O(mn) pass per scale, measured at
-    16-22 % of the cost of distance() (the six tools, one core), so pruning pays once it skips a fifth.
+    Valid lower bound of distance(a, b) (see the class description): an O(mn) pass per scale, a fraction of the
+    cost of distance().
   */
   double lowerBound(const Shape &a, const Shape &b) const;
   //! A matcher configured with this work model (scale normalisation on).

@@ -52,7 +52,7 @@
 
   \code
   vpMorphBenchObjectSet objects = vpMorphBenchObjectSet::tools("data", "out/objects");
-  vpMorphBench bench(objects, 100, vpMorphBench::Settings());         // development seed 100
+  vpMorphBench bench(objects, 100, vpMorphBench::Settings());         // the set seed fixes the starts
   std::vector<vpMorphBenchScenario> starts = vpMorphBenchScenario::generate("planar", 10, 100, objects);
   std::vector<vpMorphBenchResult> results = bench.runAll(starts, {"morph", "pbvs"});
   \endcode
