@@ -31,7 +31,7 @@
   AprilTag is placed where it fits (vpMorphPlanarScene::placeTagInView(): any side, 8, 6, 5 then 4 cm); when neither
   fits, or no start shows object and tag, the scenario is a \e setup failure (its runs fail "setup", nothing else).
 
-  <b>Sets</b> (generate(); DESIGN.md's protocol; setNames() order seeds them, new sets go at the end):
+  <b>Sets</b> (generate(); the protocol of \ref page_benchmarks; setNames() order seeds them, new sets go at the end):
   - planar: in-plane rotation uniform in [-180, 180] deg about the desired optical axis, translation in the
     image plane of norm uniform in [0, 80] mm, same depth;
   - planar-hard: the same with |rotation| in [150, 180] deg (the classical IBVS camera retreat);
