@@ -90,30 +90,14 @@ public:
   }
 
   /*
-    As operator(), when the nearest edge lies within \e reach (> 0) of p; +inf (m = 0) otherwise. Only the cells that
-    the box p +- reach meets are searched: a fit that weighs out whatever lies beyond a cut-off needs no farther edge,
-    and a point far off a dense outline made the rings spread over dozens of cells. Within reach, the result is
-    operator()'s (the box holds every edge within reach: it is bucketed in the cell of its nearest point).
+    As operator(), when the nearest edge lies within \e reach (> 0) of p; +inf (m = 0, along = 0) otherwise. The search
+    ends where no edge within reach can remain: a fit that weighs out whatever lies beyond a cut-off needs no farther
+    edge, and a point far off a dense outline would spread the rings over the whole grid. Within reach, the result is
+    operator()'s.
   */
-  double within(double px, double py, double reach, double &mx, double &my) const
+  double within(double px, double py, double reach, double &mx, double &my, double *along = nullptr) const
   {
-    Best b;
-    if (std::isfinite(px) && std::isfinite(py)) {
-      if (m_first.empty()) {
-        for (std::size_t k = 0; k < m_edges.size(); ++k)
-          visit(k, px, py, b);
-      } else {
-        const int i0 = cellX(px - reach), i1 = cellX(px + reach), j0 = cellY(py - reach), j1 = cellY(py + reach);
-        for (int j = j0; j <= j1; ++j)
-          for (int i = i0; i <= i1; ++i)
-            visitCell(i, j, px, py, b);
-      }
-    }
-    if (b.k >= m_edges.size() || b.d2 > reach * reach) {
-      mx = my = 0.0;
-      return std::numeric_limits<double>::infinity();
-    }
-    return finish(b, px, py, mx, my, nullptr);
+    return query(px, py, mx, my, along, reach);
   }
 
   /*
@@ -150,7 +134,8 @@ public:
   }
 
 private:
-  double query(double px, double py, double &mx, double &my, double *along) const
+  double query(double px, double py, double &mx, double &my, double *along,
+               double reach = std::numeric_limits<double>::infinity()) const
   {
     Best b;
     const std::size_t n = m_edges.size();
@@ -160,8 +145,13 @@ private:
     if (m_first.empty()) {
       for (std::size_t k = 0; k < n; ++k)
         visit(k, px, py, b);
-      return finish(b, px, py, mx, my, along);
+      return b.d2 > reach * reach ? beyond(mx, my, along) : finish(b, px, py, mx, my, along);
     }
+    // Every edge lies in the grid's box: beyond reach of it, none is within.
+    const double gx = std::max(0.0, std::max(m_x0 - px, px - (m_x0 + m_nx * m_h)));
+    const double gy = std::max(0.0, std::max(m_y0 - py, py - (m_y0 + m_ny * m_h)));
+    if (gx * gx + gy * gy > reach * reach)
+      return beyond(mx, my, along);
     // Rings around p's cell, or around the nearest cell when p is outside the grid (a bent limb mapped beyond the
     // template's box: 4 % of the queries of a deformed view's fits, which scanned every edge).
     const int ci = cellX(px), cj = cellY(py);
@@ -188,15 +178,18 @@ private:
         border = std::min(border, py - (m_y0 + (cj - r) * m_h));
       if (cj + r + 1 < m_ny)
         border = std::min(border, m_y0 + (cj + r + 1) * m_h - py);
-      if (b.k >= m_edges.size())
-        continue; // nothing yet: the next ring
+      if (b.k >= m_edges.size()) {
+        if (border > reach)
+          return beyond(mx, my, along); // no edge within reach, and none is left there
+        continue;                       // nothing yet: the next ring
+      }
       if (border >= 0.0 && b.d2 <= border * border)
         break;
       // A nearer edge's nearest point lies within the best distance d of p: in a cell of the box p +- d (the cells
       // hold every edge whose box they meet, and the cell of a coordinate grows with it). Those cells not in the
       // block are searched, and that is all: a cell or two where the rings went on with a whole ring (a query a pixel
-      // off a dense outline: 95 -> 82 ns).
-      const double d = std::sqrt(b.d2);
+      // off a dense outline: 95 -> 82 ns). Beyond reach, only the box p +- reach matters.
+      const double d = std::min(std::sqrt(b.d2), reach);
       const int i0 = cellX(px - d), i1 = cellX(px + d), j0 = cellY(py - d), j1 = cellY(py + d);
       for (int j = j0; j <= j1; ++j)
         for (int i = i0; i <= i1; ++i)
@@ -204,7 +197,15 @@ private:
             visitCell(i, j, px, py, b);
       break;
     }
-    return finish(b, px, py, mx, my, along);
+    return b.d2 > reach * reach ? beyond(mx, my, along) : finish(b, px, py, mx, my, along);
+  }
+
+  static double beyond(double &mx, double &my, double *along)
+  {
+    mx = my = 0.0;
+    if (along)
+      *along = 0.0;
+    return std::numeric_limits<double>::infinity();
   }
 
   struct Best

@@ -152,23 +152,30 @@ struct vpMorphOutlineFit::Solver
     The rows at x and their robust scale: 1.4826 MAD of the residuals within \e cut (the inliers of the last round's
     scale; all of them when cut is not > 0), floored at sigmaFloor. Trimmed to the inliers, the scale stays the noise of
     the part the fit lies on, however much of the view lies elsewhere (a bent limb longer than the part, an occluder).
+    A residual of magnitude \e reach or more is given as +inf (its row weighs nothing): the caller needs it only as
+    beyond its cut-off, and the nearest-edge search stops there instead of crossing the grid for a far point.
   */
   static double measureRows(const Goal &goal, const std::vector<Eigen::Vector2d> &P, const InputEdges *inputEdges,
-                            const Eigen::Vector4d &x, double delta, double sigmaFloor, double cut, Rows &rows)
+                            const Eigen::Vector4d &x, double delta, double sigmaFloor, double cut, Rows &rows,
+                            double reach = std::numeric_limits<double>::infinity())
   {
     const std::size_t n = P.size(), ng = inputEdges ? goal.samples.size() : 0;
     rows.resize(n + ng);
     rows.forward = n;
     std::vector<double> d(n + ng);
+    const double inf = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < n; ++k) {
       const Eigen::Vector2d y = linearMap(x, P[k]);
       double mx, my, along;
-      const double rk = goal.nearest(y.x(), y.y(), mx, my, along);
+      // |r| >= |rk| - |delta|: a distance of reach + |delta| or more is a residual of reach or more.
+      const double rk = goal.nearest.within(y.x(), y.y(), reach + std::fabs(delta), mx, my, &along);
       rows.p[k] = P[k];
       rows.m[k] = Eigen::Vector2d(mx, my);
-      rows.rhs[k] = rows.m[k].dot(y) - rk; // m . q, q the nearest point of the unmoved edges
+      const bool near = rk != inf;
+      rows.rhs[k] = near ? rows.m[k].dot(y) - rk : 0.0; // m . q, q the nearest point of the unmoved edges
       rows.offset[k] = -along;
-      rows.r[k] = rk - along * delta; // the distance to the goal's edges moved by delta along their normals
+      rows.r[k] =
+          near ? rk - along * delta : inf; // the distance to the goal's edges moved by delta along their normals
       d[k] = std::fabs(rows.r[k]);
     }
     if (ng > 0) {
@@ -178,9 +185,18 @@ struct vpMorphOutlineFit::Solver
         const Eigen::Vector2d &g = goal.samples[j];
         const Eigen::Vector2d u = Minv * (g - x.tail<2>()); // about the input's centroid
         double mx, my;
-        const double rj = inputEdges->edges(u.x() + inputEdges->cx, u.y() + inputEdges->cy, mx, my);
+        // |r| >= s |rj| - |delta|, as above in the input's units.
+        const double rj = inputEdges->edges.within(u.x() + inputEdges->cx, u.y() + inputEdges->cy,
+                                                   (reach + std::fabs(delta)) / s, mx, my);
         const Eigen::Vector2d nIn(mx, my);
         const std::size_t k = n + j;
+        if (rj == inf) {
+          rows.p[k] = u;
+          rows.m[k] = Eigen::Vector2d::Zero();
+          rows.rhs[k] = rows.offset[k] = 0.0;
+          rows.r[k] = d[k] = inf;
+          continue;
+        }
         rows.p[k] = u - rj * nIn;
         rows.m[k] = R * nIn;
         rows.rhs[k] = rows.m[k].dot(g);
@@ -245,7 +261,12 @@ struct vpMorphOutlineFit::Solver
     Eigen::VectorXd z;
     bool solved = false;
     for (unsigned int it = 0; it < iterations; ++it) {
-      sigma = std::min(measureRows(goal, P, inputEdges, x, delta, sigmaFloor, tukeyConstant() * sigma, rows),
+      // This round's scale is under 1.4826 times the cut (the median of residuals within it) or at its floor, so a
+      // residual beyond the Tukey cut-off of that bound weighs nothing in this round's solve either.
+      const double cut = tukeyConstant() * sigma;
+      const double reach =
+          cut > 0.0 ? tukeyConstant() * std::max(1.4826 * cut, sigmaFloor) : std::numeric_limits<double>::infinity();
+      sigma = std::min(measureRows(goal, P, inputEdges, x, delta, sigmaFloor, cut, rows, reach),
                        std::max(sigmaCap, sigmaFloor));
       if (!solveRows(rows, x, delta, tukeyConstant() * sigma, withOffset, nullptr, z))
         break;
@@ -483,8 +504,10 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
       if (!Solver::irls(*m_goalData, P, nullptr, xh, dh, sh, m_withScale, m_withOffset, 8, floor, spread))
         continue;
       // Both ways: a fit shrunk onto one edge of the goal lays the view on it but leaves the goal bare.
-      Solver::measureRows(*m_goalData, P, edges.get(), xh, dh, floor, 0.0, rows);
-      const double c = cost(rows.r, noise > 0.0 ? noise : sh);
+      // (A residual beyond the cost's cut-off costs 1 whatever its size.)
+      const double costSigma = noise > 0.0 ? noise : sh;
+      Solver::measureRows(*m_goalData, P, edges.get(), xh, dh, floor, 0.0, rows, tukeyConstant() * costSigma);
+      const double c = cost(rows.r, costSigma);
       if (c < bestCost) {
         bestCost = c;
         x = xh;

@@ -679,8 +679,22 @@ TEST_CASE(
       // within(): whether the scan's nearest point is within a tolerance, at tolerances about the distance.
       const double off = std::hypot(px - o.fx, py - o.fy);
       for (const double tol : {0.25, 0.9 * off, 1.1 * off, 3.0})
-        if (tol > 0.0 && std::fabs(off - tol) > 1e-9 * tol)
+        if (tol > 0.0 && std::fabs(off - tol) > 1e-9 * tol) {
           CHECK(nearest.within(px, py, tol) == (off < tol));
+          // The distance within a reach: operator()'s answer within it (the same edge, bit for bit), +inf beyond.
+          double wx, wy, wAlong, ax, ay, along;
+          const double wd = nearest.within(px, py, tol, wx, wy, &wAlong);
+          const double ad = nearest(px, py, ax, ay, along);
+          if (off < tol) {
+            CHECK(wd == ad);
+            CHECK(wx == ax);
+            CHECK(wy == ay);
+            CHECK(wAlong == along);
+          } else {
+            CHECK(wd == std::numeric_limits<double>::infinity());
+            CHECK((wx == 0.0 && wy == 0.0 && wAlong == 0.0));
+          }
+        }
     }
     CHECK(outside > 1000);
     // Far away and non-finite: a distance, then NaN.
@@ -707,5 +721,8 @@ TEST_CASE(
     const double d = std::hypot(px - o.fx, py - o.fy);
     CHECK(nearPoly.within(px, py, 1.1 * d + 1e-12));
     CHECK(!nearPoly.within(px, py, 0.9 * d));
+    double wx, wy;
+    CHECK(nearPoly.within(px, py, 1.1 * d + 1e-12, wx, wy) == signedDistance);
+    CHECK(nearPoly.within(px, py, 0.9 * d, wx, wy) == std::numeric_limits<double>::infinity());
   }
 }
