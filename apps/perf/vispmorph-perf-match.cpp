@@ -103,17 +103,11 @@ public:
          << std::setw(10) << b / f << std::setw(14) << w << std::setw(10) << b / w << "\n";
     }
   }
-
 };
 } // namespace
 
 int main(int argc, char **argv)
 {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv))
-    return 1;
   RatioReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  benchmark::Shutdown();
-  return 0;
+  return vpMorphPerfMain(argc, argv, reporter);
 }

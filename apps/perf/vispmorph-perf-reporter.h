@@ -34,4 +34,18 @@ protected:
   std::map<std::string, double> m_time;
 };
 
+/*!
+  The main() of a micro-benchmark: Google Benchmark's options, every benchmark run and reported by \e reporter (a
+  vpMorphPerfReporter whose Finalize() prints the ratio table). Exit status 1 on an unknown option.
+*/
+inline int vpMorphPerfMain(int argc, char **argv, vpMorphPerfReporter &reporter)
+{
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv))
+    return 1;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  benchmark::Shutdown();
+  return 0;
+}
+
 #endif
