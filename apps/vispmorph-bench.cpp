@@ -68,7 +68,8 @@ void usage(std::ostream &os)
         "                     faults, calib-no-tilt, calib-wide, saturated, low-contrast, rough, gradient, "
         "plane-edge,\n"
         "                     large-distractor, res-1280, res-320\n"
-        "  --controllers L    comma-separated (default all): morph, morph-planar, morph-paper, morph-vpservo, ibvs-current, "
+        "  --controllers L    comma-separated (default all): morph, morph-planar, morph-paper, morph-vpservo, "
+        "ibvs-current, "
         "ibvs-desired,\n"
         "                     ibvs-mean, pbvs, moments, moments-planar\n"
         "  --robot R          camera (default), viper850 or afma6\n"
@@ -90,6 +91,7 @@ void usage(std::ostream &os)
         "  --data DIR         the data/ folder (default: the repository's)\n"
         "  --no-curves        do not write curves.csv\n"
         "  --recognition      no runs: recognise each scenario's first view (recognition.csv, recognition.md)\n"
+        "  --recognition-model M  the databases' distance: polygon, paper, multiscale (default) or rigid\n"
         "  --video            no summary: each run recorded in DIR/video/ (frames, overlays, a video; choose the\n"
         "                     runs with --set, --only and --controllers)\n"
         "  --no-plots         do not run the plot script\n"
@@ -257,6 +259,8 @@ std::map<std::string, std::string> settingsMeta(const std::vector<std::string> &
   budget << settings.maxIterations << " periods of " << settings.samplingTime << " s";
   meta["budget"] = budget.str();
   meta["lambda_per_s"] = std::to_string(settings.lambda);
+  meta["recognition_model"] =
+      settings.recognitionModel.empty() ? vpMorphDatabase().distance().name() : settings.recognitionModel;
   meta["success"] = "final truth error under " + std::to_string(1000 * settings.successTranslation).substr(0, 4) +
                     " mm and " + std::to_string(settings.successRotationDeg).substr(0, 4) +
                     " deg, target never out of view, within the budget";
@@ -575,7 +579,14 @@ int main(int argc, char **argv)
         plots = false;
       else if (a == "--recognition")
         recognitionOnly = true;
-      else if (a == "--video")
+      else if (a == "--recognition-model") {
+        settings.recognitionModel = value();
+        try {
+          (void)vpMorphShapeDistance::fromName(settings.recognitionModel);
+        } catch (const vpException &e) {
+          throw BadArgs{e.getStringMessage()};
+        }
+      } else if (a == "--video")
         video = true;
       else if (a == "--help" || a == "-h") {
         usage(std::cout);

@@ -60,6 +60,8 @@ vpMorphBench::vpMorphBench(const vpMorphBenchObjectSet &objects, unsigned int se
     badParameter("vpMorphBench: success thresholds must be > 0");
   if (objects.empty())
     badParameter("vpMorphBench: no object");
+  if (!settings.recognitionModel.empty())
+    (void)vpMorphShapeDistance::fromName(settings.recognitionModel); // an unknown name: its error, before any work
 }
 
 vpMorphBench::~vpMorphBench() = default;
@@ -75,6 +77,8 @@ const vpMorphBench::Taught &vpMorphBench::taught(const std::string &variant, con
   if (t)
     return *t;
   t.reset(new Taught);
+  if (!m_settings.recognitionModel.empty())
+    t->db.setDistance(vpMorphShapeDistance::fromName(m_settings.recognitionModel));
   for (const vpMorphBenchObjectSet::Object &o : m_objects.objects()) {
     // The taught view: rendered at the desired pose, the tag where it fits (out of view when it fits nowhere: that
     // object's scenarios are set-up failures, but it still takes part in the recognition), masked, extracted.

@@ -71,6 +71,8 @@ public:
     double successTranslation = 0.001;                          //!< m
     double successRotationDeg = 0.5;                            //!< deg
     bool recordCurves = true;                                   //!< keep the error per iteration
+    //! The databases' distance (vpMorphShapeDistance::fromName()); empty: vpMorphDatabase's default.
+    std::string recognitionModel;
   };
   //! Called after each finished run with (runs done, runs in all, the run).
   using Progress = std::function<void(std::size_t, std::size_t, const vpMorphBenchResult &)>;
