@@ -180,17 +180,27 @@ TEST_CASE("rigid check: one shape at two sizes, and bad input", "[rigid][safety]
   CHECK(r.cost == 1.0);
 }
 
-TEST_CASE("rigid recognition: the two-stage search gives the exhaustive search's answer", "[rigid][recognition]")
+namespace
 {
-  // 18 templates (the tools, their bent drawings, and the tools at half size turned: one shape twice, a tie broken by
-  // the lower index) and 24 views, a third of them under a card.
+//! A RIGID database of the tools and their bent drawings; \e images receives the tools' images.
+vpMorphDatabase toolsAndBentDrawings(std::vector<cv::Mat> &images)
+{
   vpMorphDatabase db(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
-  std::vector<cv::Mat> images;
   for (const char *n : kObjects) {
     images.push_back(readGray(n));
     db.add(vpMorphTemplate(n, extract(images.back())));
     db.add(vpMorphTemplate(std::string(n) + "-deformed", extract(readGray(std::string(n) + "-deformed"))));
   }
+  return db;
+}
+} // namespace
+
+TEST_CASE("rigid recognition: the two-stage search gives the exhaustive search's answer", "[rigid][recognition]")
+{
+  // 18 templates (the tools, their bent drawings, and the tools at half size turned: one shape twice, a tie broken by
+  // the lower index) and 24 views, a third of them under a card.
+  std::vector<cv::Mat> images;
+  vpMorphDatabase db = toolsAndBentDrawings(images);
   for (int k = 0; k < 6; ++k)
     db.add(vpMorphTemplate(std::string(kObjects[k]) + "-half",
                            extract(warp(images[k], similarity(images[k], 30.0 * k, 0.5, 0, 0), 0, 1))));
@@ -219,13 +229,8 @@ TEST_CASE("rigid recognition: the two-stage search gives the exhaustive search's
 TEST_CASE("rigid recognition: a saved and reloaded database gives identical answers", "[rigid][database]")
 {
   // The tools and their bent drawings, calibrated; views turned, scaled, noisy, a third of them under a card.
-  vpMorphDatabase db(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
   std::vector<cv::Mat> images;
-  for (const char *n : kObjects) {
-    images.push_back(readGray(n));
-    db.add(vpMorphTemplate(n, extract(images.back())));
-    db.add(vpMorphTemplate(std::string(n) + "-deformed", extract(readGray(std::string(n) + "-deformed"))));
-  }
+  vpMorphDatabase db = toolsAndBentDrawings(images);
   db.calibrate(1);
   const std::string file = "rigid-reload.json";
   db.save(file);
