@@ -25,6 +25,9 @@ namespace
 // Points of the outlines whose regions' overlap compares the hypotheses of search() (a few pixels apart).
 const std::size_t kOverlapPoints = 128;
 
+// A normal distribution's standard deviation over its median absolute deviation: the robust scale's factor.
+constexpr double kMadToSigma = 1.4826;
+
 // Tukey's loss at cut-off c, normalised to [0, 1]: 1 - (1 - u^2)^3 inside, 1 beyond.
 double tukeyLoss(double r, double c)
 {
@@ -207,7 +210,7 @@ struct vpMorphOutlineFit::Solver
     }
     if (cut > 0.0)
       d.erase(std::remove_if(d.begin(), d.end(), [cut](double v) { return !(v < cut); }), d.end());
-    return std::max(1.4826 * median(d), sigmaFloor);
+    return std::max(kMadToSigma * median(d), sigmaFloor);
   }
 
   static bool solveRows(Rows &rows, const Eigen::Vector4d &x, double delta, double cut, bool withOffset,
@@ -261,11 +264,11 @@ struct vpMorphOutlineFit::Solver
     Eigen::VectorXd z;
     bool solved = false;
     for (unsigned int it = 0; it < iterations; ++it) {
-      // This round's scale is under 1.4826 times the cut (the median of residuals within it) or at its floor, so a
+      // This round's scale is under kMadToSigma times the cut (the median of residuals within it) or at its floor, so a
       // residual beyond the Tukey cut-off of that bound weighs nothing in this round's solve either.
       const double cut = tukeyConstant() * sigma;
-      const double reach =
-          cut > 0.0 ? tukeyConstant() * std::max(1.4826 * cut, sigmaFloor) : std::numeric_limits<double>::infinity();
+      const double reach = cut > 0.0 ? tukeyConstant() * std::max(kMadToSigma * cut, sigmaFloor)
+                                     : std::numeric_limits<double>::infinity();
       sigma = std::min(measureRows(goal, P, inputEdges, x, delta, sigmaFloor, cut, rows, reach),
                        std::max(sigmaCap, sigmaFloor));
       if (!solveRows(rows, x, delta, tukeyConstant() * sigma, withOffset, nullptr, z))
