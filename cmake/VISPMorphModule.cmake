@@ -34,8 +34,8 @@ function(vispmorph_add_module name)
 
   file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/*.cpp)
   if(VISPMORPH_BUILD_TESTS AND tests)
-    add_executable(test_${name} ${tests} ${PROJECT_SOURCE_DIR}/tests/catch_main.cpp)
-    target_link_libraries(test_${name} PRIVATE ${target} Catch2::Catch2)
+    add_executable(test_${name} ${tests})
+    target_link_libraries(test_${name} PRIVATE ${target} vispmorph_catch_main)
     target_compile_definitions(test_${name} PRIVATE VISPMORPH_DATA_DIR="${VISPMORPH_DATA_DIR}"
                                                     VISPMORPH_DATASETS_DIR="${VISPMORPH_DATASETS_DIR}")
     # The test cases tagged [datasets] read the shape datasets in place: one ctest runs them all, reported as
