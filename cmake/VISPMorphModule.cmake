@@ -25,6 +25,7 @@ function(vispmorph_add_module name)
   endforeach()
   target_link_libraries(${target} PUBLIC ${deps} ${M_VISP} PRIVATE ${M_PRIVATE_LIBS})
   target_compile_options(${target} PRIVATE -Wall -Wextra)
+  vispmorph_precompile_headers(${target} module)
   install(TARGETS ${target} EXPORT VISPMorphTargets
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
@@ -36,6 +37,7 @@ function(vispmorph_add_module name)
   if(VISPMORPH_BUILD_TESTS AND tests)
     add_executable(test_${name} ${tests})
     target_link_libraries(test_${name} PRIVATE ${target} vispmorph_catch_main)
+    vispmorph_precompile_headers(test_${name} test)
     target_compile_definitions(test_${name} PRIVATE VISPMORPH_DATA_DIR="${VISPMORPH_DATA_DIR}"
                                                     VISPMORPH_DATASETS_DIR="${VISPMORPH_DATASETS_DIR}")
     # The test cases tagged [datasets] read the shape datasets in place: one ctest runs them all, reported as
@@ -69,6 +71,7 @@ function(vispmorph_add_executable target)
   add_executable(${target} ${E_UNPARSED_ARGUMENTS})
   target_link_libraries(${target} PRIVATE ${E_LIBS})
   target_compile_options(${target} PRIVATE -Wall -Wextra)
+  vispmorph_precompile_headers(${target} executable)
   target_compile_definitions(${target} PRIVATE VISPMORPH_DATA_DIR="${VISPMORPH_DATA_DIR}"
                                                VISPMORPH_DATASETS_DIR="${VISPMORPH_DATASETS_DIR}")
 endfunction()
