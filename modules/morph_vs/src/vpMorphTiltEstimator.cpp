@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpRotationMatrix.h>
@@ -82,14 +83,19 @@ void vpMorphTiltEstimator::reset()
 {
   m_haveWarm = m_latched = m_estimated = false;
   m_residual = 0.0;
+  m_deviation = std::numeric_limits<double>::infinity();
   m_deadZoneUsed = m_deadZone;
   m_cMcd.eye();
   m_sumX = m_sumY = 0.0;
   m_window.clear();
   m_kappa = 1.0;
+  m_scatterKnown = false;
 }
 
-bool vpMorphTiltEstimator::isVerified() const { return m_estimated && m_residual <= std::max(m_final, m_deadZoneUsed); }
+bool vpMorphTiltEstimator::isVerified(double sigmas) const
+{
+  return m_estimated && m_residual + sigmas * m_deviation <= m_final;
+}
 
 bool vpMorphTiltEstimator::homography(const vpMorphContour &currentN, const vpMorphContour &targetN,
                                       const vpMorphHomography &start, double minInliers, double maxResidualPx,
@@ -151,7 +157,8 @@ void vpMorphTiltEstimator::fuse(const vpMatrix &C, double &angle, double &ax, do
   const double mx = (i11 * b0 - i01 * b1) / det, my = (-i01 * b0 + i00 * b1) / det;
   // The outlines' covariance counts only the noise a fit's residuals show, not what changes from one view to the next
   // (the pixel grid's phase under the edges): the scatter of the periods about their mean scales it.
-  if (info.size() >= 3) {
+  m_scatterKnown = info.size() >= 3;
+  if (m_scatterKnown) {
     double chi2 = 0.0;
     for (const auto &q : info) {
       const double dx = q[0] - mx, dy = q[1] - my;
@@ -171,6 +178,7 @@ bool vpMorphTiltEstimator::estimate(const vpMorphContour &currentN, const vpMorp
 {
   m_estimated = false;
   m_residual = 0.0;
+  m_deviation = std::numeric_limits<double>::infinity();
   m_cMcd.eye();
   cMct.eye();
   // A target measured on its image, a current contour not (an outline joined across an occluder's cut): part of it
@@ -208,6 +216,7 @@ bool vpMorphTiltEstimator::estimate(const vpMorphContour &currentN, const vpMorp
     double angle = std::acos(std::max(-1.0, std::min(1.0, n[2])));
     double ax = -n[1], ay = n[0], sa = std::hypot(ax, ay); // the tilt's axis (in the image plane), |.| = sin(angle)
     double tx = 0.0, ty = 0.0;                             // the tilt commanded, as a rotation vector
+    double deviation = m_deadZoneUsed / getSigmas(); // a polygon's tilt is known to its dead zone
     if (dense) {
       const vpMatrix &C = G.covariance();
       double ex, ey, mx, my; // this period's estimate, and the one commanded from (fused on the final approach)
@@ -222,12 +231,17 @@ bool vpMorphTiltEstimator::estimate(const vpMorphContour &currentN, const vpMorp
                      tx, ty);
       const double c = std::hypot(tx, ty);
       m_deadZoneUsed = c > 0.0 ? std::max(0.0, angle - c) : std::max(angle, m_deadZoneUsed);
+      // One period's deviation about the worse-seen axis, scaled by the periods' scatter once three show it (the
+      // fit's covariance alone misses what changes from one view to the next).
+      deviation = final && m_scatterKnown ? std::sqrt(kappa) * largestDeviation(C[6][6], C[6][7], C[7][7])
+                                          : std::numeric_limits<double>::infinity();
     } else {
       // Polygons: within the dead zone on the final approach, what they show is their polygonisation, and a camera
       // that followed it would random-walk: the planar law finishes alone.
       if (m_deadZoneUsed > 0.0 && angle <= m_deadZoneUsed && final) {
         m_latched = true;
         m_residual = angle;
+        m_deviation = m_deadZoneUsed / getSigmas(); // a polygon's tilt is known to its dead zone
         m_estimated = true;
         return false;
       }
@@ -253,6 +267,7 @@ bool vpMorphTiltEstimator::estimate(const vpMorphContour &currentN, const vpMorp
     cMct = vpHomogeneousMatrix(tt, Rt);
     m_cMcd = cMcd;
     m_residual = angle;
+    m_deviation = deviation;
     m_estimated = true;
     Zp = lambda;
     return true;

@@ -414,7 +414,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
                                   m_alignment.model == vpMorphViewAlignment::RIGID, last, m_set.gain, cMct, Zp);
     // At the goal in the plane: stop, unless a tilt is seen and still being levelled (no estimate: the tilt is unknown,
     // and the verification says so).
-    if (atGoal() && !(tiltOn && m_tilt.isEstimated() && !m_tilt.isVerified())) {
+    if (atGoal() && !(tiltOn && m_tilt.isLevelling())) {
       if (m_guard.targetMismatch(current, m_target.contour,
                                  m_target.model.isArticulated())) // never CONVERGED on another shape
         return stop(m_guard.halt(TARGET_MISMATCH));
@@ -423,7 +423,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
                            ? CONVERGED
                            : m_guard.verify(m_alignment, m_set.thresholds.finalRotation, m_set.thresholds.finalPixels,
                                             m_set.thresholds.finalPixels, m_res.radiusPx, m_camIso.get_px(),
-                                            !tiltOn || m_tilt.isVerified());
+                                            !tiltOn || m_tilt.isVerified(vpMorphServoGuard::getVerificationSigmas()));
       return stop(m_guard.halt(s));
     }
 

@@ -34,8 +34,9 @@
     explains more of the view's outline (vpMorphDatabase::support()).
   - <b>Verification</b> (verify()): at the target, the measurement says aligned; CONVERGED only if the aligned view
     explains the target (vpMorphViewAlignment::explained()) and pins the pose: three standard deviations of the
-    alignment's rotation, translation and scale (vpMorphViewAlignment::covariance) within the final thresholds, and
-    the tilt verified when it is corrected. Otherwise UNVERIFIED, a stop: a servo that cannot tell where it stands
+    alignment's rotation, translation and scale (vpMorphViewAlignment::covariance) within the final thresholds, and,
+    when it is corrected, the tilt's estimate plus as many of its deviations within its own final threshold
+    (vpMorphTiltEstimator::isVerified()). Otherwise UNVERIFIED, a stop: a servo that cannot tell where it stands
     says so instead of claiming the goal.
 
   \code

@@ -6,6 +6,8 @@
 #ifndef VP_MORPH_TILT_ESTIMATOR_H
 #define VP_MORPH_TILT_ESTIMATOR_H
 
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include <visp3/core/vpHomogeneousMatrix.h>
@@ -37,7 +39,8 @@
   without measured outlines, which see a tilt to a few degrees). On the final approach the estimates of the recent
   periods are fused (information-weighted, their covariance scaled by their reduced chi-square), and only what both
   the fused and this period's estimate show is commanded.
-  <b>Verification.</b> isVerified(): the last estimate within max(getFinalThreshold(), dead zone).
+  <b>Verification.</b> isVerified(): the last estimate plus k deviations (getDeviation()) within getFinalThreshold():
+  a tilt within its dead zone is not commanded, but it is not known to be small either.
 
   \code
   vpMorphTiltEstimator tilt;
@@ -76,7 +79,7 @@ public:
   void setOutlineDeadZone(double rad);
   //! Dead zone floor on edge outlines (rad).
   double getOutlineDeadZone() const { return m_outlineDeadZone; }
-  //! Tilt below which the final goal can be reached (rad, > 0, default 0.002).
+  //! Tilt that the final goal tolerates, bound included (rad, > 0, default 0.002).
   void setFinalThreshold(double rad);
   //! Tilt below which the final goal can be reached (rad).
   double getFinalThreshold() const { return m_final; }
@@ -123,11 +126,22 @@ public:
   bool isEstimated() const { return m_estimated; }
   //! The dead zone of the last estimate (rad).
   double getDeadZoneUsed() const { return m_deadZoneUsed; }
-  //! The last period estimated the tilt, within max(getFinalThreshold(), its dead zone): the view is untilted within
-  //! its noise (false without an estimate: the tilt is then unknown).
-  bool isVerified() const;
+  //! One standard deviation of the last estimate about its worse-seen axis (rad; the polygons' dead zone / getSigmas()
+  //! without measured outlines; infinite when not estimated, and on outlines before three periods of the final
+  //! approach show their scatter).
+  double getDeviation() const { return m_deviation; }
+  //! The last period estimated the tilt, and its estimate plus \e sigmas deviations is within getFinalThreshold(): the
+  //! view is untilted (false without an estimate: the tilt is then unknown).
+  bool isVerified(double sigmas) const;
   //! Whether a tilt command of the last estimate exceeded its dead zone (the hand-eye estimator must not pair it).
   bool commanded() const { return m_estimated && m_residual > m_deadZoneUsed; }
+  //! Whether the tilt is still being levelled or measured: a command beyond the dead zone while the estimate exceeds
+  //! getFinalThreshold(), or too few periods of the final approach yet to know its deviation (getDeviation()
+  //! infinite).
+  bool isLevelling() const
+  {
+    return (commanded() && m_residual > m_final) || (m_estimated && !std::isfinite(m_deviation));
+  }
 
 private:
   bool homography(const vpMorphContour &currentN, const vpMorphContour &targetN, const vpMorphHomography &start,
@@ -140,6 +154,7 @@ private:
   vpMorphHomography m_warm;
   bool m_haveWarm = false, m_latched = false, m_estimated = false;
   double m_residual = 0.0, m_deadZoneUsed = m_deadZone;
+  double m_deviation = std::numeric_limits<double>::infinity();
   vpHomogeneousMatrix m_cMcd;
   // Tilt executed since the final approach began (rad): the fused estimates of earlier periods are compensated by it.
   double m_sumX = 0.0, m_sumY = 0.0;
@@ -152,6 +167,7 @@ private:
   };
   std::vector<Sample> m_window;
   double m_kappa = 1.0; // reduced chi-square of the last window of three or more
+  bool m_scatterKnown = false; // the last window had three or more periods
   // The readings' warm start.
   vpMorphHomography m_readG;
   bool m_readWarm = false;
