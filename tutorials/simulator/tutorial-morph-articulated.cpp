@@ -69,10 +69,12 @@ int main(int argc, char **argv)
 
     //! [Start]
     // A free-flying camera 40 mm and 70 deg away. The controller believes its mount 1 cm off along each axis and
-    // turned by 3 deg about (1, 1, 1): the online hand-eye estimation takes up the part about the optical axis; the
-    // tilt of the mount, which tilts the camera along the turn, the tilt correction of the final approach.
+    // turned by 3 deg about the optical axis: the online hand-eye estimation takes it up. (A mount tilted as well
+    // would tilt the camera along the turn: vpServoMorph::setTiltCorrection() levels it where the outline bounds the
+    // tilt, which a thin part's does only to tenths of a degree.)
     vpMorphSimRobot robot(vpMorphSimRobot::FREE_CAMERA);
-    robot.setCameraMount(robot.eMcTrue(), vpMorphSimRobot::perturbed(robot.eMcTrue(), 0.01, vpMath::rad(3)));
+    robot.setCameraMount(robot.eMcTrue(),
+                         robot.eMcTrue() * vpHomogeneousMatrix(0.01, 0.01, 0.01, 0, 0, vpMath::rad(3)));
     robot.setDesiredPose(cdMo);
     if (!robot.initialiseCameraRelativeToObject(vpHomogeneousMatrix(0.04, 0, 0, 0, 0, vpMath::rad(70)).inverse() *
                                                 cdMo)) {
@@ -119,7 +121,6 @@ int main(int argc, char **argv)
     servo.getPlanner().setSubGoalCount(10);
     servo.setSamplingTime(robot.samplingTime());
     servo.setGain(0.1);
-    servo.setTiltCorrection(vpServoMorph::TILT_FINAL_APPROACH);
     servo.setTarget(db[r.index]);
     tutorial::ServoWindows windows(viewer, world.imageWidth(), world.imageHeight(), world.objectContour3D(),
                                    world.tagCorners3D(), cdMo, "Free camera");

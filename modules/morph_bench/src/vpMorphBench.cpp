@@ -217,7 +217,6 @@ vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const s
   ctx.database = &taughtViews.db;
   ctx.expectedObject = sc.object;
   ctx.lambda = m_settings.lambda;
-  ctx.rotationTolerance = vpMath::rad(m_settings.successRotationDeg);
   ctx.samplingTime = m_settings.samplingTime;
   ctx.jointMin = robot.getJointMin();
   ctx.jointMax = robot.getJointMax();

@@ -406,13 +406,8 @@ private:
     m_servo->setSamplingTime(m_ctx.samplingTime);
     m_servo->setGain(std::min(1.0, m_ctx.lambda * m_ctx.samplingTime)); // same exponential rate as lambda
     // Extracted contours are digitised: the final residual settles at a few tenths of a pixel.
-    const double inPlane = 0.002;
-    m_servo->setFinalThresholds(inPlane, 0.2);
-    // The tilt the task's rotation tolerance leaves beside the in-plane rotation, which is verified within twice its
-    // threshold (the two are orthogonal components of the rotation vector).
-    const double tol = m_ctx.rotationTolerance;
-    if (tol > 2.0 * inPlane)
-      m_servo->getTiltEstimator().setFinalThreshold(std::sqrt(tol * tol - 4.0 * inPlane * inPlane));
+    // The tilt's own final threshold stays the estimator's default, the same 0.002 rad.
+    m_servo->setFinalThresholds(0.002, 0.2);
     // 0.05 % of the depth: a quarter millimetre at 0.5 m (the outlines' scale wanders by about 0.03 % under noise).
     m_servo->setFinalScaleThreshold(5e-4);
     if (m_tilt)

@@ -216,7 +216,7 @@ bool vpMorphTiltEstimator::estimate(const vpMorphContour &currentN, const vpMorp
     double angle = std::acos(std::max(-1.0, std::min(1.0, n[2])));
     double ax = -n[1], ay = n[0], sa = std::hypot(ax, ay); // the tilt's axis (in the image plane), |.| = sin(angle)
     double tx = 0.0, ty = 0.0;                             // the tilt commanded, as a rotation vector
-    double deviation = m_deadZoneUsed / getSigmas(); // a polygon's tilt is known to its dead zone
+    double deviation = m_deadZoneUsed / getSigmas();       // a polygon's tilt is known to its dead zone
     if (dense) {
       const vpMatrix &C = G.covariance();
       double ex, ey, mx, my; // this period's estimate, and the one commanded from (fused on the final approach)

@@ -414,7 +414,8 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
                                   m_alignment.model == vpMorphViewAlignment::RIGID, last, m_set.gain, cMct, Zp);
     // At the goal in the plane: stop, unless a tilt is seen and still being levelled (no estimate: the tilt is unknown,
     // and the verification says so).
-    if (atGoal() && !(tiltOn && m_tilt.isLevelling())) {
+    const double sigmas = vpMorphServoGuard::getVerificationSigmas();
+    if (atGoal() && !(tiltOn && m_tilt.isLevelling(sigmas))) {
       if (m_guard.targetMismatch(current, m_target.contour,
                                  m_target.model.isArticulated())) // never CONVERGED on another shape
         return stop(m_guard.halt(TARGET_MISMATCH));
@@ -423,7 +424,7 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
                            ? CONVERGED
                            : m_guard.verify(m_alignment, m_set.thresholds.finalRotation, m_set.thresholds.finalPixels,
                                             m_set.thresholds.finalPixels, m_res.radiusPx, m_camIso.get_px(),
-                                            !tiltOn || m_tilt.isVerified(vpMorphServoGuard::getVerificationSigmas()));
+                                            !tiltOn || m_tilt.isVerified(sigmas));
       return stop(m_guard.halt(s));
     }
 

@@ -330,8 +330,8 @@ TEST_CASE("vpServoMorph tilt correction: outline tilt estimates that jump from o
   print("tilt 2 deg, outline tilt jitter 0.25 deg, final approach", tilted);
   CHECK(tilted.converged);
   CHECK(tilted.tiltDeg < 0.2);
-  const Outcome strict = run(flat[0], vpServoMorph::TILT_FINAL_APPROACH, eMcTrue, camera(), 0.0, 300, true, true,
-                             jitterDeg, 0.5);
+  const Outcome strict =
+      run(flat[0], vpServoMorph::TILT_FINAL_APPROACH, eMcTrue, camera(), 0.0, 300, true, true, jitterDeg, 0.5);
   print("no tilt, outline tilt jitter 0.25 deg, final approach, 0.5 deg asked", strict);
   CHECK(strict.status == vpServoMorph::UNVERIFIED);
 }

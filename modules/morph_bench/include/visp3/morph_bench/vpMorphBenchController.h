@@ -102,7 +102,6 @@ public:
     const vpMorphDatabase *database = nullptr;  //!< templates (VISPMorph controllers)
     std::string expectedObject;                 //!< the object truly present (only to score the recognition)
     double lambda = 2.5;                        //!< gain (1/s): the same for every controller
-    double rotationTolerance = 0.5 * M_PI / 180; //!< the task's rotation tolerance (rad): what the run is scored on
     double samplingTime = 0.04;                 //!< s
     //! Fault injection (WRONG_TEMPLATE): the first recognition returns this template, whatever it sees.
     std::string forcedTemplate;

@@ -135,12 +135,12 @@ public:
   bool isVerified(double sigmas) const;
   //! Whether a tilt command of the last estimate exceeded its dead zone (the hand-eye estimator must not pair it).
   bool commanded() const { return m_estimated && m_residual > m_deadZoneUsed; }
-  //! Whether the tilt is still being levelled or measured: a command beyond the dead zone while the estimate exceeds
-  //! getFinalThreshold(), or too few periods of the final approach yet to know its deviation (getDeviation()
-  //! infinite).
-  bool isLevelling() const
+  //! Whether the tilt is still being levelled or measured: a command beyond the dead zone while the tilt is not yet
+  //! verified (isVerified() with \e sigmas), or too few periods of the final approach yet to know its deviation
+  //! (getDeviation() infinite).
+  bool isLevelling(double sigmas) const
   {
-    return (commanded() && m_residual > m_final) || (m_estimated && !std::isfinite(m_deviation));
+    return (commanded() && !isVerified(sigmas)) || (m_estimated && !std::isfinite(m_deviation));
   }
 
 private:
@@ -166,7 +166,7 @@ private:
     double deadZone = 0;              // this period's own dead zone
   };
   std::vector<Sample> m_window;
-  double m_kappa = 1.0; // reduced chi-square of the last window of three or more
+  double m_kappa = 1.0;        // reduced chi-square of the last window of three or more
   bool m_scatterKnown = false; // the last window had three or more periods
   // The readings' warm start.
   vpMorphHomography m_readG;
