@@ -81,7 +81,7 @@ public:
   double getOutlineDeadZone() const { return m_outlineDeadZone; }
   //! Tilt that the final goal tolerates, bound included (rad, > 0, default 0.002).
   void setFinalThreshold(double rad);
-  //! Tilt below which the final goal can be reached (rad).
+  //! Tilt that the final goal tolerates, bound included (rad).
   double getFinalThreshold() const { return m_final; }
   //! Standard deviations of the tilt's estimate within which it is not commanded (2).
   static double getSigmas() { return 2.0; }
