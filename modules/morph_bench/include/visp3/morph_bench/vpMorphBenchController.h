@@ -28,51 +28,26 @@ class vpServoMorph;
   \ingroup group_morph_bench
   \brief Interface of the controllers compared by the benchmark, and their factory.
 
-  Each controller reads its features from the rendered image only (tag corners and pose from
-  vpDetectorAprilTag, silhouettes from vpMorphContourExtractor after masking the detected tag), never from the
-  simulator's projections, and knows only what a real set-up would know: the estimated intrinsics and hand-eye
-  transform, the geometry of the tag, the desired pose taught for the object (stock controllers) or the
-  template database (VISPMorph, which recognises the object at the first frame).
+  Each controller reads its features from the rendered image only (tag corners and pose from vpDetectorAprilTag,
+  silhouettes from vpMorphContourExtractor after masking the detected tag) and knows only what a real set-up would
+  know: the estimated intrinsics and hand-eye transform, the tag's geometry, the desired pose taught for the object
+  (stock controllers) or the template database (VISPMorph, which recognises the object at the first frame).
 
-  Names (create()): "morph" (vpServoMorph: the paper's Eq. 5-11 through 10 sub-goals, online hand-eye
-  estimation, and the out-of-plane correction on the final approach from the homography refined on the edge
-  outlines), "morph-planar" (the same without the out-of-plane correction: the paper's planar law),
-  "morph-paper" (the paper's measurement as written, vpServoMorph::PAPER: elongation-vector rectification over the
-  morph's correspondence, image-space rigid frames, deformation frames, per-axis thresholds; planar law),
-  "morph-vpservo" (vpFeatureMorph to the final goal in a stock vpServo, EYEINHAND_CAMERA with the tilts disabled,
-  current L, the camera velocity mapped by the estimated eMc), "ibvs-current", "ibvs-desired", "ibvs-mean" (4 tag
-  corners, vpFeaturePoint, depth from the tag pose), "pbvs" (vpFeatureTranslation(cdMc) + vpFeatureThetaU(cdRc) from
-  the tag pose), "moments" (vpFeatureMomentCommon on the silhouette's measured outline: normalised centre of gravity,
-  area, c-invariants sx and sy, and alpha, as ViSP's servoMomentPolygon example, plane from the tag pose),
-  "moments-planar" (the same without the c-invariants, on the camera's planar motions, as "morph-vpservo"). The
-  other stock ones run EYEINHAND_L_cVe_eJe with cVe from the estimated eMc and eJe from the robot; all share the same
-  constant gain.
+  Names (create()): "morph" (vpServoMorph through 10 sub-goals, online hand-eye estimation, tilt correction on the
+  final approach), "morph-planar" (the same, the paper's planar law), "morph-paper" (vpServoMorph::PAPER),
+  "morph-vpservo" (vpFeatureMorph in a stock vpServo, EYEINHAND_CAMERA, tilts disabled), "ibvs-current",
+  "ibvs-desired", "ibvs-mean" (4 tag corners, vpFeaturePoint), "pbvs" (vpFeatureTranslation(cdMc) and
+  vpFeatureThetaU(cdRc) from the tag pose), "moments" (vpFeatureMomentCommon on the measured outline) and
+  "moments-planar" (its planar features). All share one constant gain.
 
-  <b>Convergence</b> (Command::converged: the controller declares itself done, and the run ends). "morph",
-  "morph-planar" and "morph-paper" when vpServoMorph reports CONVERGED. The others by a stop rule on their own error,
-  written as the RMS image displacement of the points their feature stands for (the tag's corners, or the outline under
-  the feature's similarity), within 3 times that displacement's own noise for 3 measured periods; the noise is 0.1 px
-  per edge point (vpMorphBenchObservability's noise model) through the feature's fit: sigma sqrt(4 / n) for a similarity
-  fitted to n outline points, 2 sigma / sqrt(L) for a tag corner where two fitted edges of L px meet. Every other stop
-  (a vpServoMorph status other than CONVERGED that stops, a feature jump, a lost view) is zero velocity and a failure
-  with its reason, never a convergence.
+  <b>Convergence</b> (Command::converged ends the run): the VISPMorph servos when vpServoMorph reports CONVERGED; the
+  others by a stop rule on their own error, the RMS image displacement of the points their feature stands for, within
+  3 times its own noise for 3 measured periods. Every other stop is zero velocity and a failure with its reason
+  (Command::reason), never a convergence.
 
-  <b>Faults</b> (vpMorphBenchEvent). Every controller holds (zero velocity, Command::measured false) on a
-  missing frame or when its features are not in the image; the loop gives up after 10 such iterations in a row
-  (feature-lost). The VISPMorph adapters add:
-  - both check the recognition again: the target is wrong when the contour is beyond 1.25 x the template's
-    acceptance threshold, or when the database's best template is another one, accepted, and at least 1.2 times
-    cheaper. Then the object is recognised anew, the rejected templates excluded (Command::rerecognized), and the
-    servo restarts towards the new template; when nothing acceptable remains the run stops with
-    "target-mismatch". "morph" has vpServoMorph check (vpServoMorph::setTargetCheck()) at each new sequence
-    (the first image, each re-plan) and before it reports convergence; "morph-vpservo" checks on the first image
-    and every 25 measured images (1 s).
-  - "morph": vpServoMorph holds while nothing is seen and resumes on the same sub-goal, stops after 8 periods
-    (reason "lost-too-long", before the loop's 10); re-plans after a view jump (Command::replanned; at most 3,
-    then "too-many-replans").
-  - "morph-vpservo": holds while vpFeatureMorph's aligner does not explain the view (its error is then zero, which
-    is not a goal reached); no sequence to re-plan, and a stock vpServo does not test its input: a jump of the
-    error beyond what one step of the law explains (a bump, an occluder) stops the run ("feature-jump").
+  <b>Faults</b>: a missing frame or features out of the image are a hold (zero velocity, Command::measured false);
+  the VISPMorph adapters also check the recognition again and re-recognise (Command::rerecognized), and "morph"
+  re-plans after a view jump (Command::replanned). The rules and their constants: \ref page_benchmarks.
 
   \code
   std::unique_ptr<vpMorphBenchController> c = vpMorphBenchController::create("ibvs-current");

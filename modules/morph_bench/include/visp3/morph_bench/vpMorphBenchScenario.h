@@ -31,35 +31,10 @@
   AprilTag is placed where it fits (vpMorphPlanarScene::placeTagInView(): any side, 8, 6, 5 then 4 cm); when neither
   fits, or no start shows object and tag, the scenario is a \e setup failure (its runs fail "setup", nothing else).
 
-  <b>Sets</b> (generate(); the protocol of \ref page_benchmarks; setNames() order seeds them, new sets go at the end):
-  - planar: in-plane rotation uniform in [-180, 180] deg about the desired optical axis, translation in the
-    image plane of norm uniform in [0, 80] mm, same depth;
-  - planar-hard: the same with |rotation| in [150, 180] deg (the classical IBVS camera retreat);
-  - 6dof: planar, then the camera orbits the point of the object plane on its optical axis by a tilt in
-    [0, 30] deg about a random in-plane axis, and its depth changes by a factor in [0.6, 1.4];
-  - calib: planar, with intrinsics given to the controllers off by up to 20 % (each focal length scaled by
-    [0.8, 1.2], principal point shifted by up to 16 px) and a hand-eye estimate off by up to 20 mm and 10 deg;
-  - calib-no-tilt: calib's starts and errors, the hand-eye rotation error kept about the optical axis only;
-  - noise: planar, with Gaussian noise (sigma in [1, 6] grey levels), blur (sigma in [0, 1.5] px) and an
-    illumination change (gain in [0.7, 1.3], offset in [-25, 25]);
-  - occlusion: planar, with a card hiding a share in [5, 20] % of the object's outline at a random place;
-  - deformable: planar, the object seen is its deformed variant (vpMorphBenchObjectSet; truth()).
-  - faults: planar, one timed fault (vpMorphBenchEvent) per start, its kind (k + NAME's hash) mod 5, so 5 starts
-    of an object meet every kind: dropped frames for 3-8 iterations or the object absent for 2-6 iterations from
-    iteration 15-40; an occluder of 10-25 % of the outline appearing at iteration 15-40; a jump of 20 mm in a random
-    in-plane direction and 10 deg about the optical axis (either sign) at iteration 15-40; recognition forced to
-    another object's template (drawn among the others: the one exception to the independence above);
-  - calib-wide: planar, the hand-eye rotation about the optical axis off by up to 90 deg either way, its translation
-    by up to 50 mm (any direction), px and py by one factor in [0.7, 1.3], u0 and v0 by up to 10 px;
-  - scene looks, the planar set's starts (the same draws) rendered with a look, from a stream of their own:
-    saturated (gain in [1.3, 1.8], the plane clipped at 255 by 10-60 levels), low-contrast (15-40 grey levels
-    between object and plane about a mean level in [60, 190], the sensor's noise, sigma in [0.5, 1.5], that low
-    contrast exposes), rough (object and template the rough-edged variant), gradient (gain varying by +-[0.3, 0.6]
-    over the image's half diagonal, any direction), plane-edge (the plane ends 1-3 cm beyond object and tag, any
-    side, the edge in view at the start), large-distractor (a dark rectangle of 1.2-1.6 times the object's area,
-    aspect 1-2, fully in view at the start, 1 cm clear of object and tag);
-  - res-1280 and res-320: the planar set's starts seen by a 1280 x 960 camera of focal 1600 px and a 320 x 240 one
-    of focal 400 px (the same field of view, the margins scaled with the image).
+  <b>Sets</b> (generate(), setNames(); their order seeds them, new sets go at the end): planar, planar-hard, 6dof,
+  calib, calib-no-tilt, noise, occlusion, deformable, faults, calib-wide, the scene looks (saturated, low-contrast,
+  rough, gradient, plane-edge, large-distractor: the planar starts rendered with a look) and res-1280, res-320; the
+  distribution of each: \ref page_benchmarks.
 
   A start is redrawn (from the same seeded stream, at most 1000 times) until the object and the tag are
   entirely in view, 10 px from the border (at 640 px across), at the start pose.
