@@ -241,7 +241,7 @@ bool vpMorphTiltEstimator::estimate(const vpMorphContour &currentN, const vpMorp
       if (m_deadZoneUsed > 0.0 && angle <= m_deadZoneUsed && final) {
         m_latched = true;
         m_residual = angle;
-        m_deviation = m_deadZoneUsed / getSigmas(); // a polygon's tilt is known to its dead zone
+        m_deviation = deviation;
         m_estimated = true;
         return false;
       }
