@@ -1,0 +1,126 @@
+/*
+  \file vpMorphBenchMorphAdapter.h
+  \brief Internal to the morph_bench module (not installed): what the two VISPMorph adapters share (the recognition
+  at the first frame, the target check and the re-recognition).
+*/
+#ifndef VP_MORPH_BENCH_MORPH_ADAPTER_H
+#define VP_MORPH_BENCH_MORPH_ADAPTER_H
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include <visp3/morph/vpMorphException.h>
+
+#include "vpMorphBenchAdapter.h"
+
+//! Recognition at the first frame, the target check and the re-recognition, shared by the two VISPMorph adapters.
+class vpMorphBenchMorphAdapter : public vpMorphBenchAdapter
+{
+public:
+  std::string recognizedObject() const override { return m_object; }
+
+protected:
+  //! Factor on a template's acceptance threshold for vpServoMorph's own target check: a slack over recognition's
+  //! threshold, as a view seen during the servo is not the first view (a last line of defence, see mismatch()).
+  static constexpr double kCheckSlack = 1.25;
+  //! The recognition is checked on the first image and then every kCheckPeriod measured images (1 s at 25 Hz).
+  static constexpr unsigned int kCheckPeriod = 25;
+  //! Another template replaces the current one only when the current one costs this much more work.
+  static constexpr double kSwitchRatio = 1.2; // vpMorphServoGuard::getMismatchRatio()
+
+  /*!
+    The silhouette of image \e I and, on the first one, the recognition. False when the caller must return
+    \e cmd as it is (hold: no silhouette; stop: rejected); true with cmd.measureMs set.
+  */
+  bool observe(const vpImage<unsigned char> &I, vpMorphContour &c, Command &cmd)
+  {
+    double ms = 0;
+    const TagView tag = detectTag(I);
+    c = vpMorphTagPoseEstimator::silhouette(I, tag.corners, &ms);
+    if (c.empty()) {
+      cmd = holdCommand(ms);
+      return false;
+    }
+    std::string reason;
+    if (!recognize(c, reason)) {
+      cmd = stopCommand(reason);
+      return false;
+    }
+    cmd = Command();
+    cmd.measureMs = ms;
+    return true;
+  }
+  //! Recognises the object on the first contour; returns false (and sets \e reason) if it is rejected.
+  bool recognize(const vpMorphContour &c, std::string &reason)
+  {
+    if (m_template)
+      return true;
+    if (!m_ctx.database || m_ctx.database->empty())
+      throw vpMorphException(vpMorphException::badParameterError, "morph controller: no template database");
+    if (!m_ctx.forcedTemplate.empty()) { // fault injection: a recognition error
+      m_template = &(*m_ctx.database)[m_ctx.forcedTemplate];
+      m_object = m_template->name();
+      return true;
+    }
+    const vpMorphRecognition r = m_ctx.database->recognize(c);
+    if (r.index == vpMorphRecognition::npos || !r.accepted) {
+      reason = "recognition";
+      return false;
+    }
+    m_template = &(*m_ctx.database)[r.index];
+    m_object = m_template->name();
+    return true;
+  }
+  /*!
+    True when \e c is not the current template's shape (vpServoMorph's target check, for the adapter without
+    vpServoMorph): not accepted by the database as that template with kCheckSlack (vpMorphDatabase::accepts():
+    beyond its threshold times kCheckSlack, and not an occluded view of it), or the database clearly prefers
+    another template (its best, accepted, at least kSwitchRatio times cheaper). The thresholds alone cannot
+    tell every pair apart: calibrated on 20 % occlusions, the pliers' threshold (1.57) is above its distance to
+    the screwdriver (1.44), so a screwdriver taken for the pliers passes it.
+  */
+  bool mismatch(const vpMorphContour &c) const
+  {
+    const vpMorphDatabase &db = *m_ctx.database;
+    const std::size_t cur = db.find(m_template->name());
+    const vpMorphRecognition r = db.recognize(c);
+    if (r.index == vpMorphRecognition::npos || r.index == cur)
+      return false;
+    double d = 0.0;
+    return !db.accepts(c, cur, kCheckSlack, &d) || (r.accepted && d >= kSwitchRatio * r.distance);
+  }
+  /*!
+    The current template was found wrong for \e c: recognises \e c again without the templates already
+    rejected (the best, else the runner-up, if the database accepts it). False when none is left.
+  */
+  bool rerecognize(const vpMorphContour &c)
+  {
+    const vpMorphDatabase &db = *m_ctx.database;
+    m_rejected.push_back(db.find(m_template->name()));
+    const vpMorphRecognition r = db.recognize(c);
+    const std::size_t idx[2] = {r.index, r.secondIndex};
+    for (int k = 0; k < 2; ++k) {
+      if (idx[k] == vpMorphRecognition::npos ||
+          std::find(m_rejected.begin(), m_rejected.end(), idx[k]) != m_rejected.end() ||
+          !(k == 0 ? r.accepted : db.accepts(c, idx[k])))
+        continue;
+      m_template = &db[idx[k]];
+      m_object = m_template->name();
+      return true;
+    }
+    return false;
+  }
+  void reset() override
+  {
+    m_template = nullptr;
+    m_object.clear();
+    m_rejected.clear();
+  }
+
+  const vpMorphTemplate *m_template = nullptr;
+  std::string m_object;
+  std::vector<std::size_t> m_rejected;
+};
+
+#endif
