@@ -28,14 +28,21 @@ inline vpMorphContour vpMorphSmoothed(const vpMorphContour &c, double sigma, std
   double sum = 0.0;
   for (int k = -half; k <= half; ++k)
     sum += (w[k + half] = std::exp(-0.5 * k * k / (s * s)));
-  std::vector<double> x(dense), y(dense);
+  // The dense outline with \e half points of wrap-around either side, so that the window needs no modulo.
   const int N = static_cast<int>(dense);
+  std::vector<double> px(dense + 2 * static_cast<std::size_t>(half)), py(px.size());
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    const int j = ((static_cast<int>(i) - half) % N + N) % N;
+    px[i] = d.x(static_cast<std::size_t>(j));
+    py[i] = d.y(static_cast<std::size_t>(j));
+  }
+  std::vector<double> x(dense), y(dense);
   for (int i = 0; i < N; ++i) {
     double ax = 0.0, ay = 0.0;
-    for (int k = -half; k <= half; ++k) {
-      const int j = ((i + k) % N + N) % N;
-      ax += w[k + half] * d.x(j);
-      ay += w[k + half] * d.y(j);
+    const double *qx = &px[static_cast<std::size_t>(i)], *qy = &py[static_cast<std::size_t>(i)];
+    for (int k = 0; k <= 2 * half; ++k) {
+      ax += w[k] * qx[k];
+      ay += w[k] * qy[k];
     }
     x[i] = ax / sum;
     y[i] = ay / sum;
