@@ -35,6 +35,14 @@ struct Sim
   double a = 1.0, b = 0.0, tx = 0.0, ty = 0.0;
 };
 
+// A normalised coordinate in shift-vote cells (offset so that the accumulator starts at 0), as houghShift() casts it.
+float voteCell(double v)
+{
+  constexpr double cell = 2.0 * kVoteRange / kVoteCells;
+  constexpr float inv = static_cast<float>(1.0 / cell), off = static_cast<float>(kVoteRange / cell);
+  return static_cast<float>(v) * inv + off;
+}
+
 int binOf(double angle)
 {
   double f = angle / kTwoPi * kBins;
@@ -121,6 +129,10 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
   std::vector<int> fill(d->bucketStart.begin(), d->bucketStart.end() - 1);
   for (std::size_t i = 0; i < n; ++i)
     d->bucket[fill[d->bin[i]]++] = static_cast<int>(i);
+  for (int j : d->bucket) {
+    d->voteX.push_back(voteCell(d->x[static_cast<std::size_t>(j)]));
+    d->voteY.push_back(voteCell(d->y[static_cast<std::size_t>(j)]));
+  }
   {
     // Signed distance to the polygon (negative inside: the sign from the even-odd rule along each row), over 1.25 times
     // the largest radius, so that an input laid a little off still falls on the grid.
@@ -260,27 +272,31 @@ constexpr double kScales[kNScales] = {1.05, 0.92, 0.8};
 void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, int bins, Vote out[kNScales])
 {
   constexpr double cell = 2.0 * kVoteRange / kVoteCells;
-  constexpr float inv = static_cast<float>(1.0 / cell), off = static_cast<float>(kVoteRange / cell);
   constexpr int W = kVoteCells + 2; // a cell of margin all round: the 3 x 3 sums need no bounds
-  std::array<std::array<std::uint8_t, W * W>, kNScales> acc{};
+  constexpr int kOut = W * W;       // where a shift off the accumulator votes (never read): no branch to mispredict
+  std::array<std::array<std::uint8_t, W * W + 1>, kNScales> acc{};
   std::array<std::array<int, kVoteCells * kVoteCells>, kNScales> seeds; // cells that reached two votes
   int nSeeds[kNScales] = {};
   const double th = bins * kTwoPi / kBins, c = std::cos(th), sn = std::sin(th);
+  const float *vx = t.voteX.data(), *vy = t.voteY.data();
   for (std::size_t i = 0; i < in.x.size(); i += 2) {
     const float rx = static_cast<float>((c * in.x[i] - sn * in.y[i]) / cell),
                 ry = static_cast<float>((sn * in.x[i] + c * in.y[i]) / cell);
+    float ox[kNScales], oy[kNScales];
+    for (int s = 0; s < kNScales; ++s) {
+      ox[s] = static_cast<float>(kScales[s]) * rx;
+      oy[s] = static_cast<float>(kScales[s]) * ry;
+    }
     for (int e = -kVoteTolerance; e <= kVoteTolerance; ++e) {
       int b = in.bin[i] + bins + e; // in [-kVoteTolerance, 2 kBins + kVoteTolerance)
       b = b < 0 ? b + kBins : (b >= 2 * kBins ? b - 2 * kBins : (b >= kBins ? b - kBins : b));
+      // The target's samples of bin b, in bucket order (voteX, voteY: their cells, cast once at preparation).
       for (int k = t.bucketStart[b]; k < t.bucketStart[b + 1]; ++k) {
-        const int j = t.bucket[k];
-        const float tx = static_cast<float>(t.x[j]) * inv + off, ty = static_cast<float>(t.y[j]) * inv + off;
         for (int s = 0; s < kNScales; ++s) {
-          const float fx = tx - static_cast<float>(kScales[s]) * rx, fy = ty - static_cast<float>(kScales[s]) * ry;
-          if (!(fx >= 0.0f && fy >= 0.0f && fx < kVoteCells && fy < kVoteCells))
-            continue;
-          const int g = (static_cast<int>(fy) + 1) * W + static_cast<int>(fx) + 1;
-          if (++acc[s][g] == 2) // a cell gets one vote per input sample and direction bin at most: < 255
+          const float fx = vx[k] - ox[s], fy = vy[k] - oy[s];
+          const bool on = (fx >= 0.0f) & (fy >= 0.0f) & (fx < kVoteCells) & (fy < kVoteCells);
+          const int g = on ? (static_cast<int>(fy) + 1) * W + static_cast<int>(fx) + 1 : kOut;
+          if (++acc[s][g] == 2 && on) // a cell gets one vote per input sample and direction bin at most: < 255
             seeds[s][nSeeds[s]++] = g;
         }
       }

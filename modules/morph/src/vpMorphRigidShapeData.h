@@ -33,6 +33,7 @@ struct vpMorphRigidShapeData
   std::vector<double> x, y;             // kSamples samples, normalised
   std::vector<int> bin;                 // their tangent directions' bins
   std::vector<int> bucketStart, bucket; // samples per direction bin (bucketStart[kBins] = kSamples)
+  std::vector<float> voteX, voteY;      // the samples in bucket order, in shift-vote cells (vpMorphRigidShape)
   vpMorphNearestEdge edges;             // on the polygon, pixels
   std::vector<float> grid;              // signed distance, normalised, kGrid x kGrid (empty: none)
   double lo = 0.0, step = 1.0;

@@ -95,7 +95,8 @@ public:
   static double tau() { return 0.1; }
 
 private:
-  friend class vpMorphRigidCheck; // the fine stage reads the prepared outline
+  friend class vpMorphRigidCheck;  // the fine stage reads the prepared outline
+  friend class vpMorphRigidSearch; // the search asks the cache for the next template's data
   std::shared_ptr<const vpMorphRigidShapeData> m_data;
 };
 
