@@ -162,15 +162,25 @@ bool inside(const vpMorphContour &c, double x, double y)
   return in;
 }
 
-// Share of \e side's fine samples within tol of the other curve once mapped by H (pixels), their mean truncated
-// quadratic distance, and (when \e outside is given) the share beyond 2 tol outside the other curve.
-void measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &other, const Mat3 &H, double tol,
-             double &share, double &cost, double *outside = nullptr)
+/*
+  Share of \e side's fine samples within tol of the other curve once mapped by H (pixels), their mean truncated
+  quadratic distance, and (when \e outside is given) the share beyond 2 tol outside the other curve. With \e base (the
+  other side's mean, 0 for the first side) and \e abandonAbove >= 0: false as soon as the check's cost, 0.5 (base +
+  mean), is sure to exceed abandonAbove, \e cost then that bound (a partial sum of terms >= 0 never exceeds the sum,
+  rounding included, and the operations after it are monotone).
+*/
+bool measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &other, const Mat3 &H, double tol,
+             double &share, double &cost, double *outside = nullptr, double base = 0.0, double abandonAbove = -1.0)
 {
   std::size_t on = 0, out = 0;
   double sum = 0.0;
   const bool sign = outside != nullptr;
+  const double n = static_cast<double>(side.fx.size());
   for (std::size_t i = 0; i < side.fx.size(); ++i) {
+    if (abandonAbove >= 0.0 && 0.5 * (base + sum / n) > abandonAbove) {
+      cost = 0.5 * (base + sum / n);
+      return false;
+    }
     double X, Y, w, mx, my, d = tol;
     if (project(H, side.fx[i], side.fy[i], X, Y, w)) {
       const double e = std::fabs(other.fineEdges.within(X, Y, 2.0 * tol, mx, my)); // +inf beyond 2 tol
@@ -187,10 +197,11 @@ void measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &oth
     }
     sum += (d * d) / (tol * tol);
   }
-  share = static_cast<double>(on) / static_cast<double>(side.fx.size());
-  cost = sum / static_cast<double>(side.fx.size());
+  share = static_cast<double>(on) / n;
+  cost = sum / n;
   if (outside)
-    *outside = static_cast<double>(out) / static_cast<double>(side.fx.size());
+    *outside = static_cast<double>(out) / n;
+  return true;
 }
 } // namespace
 
@@ -202,6 +213,13 @@ double vpMorphRigidCheck::tolerance(const vpMorphContour &input, const vpMorphCo
 
 vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                                                    const vpMorphRigidTransform &start)
+{
+  return checkFrom(input, target, start, -1.0);
+}
+
+vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &input,
+                                                       const vpMorphRigidShape &target,
+                                                       const vpMorphRigidTransform &start, double abandonAbove)
 {
   if (input.empty() || target.empty())
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck: empty shape");
@@ -226,8 +244,15 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &inpu
   const Mat3 H = f.toPixels(G);
   double ci = 1.0, ct = 1.0;
   // A silhouette joined across its occluder (no measured region) has bridges, which may pass outside the target.
-  measure(in, tg, H, tol, r.inputShare, ci, in.contour.hasRegion() ? &r.outsideShare : nullptr);
-  measure(tg, in, H.inverse(), tol, r.targetShare, ct);
+  // Abandoned: the result is the bound on the cost that exceeds abandonAbove.
+  Result abandoned;
+  if (!measure(in, tg, H, tol, r.inputShare, abandoned.cost, in.contour.hasRegion() ? &r.outsideShare : nullptr, 0.0,
+               abandonAbove))
+    return abandoned;
+  ci = abandoned.cost;
+  if (!measure(tg, in, H.inverse(), tol, r.targetShare, abandoned.cost, nullptr, ci, abandonAbove))
+    return abandoned;
+  ct = abandoned.cost;
   r.cost = 0.5 * (ci + ct);
   vpMatrix M(3, 3);
   for (unsigned int i = 0; i < 3; ++i)
@@ -245,9 +270,17 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &inpu
 vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                                                    const vpMorphRigidShape::Alignment &alignment)
 {
-  Result r = check(input, target, alignment.transform);
+  return check(input, target, alignment, -1.0);
+}
+
+vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                                   const vpMorphRigidShape::Alignment &alignment, double abandonAbove)
+{
+  Result r = checkFrom(input, target, alignment.transform, abandonAbove);
   if (alignment.hasAlternative) {
-    const Result a = check(input, target, alignment.alternative);
+    // The alternative matters only below the first's cost.
+    const double above = abandonAbove >= 0.0 ? std::min(abandonAbove, r.cost) : r.cost;
+    const Result a = checkFrom(input, target, alignment.alternative, above);
     if (a.cost < r.cost)
       r = a;
   }

@@ -3,6 +3,7 @@
 // search against its exhaustive search.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -224,6 +225,77 @@ TEST_CASE("rigid recognition: the two-stage search gives the exhaustive search's
   }
   CHECK(compared < all);
   WARN("two-stage RIGID search: " << compared << " exact comparisons of " << all);
+}
+
+TEST_CASE("rigid recognition: the search's shortcuts give the plain two-stage search's answers", "[rigid][recognition]")
+{
+  // The plain two-stage search written out from the public stages: every template aligned coarsely, the
+  // rigidShortlist() least (ties to the lower index) compared exactly in full, the least cost wins and the next is the
+  // runner-up. The database's search stops measuring a template that can be neither: the same answers, bit for bit.
+  // 18 templates (the tools, their bent drawings, the tools at half size) and 36 views, half of them under a card.
+  std::vector<cv::Mat> images;
+  vpMorphDatabase db = toolsAndBentDrawings(images);
+  for (int k = 0; k < 6; ++k)
+    db.add(vpMorphTemplate(std::string(kObjects[k]) + "-half",
+                           extract(warp(images[k], similarity(images[k], 30.0 * k, 0.5, 0, 0), 0, 1))));
+  std::vector<vpMorphRigidShape> shapes;
+  for (std::size_t k = 0; k < db.size(); ++k)
+    shapes.emplace_back(db[k].contour());
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> turn(-180, 180), scale(0.8, 1.2);
+  std::size_t abandoned = 0;
+  for (int k = 0; k < 36; ++k) {
+    cv::Mat v = images[k % 6];
+    if (k % 2 == 0)
+      v = vpMorphTest::squareOccluder(v, 0.07 * k, 0.2);
+    const vpMorphContour c = extract(warp(v, similarity(v, turn(rng), scale(rng), 0, 0), 5, 100 + k), k % 4 == 0);
+    const vpMorphRigidShape q(c);
+    std::vector<std::pair<double, std::size_t>> coarse;
+    std::vector<vpMorphRigidShape::Alignment> alignments;
+    for (std::size_t t = 0; t < shapes.size(); ++t) {
+      alignments.push_back(q.alignOn(shapes[t]));
+      coarse.emplace_back(alignments.back().cost, t);
+    }
+    std::sort(coarse.begin(), coarse.end());
+    coarse.resize(vpMorphDatabase::rigidShortlist());
+    std::size_t best = vpMorphRecognition::npos, second = vpMorphRecognition::npos;
+    vpMorphRigidCheck::Result rb, rs;
+    for (const auto &e : coarse) {
+      const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(q, shapes[e.second], alignments[e.second]);
+      // Abandoned above a threshold: exact at or below it, else only a cost above it.
+      for (double above : {0.5 * r.cost, r.cost, 0.02, 0.2}) {
+        const vpMorphRigidCheck::Result a = vpMorphRigidCheck::check(q, shapes[e.second], alignments[e.second], above);
+        if (r.cost <= above) {
+          CHECK(a.cost == r.cost);
+          CHECK(a.targetShare == r.targetShare);
+          CHECK(a.outsideShare == r.outsideShare);
+          CHECK(a.fitted == r.fitted);
+        } else {
+          CHECK(a.cost > above);
+          CHECK(a.cost <= r.cost);
+          abandoned += a.cost < r.cost;
+        }
+      }
+      if (best == vpMorphRecognition::npos || r.cost < rb.cost || (r.cost == rb.cost && e.second < best)) {
+        second = best;
+        rs = rb;
+        best = e.second;
+        rb = r;
+      } else if (second == vpMorphRecognition::npos || r.cost < rs.cost || (r.cost == rs.cost && e.second < second)) {
+        second = e.second;
+        rs = r;
+      }
+    }
+    const vpMorphRecognition a = db.recognize(c, true);
+    CAPTURE(k, db[a.index].name(), db[best].name(), a.distance, rb.cost);
+    CHECK(a.index == best);
+    CHECK(a.distance == rb.cost);
+    CHECK(a.support == rb.targetShare);
+    CHECK(a.secondIndex == second);
+    CHECK(a.secondDistance == rs.cost);
+    CHECK(a.evaluated == vpMorphDatabase::rigidShortlist());
+  }
+  CHECK(abandoned > 0); // the measurement did stop early
 }
 
 TEST_CASE("rigid recognition: a saved and reloaded database gives identical answers", "[rigid][database]")

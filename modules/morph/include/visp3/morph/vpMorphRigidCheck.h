@@ -68,6 +68,13 @@ public:
   //! The better (least cost) of check() from the alignment's transform and from its alternative, when it has one.
   static Result check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                       const vpMorphRigidShape::Alignment &alignment);
+  /*!
+    As check(input, target, alignment), but once the cost is sure to exceed \e abandonAbove the measurement stops and
+    the result is only a cost > abandonAbove (fitted false); exact otherwise. A search that needs the two least costs
+    measures no further a template that can be neither.
+  */
+  static Result check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                      const vpMorphRigidShape::Alignment &alignment, double abandonAbove);
   //! check() of two contours, prepared here.
   static Result check(const vpMorphContour &input, const vpMorphContour &target, const vpMorphRigidTransform &start);
 
@@ -93,6 +100,11 @@ public:
   //! similarityDeviation() of shapes already prepared (many pairs of few shapes).
   static double similarityDeviation(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                                     double quantile = 0.99);
+
+private:
+  //! check() from \e start, abandoned above \e abandonAbove when it is >= 0.
+  static Result checkFrom(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                          const vpMorphRigidTransform &start, double abandonAbove);
 };
 
 #endif
