@@ -35,6 +35,7 @@ struct Look
   const char *name;
   double gain, offset, noise;
   bool rough;
+  double gradient = 0.0; // the light's fall-off across the image (vpMorphPlanarScene::Faults::gradient), at 30 deg
 };
 
 // The object seen from the desired camera turned by deg about its optical axis, its silhouette extracted.
@@ -52,11 +53,13 @@ TEST_CASE("The measured size of an object agrees within 0.4 % between views at o
           "[rendered][aligner][depth]")
 {
   // Saturated: gain 6 clips both levels, the edge pixels' shares crushed; low contrast: 26 grey levels between object
-  // and plane, with noise; rough: a silhouette drawn from a source at a quarter of the resolution.
+  // and plane, with noise; rough: a silhouette drawn from a source at a quarter of the resolution; uneven light: the
+  // light falls off by 45 % from the image's centre to its corners (the plane's far corner dark as the object).
   const Look looks[] = {{"plain", 1.0, 0.0, 0.0, false},
                         {"saturated", 6.0, -650.0, 0.0, false},
                         {"low contrast", 0.15, 120.0, 1.0, false},
-                        {"rough edges", 1.0, 0.0, 0.0, true}};
+                        {"rough edges", 1.0, 0.0, 0.0, true},
+                        {"uneven light", 1.0, 0.0, 1.0, false, 0.45}};
   const vpHomogeneousMatrix cdMo(0.01, -0.005, 0.5, 0, 0, vpMath::rad(25));
   for (const std::string name : {"key", "screwdriver", "wrench"}) {
     const std::string image = std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png";
@@ -68,6 +71,8 @@ TEST_CASE("The measured size of an object agrees within 0.4 % between views at o
       f.gain = look.gain;
       f.offset = look.offset;
       f.noiseSigma = look.noise;
+      f.gradient = look.gradient;
+      f.gradientAngle = vpMath::rad(30);
       f.seed = 11;
       scene.setFaults(f);
       // The taught view of this rendering, and, for a lighting, the same views against the plain taught one (a lighting

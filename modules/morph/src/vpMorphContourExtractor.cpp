@@ -17,6 +17,7 @@
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphPolygonApproximation.h>
 
+#include "vpMorphGreyClasses.h"
 #include "vpMorphRegionMeasure.h"
 
 using vpMorphRegionMeasure::measure;
@@ -37,61 +38,8 @@ vpImage<unsigned char> toGrey(const vpImage<vpRGBa> &I)
   return g;
 }
 
-using Histogram = std::array<long, 256>;
-
-// Grey-level histogram of the \e n pixels at \e p. A run of 8 equal pixels counts at once, and the others go to
-// 4 interleaved tables, so that a background of one level does not chain every increment on one counter.
-Histogram histogram(const unsigned char *p, std::size_t n)
-{
-  std::array<Histogram, 4> h{};
-  std::size_t i = 0;
-  for (; i + 8 <= n; i += 8) {
-    std::uint64_t w;
-    std::memcpy(&w, p + i, 8);
-    if (w == p[i] * 0x0101010101010101ULL) {
-      h[0][p[i]] += 8;
-      continue;
-    }
-    for (std::size_t k = 0; k < 8; ++k)
-      ++h[k & 3][p[i + k]];
-  }
-  for (; i < n; ++i)
-    ++h[0][p[i]];
-  for (std::size_t v = 0; v < 256; ++v)
-    h[0][v] += h[1][v] + h[2][v] + h[3][v];
-  return h[0];
-}
-
-// Otsu's threshold of a histogram of \e total pixels: cv::threshold()'s THRESH_OTSU computation, operation for
-// operation (the same double sums in the same order), so the mask is the one it gives (test_morph checks it).
-int otsu(const Histogram &h, long total)
-{
-  const double scale = 1.0 / static_cast<double>(total);
-  double mu = 0.0;
-  for (int i = 0; i < 256; ++i)
-    mu += i * static_cast<double>(h[i]);
-  mu *= scale;
-  double mu1 = 0.0, q1 = 0.0, maxSigma = 0.0;
-  int best = 0;
-  for (int i = 0; i < 256; ++i) {
-    const double p = static_cast<double>(h[i]) * scale;
-    mu1 *= q1;
-    q1 += p;
-    const double q2 = 1.0 - q1;
-    if (std::min(q1, q2) < FLT_EPSILON || std::max(q1, q2) > 1.0 - FLT_EPSILON)
-      continue;
-    mu1 = (mu1 + i * p) / q1;
-    const double mu2 = (mu - q1 * mu1) / q2, sigma = q1 * q2 * (mu1 - mu2) * (mu1 - mu2);
-    if (sigma > maxSigma) {
-      maxSigma = sigma;
-      best = i;
-    }
-  }
-  return best;
-}
-
 /*
-  Object mask (255 = object) from Otsu's threshold and the border-minority polarity rule. It is a view of \e padded,
+  Object mask (255 = object) from the two grey classes (vpMorphGreyClasses) and the border-minority polarity rule. It is a view of \e padded,
   which has one pixel of background all round (what findContours() needs to close objects that touch the border),
   written in place rather than copied into it.
 */
@@ -110,7 +58,7 @@ cv::Mat mask(const vpImage<unsigned char> &I, cv::Mat &padded)
   const cv::Mat grey(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
                      const_cast<unsigned char *>(I.bitmap));
   const long total = static_cast<long>(I.getSize());
-  const Histogram h = histogram(I.bitmap, I.getSize());
+  const vpMorphGreyClasses::Histogram h = vpMorphGreyClasses::histogram(I.bitmap, I.getSize());
   const auto lo = std::find_if(h.begin(), h.end(), [](long c) { return c > 0; });
   if (*lo == total) {
     std::ostringstream os;
@@ -118,30 +66,6 @@ cv::Mat mask(const vpImage<unsigned char> &I, cv::Mat &padded)
     fail(os.str());
   }
   const int rows = grey.rows, cols = grey.cols;
-  const int t = otsu(h, total);
-
-  // Polarity: the class that dominates the border is the background (the bright class is grey > t).
-  long bright = 0, border = 0;
-  const unsigned char *top = grey.ptr<unsigned char>(0), *bottom = grey.ptr<unsigned char>(rows - 1);
-  for (int c = 0; c < cols; ++c) {
-    bright += (top[c] > t) + (bottom[c] > t);
-    border += 2;
-  }
-  for (int r = 1; r < rows - 1; ++r) {
-    const unsigned char *row = grey.ptr<unsigned char>(r);
-    bright += (row[0] > t) + (row[cols - 1] > t);
-    border += 2;
-  }
-  bool objectIsBright;
-  if (2 * bright != border)
-    objectIsBright = 2 * bright < border;
-  else {
-    long above = 0;
-    for (int v = t + 1; v < 256; ++v)
-      above += h[v];
-    objectIsBright = 2 * above < total;
-  }
-
   padded.create(rows + 2, cols + 2, CV_8UC1);
   padded.row(0).setTo(0);
   padded.row(rows + 1).setTo(0);
@@ -150,10 +74,25 @@ cv::Mat mask(const vpImage<unsigned char> &I, cv::Mat &padded)
     row[0] = row[cols + 1] = 0;
   }
   cv::Mat bin = padded(cv::Rect(1, 1, cols, rows));
-  cv::threshold(grey, bin, t, 255, objectIsBright ? cv::THRESH_BINARY : cv::THRESH_BINARY_INV);
+  vpMorphGreyClasses(grey, vpMorphGreyClasses::otsu(h, total)).bright(grey, bin);
+
+  // Polarity: the class that dominates the border is the background.
+  long bright = 0, border = 0;
+  const unsigned char *top = bin.ptr<unsigned char>(0), *bottom = bin.ptr<unsigned char>(rows - 1);
+  for (int c = 0; c < cols; ++c) {
+    bright += (top[c] != 0) + (bottom[c] != 0);
+    border += 2;
+  }
+  for (int r = 1; r < rows - 1; ++r) {
+    const unsigned char *row = bin.ptr<unsigned char>(r);
+    bright += (row[0] != 0) + (row[cols - 1] != 0);
+    border += 2;
+  }
+  const bool objectIsBright = 2 * bright != border ? 2 * bright < border : 2 * cv::countNonZero(bin) < total;
+  if (!objectIsBright)
+    cv::bitwise_not(bin, bin);
   return bin;
 }
-
 
 // The first \e measured regions (largest first) also get their grey-level area and centroid. \e binOut, if not
 // null, receives the object mask they were found in.
@@ -416,7 +355,7 @@ int vpMorphContourExtractor::otsuThreshold(const vpImage<unsigned char> &I)
 {
   if (I.getSize() == 0 || I.bitmap == nullptr)
     fail("the image is empty");
-  return otsu(histogram(I.bitmap, I.getSize()), static_cast<long>(I.getSize()));
+  return vpMorphGreyClasses::otsu(vpMorphGreyClasses::histogram(I.bitmap, I.getSize()), static_cast<long>(I.getSize()));
 }
 
 std::vector<std::vector<vpImagePoint> > vpMorphContourExtractor::boundaries(const vpImage<unsigned char> &I) const

@@ -1,4 +1,5 @@
 #include "vpMorphRegionMeasure.h"
+#include "vpMorphAffineLevel.h"
 
 #include <algorithm>
 #include <array>
@@ -8,31 +9,44 @@
 #include <cstring>
 #include <vector>
 
+#include <Eigen/Dense>
 #include <opencv2/imgproc.hpp>
 
+using vpMorphRegionMeasure::Level;
 using vpMorphRegionMeasure::Region;
 
 namespace
 {
 /*
-  The histogram of the grey levels under a mask: built once per mask, it gives both the level under it and the share
-  of it at a saturated level (each a whole pass over the region's box otherwise).
+  The histogram of the grey levels under a mask: built once per mask, it gives the level under it, the share of it at
+  a saturated level and the least-squares sums of any window of levels (each a whole pass over the region's box
+  otherwise). Positions (x, y) are about the box's centre.
 */
 struct LevelHistogram
 {
   std::array<long, 256> h{};
+  std::array<std::array<double, 5>, 256> moments{}; // per level: sum x, y, x^2, x y, y^2
   long n = 0;
+  double cx, cy;
 
-  LevelHistogram(const cv::Mat &grey, const cv::Mat &m)
+  LevelHistogram(const cv::Mat &grey, const cv::Mat &m) : cx(0.5 * (m.cols - 1)), cy(0.5 * (m.rows - 1))
   {
     for (int r = 0; r < m.rows; ++r) {
       const unsigned char *pm = m.ptr<unsigned char>(r), *pg = grey.ptr<unsigned char>(r);
+      const double y = r - cy;
       int c = 0;
       auto add = [&](int end) {
         for (; c < end; ++c)
           if (pm[c]) {
             ++h[pg[c]];
             ++n;
+            const double x = c - cx;
+            std::array<double, 5> &q = moments[pg[c]];
+            q[0] += x;
+            q[1] += y;
+            q[2] += x * x;
+            q[3] += x * y;
+            q[4] += y * y;
           }
       };
       // 8 pixels at a time past the mask's empty words (a band's or ring's box is mostly empty).
@@ -48,19 +62,10 @@ struct LevelHistogram
     }
   }
 
-  /*
-    The grey level, or -1 when the mask is empty: the mean of the levels within 4 sigma of their median (sigma =
-    1.4826 MAD, at least half a grey level), so that another surface in the mask (a card beside the object) does not
-    count, but the noise does, clipped as it is. Why not the median: on a background a few grey levels under the
-    sensor's limit, the noise's upper tail is clipped and the pixels' mean falls under their median; the edge pixels'
-    weights, read against the median, then count a sliver of background as object all round (measured: a hammer's
-    area 0.2-0.6 % too large, 1.9 mm of depth, under noise 5 on a background at 252).
-  */
-  double level() const
+  // The histogram's median (the lowest level with half the counts at or under it) and a window about it of 4 sigma
+  // (sigma = 1.4826 MAD, at least half a grey level): the levels of the mask's main surface. n > 0.
+  void window(int &med, double &halfWidth) const
   {
-    if (n == 0)
-      return -1.0;
-    // The median of a histogram (the lowest level with half the counts at or under it).
     auto median = [this](const std::array<long, 256> &hist) {
       long acc = 0;
       for (int v = 0; v < 256; ++v) {
@@ -70,23 +75,111 @@ struct LevelHistogram
       }
       return 255;
     };
-    const int med = median(h);
+    med = median(h);
     std::array<long, 256> dev{}; // histogram of |level - median|
     for (int v = 0; v < 256; ++v)
       dev[std::abs(v - med)] += h[v];
-    const double window = std::max(0.5, 4.0 * 1.4826 * median(dev));
+    halfWidth = std::max(0.5, 4.0 * 1.4826 * median(dev));
+  }
+
+  /*
+    The grey level, or -1 when the mask is empty: the mean of the levels within the window about their median, so that
+    another surface in the mask (a card beside the object) does not count, but the noise does, clipped as it is. Why
+    not the median: on a background a few grey levels under the sensor's limit, the noise's upper tail is clipped and
+    the pixels' mean falls under their median; the edge pixels' weights, read against the median, then count a sliver
+    of background as object all round.
+  */
+  double level() const
+  {
+    if (n == 0)
+      return -1.0;
+    int med;
+    double halfWidth;
+    window(med, halfWidth);
     double sum = 0.0;
     long kept = 0;
-    for (int v = std::max(0, int(std::ceil(med - window))); v <= std::min(255, int(std::floor(med + window))); ++v) {
+    for (int v = std::max(0, int(std::ceil(med - halfWidth))); v <= std::min(255, int(std::floor(med + halfWidth)));
+         ++v) {
       sum += double(v) * double(h[v]);
       kept += h[v];
     }
     return sum / double(kept); // kept > 0: the median's own bin is in the window
   }
 
+  // The least-squares sums of the pixels whose level is within [lo, hi].
+  vpMorphAffineLevel::Sums sums(int lo, int hi) const
+  {
+    vpMorphAffineLevel::Sums s;
+    for (int v = std::max(0, lo); v <= std::min(255, hi); ++v) {
+      const double k = double(h[v]);
+      const std::array<double, 5> &q = moments[v];
+      s.n += k;
+      s.x += q[0];
+      s.y += q[1];
+      s.xx += q[2];
+      s.xy += q[3];
+      s.yy += q[4];
+      s.g += v * k;
+      s.xg += v * q[0];
+      s.yg += v * q[1];
+      s.gg += double(v) * v * k;
+    }
+    return s;
+  }
+
   // Share of the pixels at grey level \e v (a saturated level), 0 when the mask is empty.
   double share(unsigned char v) const { return n > 0 ? double(h[v]) / double(n) : 0.0; }
 };
+
+/*
+  The level under mask \e m of \e g (a box of the image at \e tl) as an affine function of the position: a light that
+  falls off across the view shades a surface so, to first order. Least squares over the pixels within the histogram's
+  window about its median (another surface in the mask does not count, LevelHistogram::window()), then again over the
+  mask's pixels within 4 sigma (1.4826 MAD, at least half a grey level) of that fit. Without a slope seen or worth its
+  parameters (vpMorphAffineLevel::fit()), the histogram's level (LevelHistogram::level()). Invalid on an empty mask.
+*/
+Level affineLevel(const cv::Mat &g, const cv::Mat &m, const cv::Point &tl, const LevelHistogram &hist)
+{
+  Level out;
+  if (hist.n == 0)
+    return out;
+  out.a = hist.level();
+  out.valid = true;
+  int med;
+  double halfWidth;
+  hist.window(med, halfWidth);
+  // Without a slope, the level is the histogram's (the same pixels, read without a fit).
+  auto sloped = [](const vpMorphAffineLevel::Sums &s, Eigen::Vector3d &p) {
+    return vpMorphAffineLevel::fit(s, 1.0, p) && (p(1) != 0.0 || p(2) != 0.0);
+  };
+  Eigen::Vector3d p;
+  if (!sloped(hist.sums(int(std::ceil(med - halfWidth)), int(std::floor(med + halfWidth))), p))
+    return out;
+  const double cx = hist.cx, cy = hist.cy;
+  std::vector<double> dev;
+  dev.reserve(static_cast<std::size_t>(hist.n));
+  for (int r = 0; r < m.rows; ++r) {
+    const unsigned char *pm = m.ptr<unsigned char>(r), *pg = g.ptr<unsigned char>(r);
+    for (int c = 0; c < m.cols; ++c)
+      if (pm[c])
+        dev.push_back(std::fabs(pg[c] - p(0) - p(1) * (c - cx) - p(2) * (r - cy)));
+  }
+  std::nth_element(dev.begin(), dev.begin() + long(dev.size() / 2), dev.end());
+  const double within = std::max(0.5, 4.0 * 1.4826 * dev[dev.size() / 2]);
+  vpMorphAffineLevel::Sums s;
+  for (int r = 0; r < m.rows; ++r) {
+    const unsigned char *pm = m.ptr<unsigned char>(r), *pg = g.ptr<unsigned char>(r);
+    for (int c = 0; c < m.cols; ++c)
+      if (pm[c] && std::fabs(pg[c] - p(0) - p(1) * (c - cx) - p(2) * (r - cy)) <= within)
+        s.add(c - cx, r - cy, pg[c]);
+  }
+  if (!sloped(s, p))
+    return out;
+  out.au = p(1);
+  out.av = p(2);
+  out.a = p(0) - out.au * (tl.x + cx) - out.av * (tl.y + cy);
+  return out;
+}
 
 // Bilinear interpolation of a one-channel image of T at (x, y), clamped to the image.
 template <typename T> double bilinear(const cv::Mat &m, double x, double y)
@@ -244,20 +337,25 @@ bool edgeProfile(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy, const c
   The edge near each chain pixel, in image coordinates (chain pixel + box corner), one point per pixel.
   - Where the step is whole (fg to bg, not clipped): along the pixel's row, or its column when the edge is closer to
     horizontal, the edge is where the object's share of the 7 pixels about it ends, their weights (g - bg) /
-    (fg - bg) summed from the object's end. Why: a pixel's grey level is the share of its area the object covers
+    (fg - bg) (the levels at each pixel) summed from the object's end. Why: a pixel's grey level is the share of its area the object covers
     (then blurred, which keeps areas), so over a row the weights add up to the object's extent, averaged over the
     pixel's height: for a straight edge, exactly the edge at the row's centre, whatever its angle and blur. The
     level crossing of an interpolated profile is off by a pixel-phase-dependent tenth of a pixel on slanted edges.
   - Elsewhere (clipped levels, another edge within 3 px, the image border): along the gradient direction (3x3
-    Sobel), the crossing of \e level nearest the pixel within 2 px, the profile sampled bilinearly every quarter
+    Sobel), the crossing nearest the pixel within 2 px of the level halfway between fg and bg there (\e clippedLevel
+    when the step is not \e whole), the profile sampled bilinearly every quarter
     pixel and interpolated linearly.
-  Pixels without a clear gradient (under contrast / 16 per pixel) or without a crossing are skipped.
+  Pixels without a clear gradient (under the local contrast / 16 per pixel) or without a crossing are skipped.
 */
 std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy,
-                                     const std::vector<cv::Point> &chain, const cv::Point &tl, double fg, double bg,
-                                     bool whole, double level)
+                                     const std::vector<cv::Point> &chain, const cv::Point &tl, const Level &fg,
+                                     const Level &bg, bool whole, double clippedLevel)
 {
-  const double contrast = std::fabs(fg - bg);
+  // The object's share of pixel (c, r) of the box, from the levels there.
+  auto weight = [&](int c, int r) {
+    const double u = tl.x + c, v = tl.y + r, b = bg.at(u, v);
+    return (g.at<unsigned char>(r, c) - b) / (fg.at(u, v) - b);
+  };
   // The object's extent along a row (alongRow) or column through pixel p: false where the 7 pixels do not hold one
   // whole step from object to background.
   auto integral = [&](const cv::Point &p, bool alongRow, double &pos) {
@@ -266,8 +364,7 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
       return false;
     double w[2 * W + 1], sum = 0.0;
     for (int k = -W; k <= W; ++k) {
-      const unsigned char v = alongRow ? g.at<unsigned char>(p.y, i0 + k) : g.at<unsigned char>(i0 + k, p.x);
-      w[k + W] = (v - bg) / (fg - bg);
+      w[k + W] = alongRow ? weight(i0 + k, p.y) : weight(p.x, i0 + k);
       sum += w[k + W];
     }
     const double lo = w[0], hi = w[2 * W];
@@ -293,8 +390,10 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
     const cv::Point p = p0 - tl;
     if (p.x < 0 || p.y < 0 || p.x >= g.cols || p.y >= g.rows)
       continue;
+    const double fgp = fg.at(p0.x, p0.y), bgp = bg.at(p0.x, p0.y);
+    const double level = whole ? 0.5 * (fgp + bgp) : clippedLevel;
     const double ex = gx.at<float>(p.y, p.x), ey = gy.at<float>(p.y, p.x), m = std::hypot(ex, ey);
-    if (!(m > contrast / 16.0))
+    if (!(m > std::fabs(fgp - bgp) / 16.0))
       continue;
     const bool alongRow = std::fabs(ex) >= std::fabs(ey);
     double pos;
@@ -349,34 +448,37 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
   cv::dilate(outer, outerMore, k3, cv::Point(-1, -1), 2);
   band = outer & ~inner & ~others;
   ring = outerMore & ~outer & ~others;
-  const bool given = levelsFrom != nullptr && levelsFrom->fg >= 0.0 && levelsFrom->bg >= 0.0;
+  const bool given = levelsFrom != nullptr && levelsFrom->fg.valid && levelsFrom->bg.valid;
   const LevelHistogram innerLevels(g, inner), ringLevels(g, ring);
-  const double fg =
-      given ? levelsFrom->fg : (innerLevels.n > 0 ? innerLevels.level() : LevelHistogram(g, region).level());
-  const double bg = given ? levelsFrom->bg : ringLevels.level();
+  const Level fg = given ? levelsFrom->fg
+                         : (innerLevels.n > 0 ? affineLevel(g, inner, box.tl(), innerLevels)
+                                              : affineLevel(g, region, box.tl(), LevelHistogram(g, region)));
+  const Level bg = given ? levelsFrom->bg : affineLevel(g, ring, box.tl(), ringLevels);
   reg.fg = fg;
   reg.bg = bg;
   if (levelsOnly)
     return;
   // Raw moments about the box corner (well conditioned), centred at the end.
   double m00 = 0.0, m10 = 0.0, m01 = 0.0, m20 = 0.0, m11 = 0.0, m02 = 0.0;
-  const bool grades = fg >= 0.0 && bg >= 0.0 && std::fabs(fg - bg) >= 8.0;
+  // The levels at the box's centre tell the contrast and the polarity.
+  const double uc = box.x + 0.5 * (box.width - 1), vc = box.y + 0.5 * (box.height - 1);
+  const double fgc = fg.valid ? fg.at(uc, vc) : -1.0, bgc = bg.valid ? bg.at(uc, vc) : -1.0;
+  const bool grades = fg.valid && bg.valid && std::fabs(fgc - bgc) >= 8.0;
   // A level clipped by the sensor (a bright background at 255 under a brighter light) flattens the far half of the
   // edge: the linear weights then lose that half's share and the region shrinks by a few tenths of a pixel all
-  // round (measured: millimetres of depth for a servo). There, the pixels count by their distance to the edge,
-  // (level - g) / slope, the edge's slope read where the gradient peaks and its level where the edge profiles are
-  // antisymmetric, which clipping beyond the middle of the step does not move (edgeProfile()). Half of the far
-  // level's pixels at the limit (its median there) marks it as clipped: a level under the limit whose noise reaches
-  // it is not (a quarter used to: a background at 252 under noise 5, a third of it at 255, ended 0.57 % too large).
+  // round. There, the pixels count by their distance to the edge, (level - g) / slope, the edge's slope read where
+  // the gradient peaks and its level where the edge profiles are antisymmetric, which clipping beyond the middle of
+  // the step does not move (edgeProfile()). Half of the far level's pixels at the limit (its median there) marks it as
+  // clipped: a level under the limit whose noise reaches it is not.
   double edgeLevel = 0.0, edgeSlope = 0.0;
   cv::Mat gx, gy; // computed once for the edge's profile and outline
   if (grades)
     gradient(g, gx, gy);
-  const unsigned char far = fg < bg ? 255 : 0, near = fg < bg ? 0 : 255;
+  const unsigned char far = fgc < bgc ? 255 : 0, near = fgc < bgc ? 0 : 255;
   const bool clipped = grades && (ringLevels.share(far) >= 0.5 || innerLevels.share(near) >= 0.5) &&
-                       edgeProfile(g, gx, gy, band, std::fabs(fg - bg) / 8.0, edgeLevel, edgeSlope) &&
-                       (edgeLevel - fg) * (bg - edgeLevel) > 0.0;
-  const double toward = fg < bg ? -1.0 : 1.0; // sign of g - edgeLevel inside the object
+                       edgeProfile(g, gx, gy, band, std::fabs(fgc - bgc) / 8.0, edgeLevel, edgeSlope) &&
+                       (edgeLevel - fgc) * (bgc - edgeLevel) > 0.0;
+  const double toward = fgc < bgc ? -1.0 : 1.0; // sign of g - edgeLevel inside the object
   const cv::Mat &full = grades ? inner : region;
   // A row's sums (weight, weight x column, weight x column^2) are added to the moments with the row's powers. The
   // whole pixels go 8 at a time (one 64-bit word of the masks): a word of them in closed form, a word with neither
@@ -386,14 +488,18 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
     const unsigned char *pf = full.ptr<unsigned char>(r), *pb = band.ptr<unsigned char>(r),
                         *pg = g.ptr<unsigned char>(r);
     double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+    // The levels along the row: fg0 + fgu c, bg0 + bgu c.
+    const double u0 = box.x, v = box.y + r, fg0 = fg.at(u0, v), bg0 = bg.at(u0, v), fgu = fg.au, bgu = bg.au;
     auto pixel = [&](int c) {
       double w = 0.0;
       if (pf[c])
         w = 1.0;
       else if (clipped && pb[c])
         w = std::min(1.0, std::max(0.0, 0.5 + toward * (pg[c] - edgeLevel) / edgeSlope));
-      else if (grades && pb[c])
-        w = (pg[c] - bg) / (fg - bg);
+      else if (grades && pb[c]) {
+        const double b = bg0 + bgu * c;
+        w = (pg[c] - b) / (fg0 + fgu * c - b);
+      }
       s0 += w;
       s1 += w * c;
       s2 += w * c * c;
@@ -424,8 +530,7 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
   if (!(m00 > 0.0))
     return; // left unmeasured: the contour falls back to its polygon
   if (grades)
-    reg.outline =
-        edgeOutline(g, gx, gy, reg.chain, box.tl(), fg, bg, !clipped, clipped ? edgeLevel : 0.5 * (fg + bg));
+    reg.outline = edgeOutline(g, gx, gy, reg.chain, box.tl(), fg, bg, !clipped, edgeLevel);
   const double xc = m10 / m00, yc = m01 / m00;
   reg.subArea = m00;
   reg.cx = box.x + xc;

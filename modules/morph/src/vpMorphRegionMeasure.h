@@ -12,8 +12,17 @@
 
 namespace vpMorphRegionMeasure
 {
+// A grey level that varies affinely across the image: a + au u + av v at pixel (u, v) (column, row).
+struct Level
+{
+  double a = 0.0, au = 0.0, av = 0.0;
+  bool valid = false; // measured
+  double at(double u, double v) const { return a + au * u + av * v; }
+};
+
 // One object region: its boundary chain (from the object mask) and, once measured, its sub-pixel measures.
-struct Region {
+struct Region
+{
   std::vector<cv::Point> chain;
   double area;
   cv::Point first; // top-most, then left-most pixel: deterministic tie break
@@ -21,19 +30,20 @@ struct Region {
   double subArea = 0.0, cx = 0.0, cy = 0.0, mu20 = 0.0, mu11 = 0.0, mu02 = 0.0;
   // The measured edge, one point per chain pixel (image coordinates), when the levels were measured.
   std::vector<cv::Point2d> outline{};
-  double fg = -1.0, bg = -1.0; // the object's and background's grey levels, when measured
+  Level fg{}, bg{}; // the object's and background's grey levels, when measured
 };
 
 /*
   Area and centroid of a region from its grey levels: pixels well inside count 1, pixels across the edge count
-  their fraction of the way from the background level to the object level (both measured locally, so illumination and
-  contrast do not matter). Unlike the pixel count or the boundary polygon, this moves continuously with the object and
-  is unbiased by zero-mean noise (the weights are not clipped). The band is 3 px wide on each side, enough for the edge
-  blur of a camera; other regions' pixels (\e bin, the object mask) are left out of it. The second-order moments come
-  with it (the region's orientation, steadier than a fit over polygon vertices), and the edge outline.
-  Falls back to the binary region when the object and background levels cannot be told apart. \e levelsFrom, when
-  given and measured, supplies both levels instead (a region that is not all object: a joined silhouette). With
-  \e levelsOnly, only the levels are read (reg.fg, reg.bg): the largest piece of a joined silhouette lends its own.
+  their fraction of the way from the background level to the object level (both measured about the region, as affine
+  functions of the position, so illumination, its fall-off across the view and contrast do not matter). Unlike the pixel
+  count or the boundary polygon, this moves continuously with the object and is unbiased by zero-mean noise (the weights
+  are not clipped). The band is 3 px wide on each side, enough for the edge blur of a camera; other regions' pixels (\e
+  bin, the object mask) are left out of it. The second-order moments come with it (the region's orientation, steadier
+  than a fit over polygon vertices), and the edge outline. Falls back to the binary region when the object and
+  background levels cannot be told apart. \e levelsFrom, when given and measured, supplies both levels instead (a region
+  that is not all object: a joined silhouette). With \e levelsOnly, only the levels are read (reg.fg, reg.bg): the
+  largest piece of a joined silhouette lends its own.
 */
 void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg, const Region *levelsFrom = nullptr,
              bool levelsOnly = false);

@@ -710,6 +710,47 @@ TEST_CASE("extractor: a background clipped by the sensor does not shrink the reg
   CHECK(std::fabs(clipped - plain) < 1e-3);
 }
 
+TEST_CASE("extractor: a light falling off across the view neither joins the plane's dark side to the object nor moves "
+          "its edge",
+          "[extract][region][light]")
+{
+  // A gain affine in the image position on plane (210) and object (40), as the bench's gradient set renders it: at
+  // 0.45 the plane's far corner is as dark as the object under Otsu's single threshold, and the bright corner clips.
+  const Poly p = testPolygon(300, 250, 0.4);
+  auto view = [&](double fallOff, double angle) {
+    const vpImage<unsigned char> I = render({p}, 40, 210);
+    cv::Mat m(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1, I.bitmap), b;
+    cv::GaussianBlur(m, b, cv::Size(0, 0), 1.0);
+    std::mt19937 rng(9);
+    std::normal_distribution<double> noise(0.0, 1.0);
+    const double cu = 0.5 * (I.getWidth() - 1), cv = 0.5 * (I.getHeight() - 1), half = std::hypot(cu, cv);
+    vpImage<unsigned char> J(I.getHeight(), I.getWidth());
+    for (unsigned int v = 0; v < J.getHeight(); ++v)
+      for (unsigned int u = 0; u < J.getWidth(); ++u) {
+        const double gain = 1.0 + fallOff * ((u - cu) * std::cos(angle) + (v - cv) * std::sin(angle)) / half;
+        J[v][u] = cv::saturate_cast<unsigned char>(gain * b.at<unsigned char>(int(v), int(u)) + noise(rng));
+      }
+    return vpMorphContourExtractor().extract(J);
+  };
+  const vpMorphContour even = view(0.0, 0.0);
+  REQUIRE(even.hasRegion());
+  for (double fallOff : {0.3, 0.45, 0.6})
+    for (int deg = -180; deg < 180; deg += 45) {
+      const vpMorphContour c = view(fallOff, deg * M_PI / 180.0);
+      REQUIRE(c.hasRegion());
+      double x, y;
+      c.regionCentroid(x, y);
+      double ex, ey;
+      even.regionCentroid(ex, ey);
+      INFO("fall-off " << fallOff << " toward " << deg << " deg, against the evenly lit view: polygon area "
+                       << c.area() / even.area() << ", region area " << c.regionArea() / even.regionArea()
+                       << ", centroid moved " << std::hypot(x - ex, y - ey) << " px");
+      CHECK(std::fabs(c.area() / even.area() - 1.0) < 0.01); // the object alone, not the plane's dark side
+      CHECK(std::fabs(c.regionArea() / even.regionArea() - 1.0) < 2e-3);
+      CHECK(std::hypot(x - ex, y - ey) < 0.05);
+    }
+}
+
 TEST_CASE("extractor: a background just under the sensor's limit, its noise clipped, does not grow the region",
           "[extract][region]")
 {

@@ -6,6 +6,8 @@
 #include <mutex>
 #include <sstream>
 
+#include <Eigen/Dense>
+
 #include <visp3/core/vpPixelMeterConversion.h>
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/detection/vpDetectorAprilTag.h>
@@ -147,21 +149,43 @@ void vpMorphTagPoseEstimator::maskTag(vpImage<unsigned char> &I, const std::vect
         in = !in;
     return in;
   };
-  // Fill level: median of the pixels on the quiet zone's middle line (the tag's white, rendered as the plane).
-  std::vector<unsigned char> ring;
+  // Fill level: the plane's, read on the quiet zone's middle line, a median per side (the object crossing part of a
+  // side does not count) at the side's middle; the plane through those carries the light's fall-off under the tag,
+  // a single median when fewer than 3 sides are in the image.
+  std::vector<unsigned char> all;
+  Eigen::MatrixXd A(0, 3);
+  Eigen::VectorXd b(0);
   for (size_t k = 0; k < 4; ++k) {
     const size_t l = (k + 1) % 4;
     const int n = std::max(1, static_cast<int>(std::hypot(ru[l] - ru[k], rv[l] - rv[k])));
+    std::vector<unsigned char> side;
     for (int i = 0; i < n; ++i) {
       const double pu = ru[k] + (ru[l] - ru[k]) * i / n, pv = rv[k] + (rv[l] - rv[k]) * i / n;
       if (pu >= 0 && pv >= 0 && pu < I.getWidth() - 0.5 && pv < I.getHeight() - 0.5)
-        ring.push_back(I[static_cast<unsigned int>(pv + 0.5)][static_cast<unsigned int>(pu + 0.5)]);
+        side.push_back(I[static_cast<unsigned int>(pv + 0.5)][static_cast<unsigned int>(pu + 0.5)]);
     }
+    if (side.empty())
+      continue;
+    all.insert(all.end(), side.begin(), side.end());
+    std::nth_element(side.begin(), side.begin() + side.size() / 2, side.end());
+    A.conservativeResize(A.rows() + 1, 3);
+    b.conservativeResize(b.rows() + 1);
+    A.row(A.rows() - 1) << 1.0, 0.5 * (ru[k] + ru[l]) - cu, 0.5 * (rv[k] + rv[l]) - cv;
+    b(b.rows() - 1) = side[side.size() / 2];
   }
-  if (ring.empty())
+  if (all.empty())
     return; // the whole tag region is outside the image
-  std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
-  const unsigned char fill = ring[ring.size() / 2];
+  std::nth_element(all.begin(), all.begin() + all.size() / 2, all.end());
+  Eigen::Vector3d plane(all[all.size() / 2], 0.0, 0.0);
+  if (A.rows() >= 3) {
+    const Eigen::Vector3d p = A.colPivHouseholderQr().solve(b);
+    if (p.allFinite())
+      plane = p;
+  }
+  auto fill = [&](double pu, double pv) {
+    return static_cast<unsigned char>(
+        std::min(255.0, std::max(0.0, std::round(plane(0) + plane(1) * (pu - cu) + plane(2) * (pv - cv)))));
+  };
   const double umin = std::max(0.0, *std::min_element(u.begin(), u.end()));
   const double umax = std::min(I.getWidth() - 1.0, *std::max_element(u.begin(), u.end()));
   const double vmin = std::max(0.0, *std::min_element(v.begin(), v.end()));
@@ -171,5 +195,5 @@ void vpMorphTagPoseEstimator::maskTag(vpImage<unsigned char> &I, const std::vect
     for (unsigned int pu = static_cast<unsigned int>(std::floor(umin));
          pu <= static_cast<unsigned int>(std::ceil(umax)) && pu < I.getWidth(); ++pu)
       if (inside(pu, pv))
-        I[pv][pu] = fill;
+        I[pv][pu] = fill(pu, pv);
 }

@@ -277,6 +277,37 @@ TEST_CASE("masking the detected tag leaves the object as the largest region", "[
   CHECK_THROWS_AS(vpMorphTagPoseEstimator::maskTag(I, std::vector<vpImagePoint>(3)), vpMorphException);
 }
 
+TEST_CASE("the tag's mask carries the plane's shading under a light that falls off across the view",
+          "[morph_sim][tag][light]")
+{
+  // The plane (210) under a gain of 1 + 0.4 d, d the position along 20 deg over the half diagonal: across the tag the
+  // plane's level changes by about 25 grey levels, which a single fill level leaves as steps at the square's sides.
+  vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/wrench.png");
+  vpMorphPlanarScene::Faults f;
+  f.gradient = 0.4;
+  f.gradientAngle = vpMath::rad(20);
+  scene.setFaults(f);
+  const vpHomogeneousMatrix cMo(0.01, -0.005, 0.5, 0, 0, vpMath::rad(10));
+  vpImage<unsigned char> I;
+  scene.render(cMo, I, 0);
+  vpImage<unsigned char> J = I;
+  vpMorphTagPoseEstimator::maskTag(J, scene.projectedTagCorners(cMo));
+  const double cu = 0.5 * (I.getWidth() - 1), cv = 0.5 * (I.getHeight() - 1), half = std::hypot(cu, cv);
+  double worst = 0.0;
+  long painted = 0;
+  for (unsigned int v = 0; v < I.getHeight(); ++v)
+    for (unsigned int u = 0; u < I.getWidth(); ++u)
+      if (J[v][u] != I[v][u]) {
+        const double d = ((u - cu) * std::cos(f.gradientAngle) + (v - cv) * std::sin(f.gradientAngle)) / half;
+        const double gain = 1.0 + f.gradient * d;
+        worst = std::max(worst, std::fabs(J[v][u] - 210.0 * gain));
+        ++painted;
+      }
+  INFO(painted << " pixels painted, the farthest " << worst << " grey levels from the plane's");
+  REQUIRE(painted > 1000);
+  CHECK(worst < 3.0);
+}
+
 TEST_CASE("image noise, blur and illumination change are applied as specified", "[morph_sim][faults]")
 {
   vpMorphPlanarScene scene(object("wedge"));

@@ -19,7 +19,10 @@
   \brief Finds the objects of an image and returns their outer boundaries as polygons (PIXEL units).
 
   The paper extracts contours automatically; so does this class, without any parameter:
-  - <b>Threshold:</b> Otsu's threshold on the grey levels (the split that maximises the between-class variance).
+  - <b>Classes:</b> two classes of grey levels, Otsu's split generalised to levels that vary affinely across the
+    image (a light falling off across the view shades the plane and the object alike): when a class of Otsu's split
+    shows a slope, each class's level is fitted by least squares on its own surface and each pixel given to the nearer
+    level until none moves; an evenly lit view keeps Otsu's threshold.
   - <b>Polarity:</b> the object is the class that does NOT dominate the image border, because a camera frames
     an object inside its background: the border pixels are mostly background whether the object is dark on
     light (Kimia-99, the project's own silhouettes) or light on dark (MPEG-7). If both classes cover exactly
@@ -89,15 +92,14 @@ public:
   std::vector<std::vector<vpImagePoint>> boundaries(const vpImage<vpRGBa> &I) const;
 
   /*!
-    Binary object mask (255 = object, 0 = background) after the automatic threshold and polarity choice:
+    Binary object mask (255 = object, 0 = background) after the automatic classes and polarity choice:
     what the boundaries are traced on, for display and debugging.
   */
   vpImage<unsigned char> objectMask(const vpImage<unsigned char> &I) const;
   /*!
-    Otsu's threshold of \e I, at which objectMask() separates the two classes (a pixel above it is on the bright
-    side): cv::threshold()'s THRESH_OTSU arithmetic, on a histogram counted in one pass in which runs of 8 equal pixels
-    (a rendered background) count at once, and which also gives the image's range (no second pass for the uniform
-    check).
+    Otsu's threshold of \e I, from which the classes of objectMask() start (a pixel above it is on the bright side):
+    cv::threshold()'s THRESH_OTSU arithmetic, on a histogram counted in one pass in which runs of 8 equal pixels (a
+    rendered background) count at once, and which also gives the image's range (no second pass for the uniform check).
     \throw vpMorphException::badImageError on an empty image.
   */
   static int otsuThreshold(const vpImage<unsigned char> &I);
