@@ -4,7 +4,7 @@
 Usage: vispmorph-bench-plots.py OUTDIR
 
 Reads OUTDIR/runs.csv (one row per run) and OUTDIR/curves.csv (pose error against the simulator's truth at each
-iteration of each run) and writes into OUTDIR:
+iteration of each run; absent after vispmorph-bench --no-curves) and writes into OUTDIR:
   success-rate.png        success rate per scenario set and controller (grouped bars)
   success-vs-rotation.png success rate against the initial |in-plane rotation|, 30 deg bins, one line per controller
   path-ratio.png          camera path / straight line of the successful runs, per set and controller (box plots)
@@ -278,15 +278,15 @@ def median_curves(curves):
     return out
 
 
-def plot_error_curves(curves, sets, controllers, colours, outdir, written):
+def plot_error_curves(curves, sets, controllers, colours, outdir, written, why_none="no curves in curves.csv"):
     med = median_curves(curves)
     curve_sets = ordered([s for s, _ in med] + list(sets), SETS)
     curve_sets = [s for s in curve_sets if any(k[0] == s for k in med)] or sets
     n = max(1, len(curve_sets))
     fig, axes = plt.subplots(n, 2, figsize=(11, 2.9 * n + 0.9), squeeze=False)
     if not med:
-        no_data(axes[0][0], "no curves in curves.csv")
-        no_data(axes[0][1], "no curves in curves.csv")
+        no_data(axes[0][0], why_none)
+        no_data(axes[0][1], why_none)
     for i, s in enumerate(curve_sets):
         axt, axr = axes[i]
         any_line = False
@@ -362,7 +362,9 @@ def main(argv):
         return 0 if len(argv) == 2 else 2
     outdir = argv[1]
     runs = read_csv(os.path.join(outdir, "runs.csv"), RUN_COLUMNS)
-    curves = read_csv(os.path.join(outdir, "curves.csv"), CURVE_COLUMNS)
+    curves_path = os.path.join(outdir, "curves.csv")
+    has_curves = os.path.exists(curves_path)
+    curves = read_csv(curves_path, CURVE_COLUMNS) if has_curves else []
     sets = ordered([r["set"] for r in runs], SETS)
     controllers = ordered([r["controller"] for r in runs] + [r["controller"] for r in curves], CONTROLLERS)
     colours = colour_map(controllers)
@@ -370,7 +372,8 @@ def main(argv):
     plot_success_rate(runs, sets, controllers, colours, outdir, written)
     plot_success_vs_rotation(runs, controllers, colours, outdir, written)
     plot_path_ratio(runs, sets, controllers, colours, outdir, written)
-    plot_error_curves(curves, sets, controllers, colours, outdir, written)
+    plot_error_curves(curves, sets, controllers, colours, outdir, written,
+                      "no curves in curves.csv" if has_curves else "no curves.csv (a run with --no-curves)")
     plot_failures(runs, controllers, outdir, written)
     for path in written:
         print("wrote " + path)
