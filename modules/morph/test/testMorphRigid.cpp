@@ -194,6 +194,17 @@ vpMorphDatabase toolsAndBentDrawings(std::vector<cv::Mat> &images)
   }
   return db;
 }
+
+//! The same with the tools at half size, each turned by 30 deg more than the last: one shape twice, a tie broken by
+//! the lower index.
+vpMorphDatabase toolsBentDrawingsAndHalves(std::vector<cv::Mat> &images)
+{
+  vpMorphDatabase db = toolsAndBentDrawings(images);
+  for (int k = 0; k < 6; ++k)
+    db.add(vpMorphTemplate(std::string(kObjects[k]) + "-half",
+                           extract(warp(images[k], similarity(images[k], 30.0 * k, 0.5, 0, 0), 0, 1))));
+  return db;
+}
 } // namespace
 
 TEST_CASE("rigid recognition: the two-stage search gives the exhaustive search's answer", "[rigid][recognition]")
@@ -201,10 +212,7 @@ TEST_CASE("rigid recognition: the two-stage search gives the exhaustive search's
   // 18 templates (the tools, their bent drawings, and the tools at half size turned: one shape twice, a tie broken by
   // the lower index) and 24 views, a third of them under a card.
   std::vector<cv::Mat> images;
-  vpMorphDatabase db = toolsAndBentDrawings(images);
-  for (int k = 0; k < 6; ++k)
-    db.add(vpMorphTemplate(std::string(kObjects[k]) + "-half",
-                           extract(warp(images[k], similarity(images[k], 30.0 * k, 0.5, 0, 0), 0, 1))));
+  const vpMorphDatabase db = toolsBentDrawingsAndHalves(images);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> turn(-180, 180), scale(0.8, 1.2);
   std::size_t compared = 0, all = 0;
@@ -234,10 +242,7 @@ TEST_CASE("rigid recognition: the search's shortcuts give the plain two-stage se
   // runner-up. The database's search stops measuring a template that can be neither: the same answers, bit for bit.
   // 18 templates (the tools, their bent drawings, the tools at half size) and 36 views, half of them under a card.
   std::vector<cv::Mat> images;
-  vpMorphDatabase db = toolsAndBentDrawings(images);
-  for (int k = 0; k < 6; ++k)
-    db.add(vpMorphTemplate(std::string(kObjects[k]) + "-half",
-                           extract(warp(images[k], similarity(images[k], 30.0 * k, 0.5, 0, 0), 0, 1))));
+  const vpMorphDatabase db = toolsBentDrawingsAndHalves(images);
   std::vector<vpMorphRigidShape> shapes;
   for (std::size_t k = 0; k < db.size(); ++k)
     shapes.emplace_back(db[k].contour());
