@@ -33,31 +33,32 @@ struct Sums
 };
 
 /*
-  The level [a bx by] (a + bx x + by y) of the sums; false when they hold no sample. Constant, the samples' mean, unless
-  the slope is both seen and worth its two parameters: the positions spread at least \e pixel (a pixel in the units of
-  x, y) in every direction, and the fit passes the Bayesian information criterion (n ln(RSS_constant / RSS_affine) > 2
-  ln n), so that the noise of a small or uniformly lit surface is not read as a fall-off of its light.
+  The affine level [a bx by] (a + bx x + by y) of the sums, when their slope is both seen and worth its two parameters:
+  the positions spread at least \e pixel (a pixel in the units of x, y) in every direction, and the fit passes the
+  Bayesian information criterion (n ln(RSS_constant / RSS_affine) > 2 ln n), so that the noise of a small or uniformly
+  lit surface is not read as a fall-off of its light. False otherwise (\e out untouched): the caller's constant level
+  stands.
 */
-inline bool fit(const Sums &s, double pixel, Eigen::Vector3d &out)
+inline bool slope(const Sums &s, double pixel, Eigen::Vector3d &out)
 {
   const double n = s.n;
   if (!(n > 0.0))
     return false;
-  out = Eigen::Vector3d(s.g / n, 0.0, 0.0);
   const Eigen::Vector2d mean(s.x / n, s.y / n);
   Eigen::Matrix2d cov;
   cov << s.xx / n - mean(0) * mean(0), s.xy / n - mean(0) * mean(1), s.xy / n - mean(0) * mean(1),
       s.yy / n - mean(1) * mean(1);
   if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov, Eigen::EigenvaluesOnly).eigenvalues()(0) < pixel * pixel)
-    return true;
+    return false;
   Eigen::Matrix3d A;
   A << n, s.x, s.y, s.x, s.xx, s.xy, s.y, s.xy, s.yy;
   const Eigen::Vector3d b(s.g, s.xg, s.yg);
   const Eigen::Vector3d p = A.ldlt().solve(b);
   const double rssConstant = s.gg - s.g * s.g / n, rssAffine = s.gg - b.dot(p);
-  if (p.allFinite() &&
-      (rssAffine <= 0.0 ? rssConstant > 0.0 : n * std::log(rssConstant / rssAffine) > 2.0 * std::log(n)))
-    out = p;
+  const bool worth = rssAffine <= 0.0 ? rssConstant > 0.0 : n * std::log(rssConstant / rssAffine) > 2.0 * std::log(n);
+  if (!p.allFinite() || !worth || (p(1) == 0.0 && p(2) == 0.0))
+    return false;
+  out = p;
   return true;
 }
 } // namespace vpMorphAffineLevel

@@ -1,12 +1,8 @@
 #include <visp3/morph/vpMorphContourExtractor.h>
 
 #include <algorithm>
-#include <array>
-#include <cfloat>
 #include <climits>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <sstream>
 #include <vector>
 
@@ -39,9 +35,9 @@ vpImage<unsigned char> toGrey(const vpImage<vpRGBa> &I)
 }
 
 /*
-  Object mask (255 = object) from the two grey classes (vpMorphGreyClasses) and the border-minority polarity rule. It is a view of \e padded,
-  which has one pixel of background all round (what findContours() needs to close objects that touch the border),
-  written in place rather than copied into it.
+  Object mask (255 = object) from the two grey classes (vpMorphGreyClasses) and the border-minority polarity rule. It
+  is a view of \e padded, which has one pixel of background all round (what findContours() needs to close objects that
+  touch the border), written in place rather than copied into it.
 */
 cv::Mat mask(const vpImage<unsigned char> &I, cv::Mat &padded)
 {

@@ -135,7 +135,7 @@ vpMorphGreyClasses::vpMorphGreyClasses(const cv::Mat &grey, int t) : m_t0(t), m_
     Eigen::Vector3d fit[2];
     bool sloped = false;
     for (int c = 0; c < 2; ++c) {
-      if (vpMorphAffineLevel::fit(fitted[c], 1.0 / scale, fit[c]) && (fit[c](1) != 0.0 || fit[c](2) != 0.0))
+      if (vpMorphAffineLevel::slope(fitted[c], 1.0 / scale, fit[c]))
         sloped = true;
       else
         fit[c] = Eigen::Vector3d(sum[c] / n[c], 0.0, 0.0);

@@ -19,9 +19,9 @@
   (Lloyd): each class's level fitted by least squares, each pixel given to the class whose level is nearer, until no
   pixel changes class. A class's slope is fitted on its own surface: not on pixels at the sensor's limits (0, 255),
   which only bound it, nor on those next to the other class, which the edge mixes; a slope counts when it is seen and
-  worth its parameters (vpMorphAffineLevel::fit()), else the class's level is the mean of its pixels. Levels that cross
-  within the image (no longer two surfaces under one light) leave Otsu's split. The levels are fitted on a lattice of
-  2^12 to 2^14 pixels: a level fitted from them has at most 1/64 of the noise's deviation, under a grey level for any
+  worth its parameters (vpMorphAffineLevel::slope()), else the class's level is the mean of its pixels. Levels that
+  cross within the image (no longer two surfaces under one light) leave Otsu's split. The levels are fitted on a lattice
+  of 2^12 to 2^14 pixels: a level fitted from them has at most 1/64 of the noise's deviation, under a grey level for any
   noise in which an 8-bit image can show an object at all.
 */
 class vpMorphGreyClasses

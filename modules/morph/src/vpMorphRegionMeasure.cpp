@@ -136,7 +136,7 @@ struct LevelHistogram
   falls off across the view shades a surface so, to first order. Least squares over the pixels within the histogram's
   window about its median (another surface in the mask does not count, LevelHistogram::window()), then again over the
   mask's pixels within 4 sigma (1.4826 MAD, at least half a grey level) of that fit. Without a slope seen or worth its
-  parameters (vpMorphAffineLevel::fit()), the histogram's level (LevelHistogram::level()). Invalid on an empty mask.
+  parameters (vpMorphAffineLevel::slope()), the histogram's level (LevelHistogram::level()). Invalid on an empty mask.
 */
 Level affineLevel(const cv::Mat &g, const cv::Mat &m, const cv::Point &tl, const LevelHistogram &hist)
 {
@@ -149,11 +149,8 @@ Level affineLevel(const cv::Mat &g, const cv::Mat &m, const cv::Point &tl, const
   double halfWidth;
   hist.window(med, halfWidth);
   // Without a slope, the level is the histogram's (the same pixels, read without a fit).
-  auto sloped = [](const vpMorphAffineLevel::Sums &s, Eigen::Vector3d &p) {
-    return vpMorphAffineLevel::fit(s, 1.0, p) && (p(1) != 0.0 || p(2) != 0.0);
-  };
   Eigen::Vector3d p;
-  if (!sloped(hist.sums(int(std::ceil(med - halfWidth)), int(std::floor(med + halfWidth))), p))
+  if (!vpMorphAffineLevel::slope(hist.sums(int(std::ceil(med - halfWidth)), int(std::floor(med + halfWidth))), 1.0, p))
     return out;
   const double cx = hist.cx, cy = hist.cy;
   std::vector<double> dev;
@@ -173,7 +170,7 @@ Level affineLevel(const cv::Mat &g, const cv::Mat &m, const cv::Point &tl, const
       if (pm[c] && std::fabs(pg[c] - p(0) - p(1) * (c - cx) - p(2) * (r - cy)) <= within)
         s.add(c - cx, r - cy, pg[c]);
   }
-  if (!sloped(s, p))
+  if (!vpMorphAffineLevel::slope(s, 1.0, p))
     return out;
   out.au = p(1);
   out.av = p(2);
