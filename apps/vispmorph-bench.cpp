@@ -12,11 +12,13 @@
   - scenarios.csv and scenarios.json: the starts (the JSON to the bit, vpMorphBenchScenario::fromJson());
   - runs.csv: one row per run (runs.partial.csv while they run: an interrupted bench keeps what it finished);
   - curves.csv: the truth pose error at every iteration of every run;
-  - summary.json and summary.md: per set, robot and controller (vpMorphBenchReport);
+  - summary.json and summary.md: per set, robot and controller (vpMorphBenchReport); summary.json's meta holds the
+    settings and the commit the tool was built at ("-dirty" with uncommitted changes, "unknown" outside git);
   - timings.csv, timings.json and timings.md: the compute times (vpMorphBenchTimings) and the machine;
   - PNG plots made by vispmorph-bench-plots.py (Debian's /usr/bin/python3 with matplotlib) unless --no-plots.
   With --shard K/N only the scenarios at positions K - 1, K - 1 + N, ... of the command's list run; merge joins
-  the shards' folders into the files of one run, identical to the byte but for the timings.
+  the shards' folders into the files of one run, identical to the byte but for the timings; shards of other settings
+  or built at another commit are refused.
   With --recognition, no run: the first view of every scenario is recognised (vpMorphBench::recognizeStart()), one
   row each in recognition.csv, and the counts per set (right object, another, rejected, re-ranked) are printed and
   written to recognition.md: the recognition checked on more starts than the servo can afford.
@@ -55,6 +57,7 @@
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 
 #include "vispmorph-bench-video.h"
+#include "vispmorph-source-commit.h"
 
 namespace fs = std::filesystem;
 
@@ -391,6 +394,14 @@ int merge(int argc, char **argv)
       if (std::sscanf(shard.c_str(), "%u/%u", &k, &n) != 2 || k < 1 || k > n)
         fail(dir + ": bad shard '" + shard + "'");
       const std::map<std::string, std::string> mm = m.get<std::map<std::string, std::string>>();
+      // One run is measured at one commit: shards built at different ones are refused, not stamped "mixed".
+      auto commit = [](const std::map<std::string, std::string> &x) {
+        const auto c = x.find("commit");
+        return c == x.end() ? std::string("an unrecorded commit") : c->second;
+      };
+      if (!meta.empty() && commit(mm) != commit(meta))
+        fail(dir + ": measured at " + commit(mm) + ", " + shards[0] + " at " + commit(meta) +
+             " (the shards of one run are built at one commit)");
       if (meta.empty()) {
         meta = mm;
         total = n;
@@ -755,6 +766,7 @@ int main(int argc, char **argv)
       timings.add(r, 0.5 * (yardstickBefore + yardstickAfter));
 
     std::map<std::string, std::string> meta = settingsMeta(sets, controllers, robotName, seed, count, source, settings);
+    meta["commit"] = VISPMORPH_SOURCE_COMMIT;
     if (shardN > 1)
       meta["shard"] = std::to_string(shardK) + "/" + std::to_string(shardN);
     std::map<std::string, std::string> machine;

@@ -26,7 +26,7 @@
   templates, calibrated, and every query. The answer is right (the exact template, accepted), wrong (another, accepted)
   or rejected; an accepted view of an absent shape is a false accept. Query time: the CPU time of recognize() on the
   thread that runs it (one core). Writes DIR/queries.csv (a row per query and model), DIR/summary.md and
-  DIR/summary.json; the textures drawn (DIR/textures) are kept for a replay.
+  DIR/summary.json (with the commit the tool was built at); the textures drawn (DIR/textures) are kept for a replay.
 
   --timing: databases of the given sizes, drawn by the seed from every image of both datasets (both pools), each
   queried by --queries views (condition combined) of its own templates on one thread; per model the median and mean
@@ -63,6 +63,8 @@
 #include <visp3/morph/vpMorphRigidCheck.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
 #include <visp3/morph_sim/vpMorphThreadCpuClock.h>
+
+#include "vispmorph-source-commit.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -772,6 +774,7 @@ int reid(const Options &o)
      << merged.size() << " shapes left out as another's at another size (merged.csv).\n\n";
   const json table = summarise(queries, entries, dbs, o.models, o.conditions, md);
   json j;
+  j["commit"] = VISPMORPH_SOURCE_COMMIT;
   j["dataset"] = o.dataset;
   j["pool"] = o.pool;
   j["seed"] = o.seed;

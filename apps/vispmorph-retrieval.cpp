@@ -11,7 +11,8 @@
   - matrix.csv: the distance matrix, one header row and one header column of file names;
   - neighbours.csv: per query, its class and its 40 nearest shapes (itself excluded) with their distances;
   - summary.json and summary.md: bull's-eye score (top-40 recall, itself included), counts at ranks 1..10
-    (itself excluded), top-1 accuracy, the wall times and the CPU time of the matrix (all threads).
+    (itself excluded), top-1 accuracy, the wall times and the CPU time of the matrix (all threads); the JSON also
+    the commit the tool was built at ("-dirty" with uncommitted changes, "unknown" outside git).
   Classes come from a file,class CSV (--classes, or DIR/classes.csv when present), otherwise from the file name
   up to its last '-' or '_'. Exit status: 0 on success, 1 on an error, 2 on bad arguments.
 */
@@ -38,6 +39,8 @@
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphShapeDistance.h>
+
+#include "vispmorph-source-commit.h"
 
 namespace fs = std::filesystem;
 
@@ -319,6 +322,7 @@ int main(int argc, char **argv)
             << "," << D[i * N + nn[i][r]] << "\n";
     }
     nlohmann::json j;
+    j["commit"] = VISPMORPH_SOURCE_COMMIT;
     j["images"] = o.images;
     j["shapes"] = N;
     j["classes"] = classSize.size();

@@ -8,6 +8,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "vispmorph-source-commit.h"
+
 #include <algorithm>
 #include <map>
 #include <string>
@@ -36,10 +38,12 @@ protected:
 
 /*!
   The main() of a micro-benchmark: Google Benchmark's options, every benchmark run and reported by \e reporter (a
-  vpMorphPerfReporter whose Finalize() prints the ratio table). Exit status 1 on an unknown option.
+  vpMorphPerfReporter whose Finalize() prints the ratio table). The context of every report (the console's header, the
+  JSON of --benchmark_out) holds the commit the tool was built at. Exit status 1 on an unknown option.
 */
 inline int vpMorphPerfMain(int argc, char **argv, vpMorphPerfReporter &reporter)
 {
+  benchmark::AddCustomContext("commit", VISPMORPH_SOURCE_COMMIT);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv))
     return 1;
