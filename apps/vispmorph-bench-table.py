@@ -19,6 +19,7 @@ pose the taught view bounds, the false convergences, the views apart (unobservab
 convergences; symmetric, scored modulo their symmetry), the set-up failures, the median final error, the compute
 a period (median and 95th percentile, ms and over each run's machine yardstick; from timings.csv) and the mean CPU
 time of a whole run (rendering included: what a sweep costs).
+Above each table, the commit its runs were measured at (summary.json's meta; "commit not recorded" for older runs).
 """
 
 import math
@@ -26,8 +27,8 @@ import os
 import statistics
 import sys
 
-from vispmorph_bench_files import (CONTROLLERS, SETS, BenchFileError, interval, number, ordered, read_csv, read_meta,
-                                   read_runs, success, yardstick)
+from vispmorph_bench_files import (CONTROLLERS, SETS, BenchFileError, commit_stamp, interval, number, ordered, read_csv,
+                                   read_meta, read_runs, success, yardstick)
 
 # Issue 5's targets for morph: (least success rate, largest median path ratio or None).
 TARGETS = {
@@ -44,6 +45,11 @@ COMPUTE_TARGET_MS = 2.0
 def fail(message):
     sys.stderr.write("vispmorph-bench-table: " + message + "\n")
     sys.exit(2)
+
+
+def stamp(paths):
+    """The "Measured at" line of the runs in \a paths."""
+    return commit_stamp([(p, read_meta(p).get("commit")) for p in paths])
 
 
 def read_dir(path, controller):
@@ -143,16 +149,20 @@ def report(paths):
     columns = ("set", "robot", "controller", "success", "failure", "iterations", "final_t_mm", "final_r_deg",
                "false_converged", "unobservable", "symmetry", "period_ms", "yardstick_ms", "run_cpu_s")
     rows = []
+    dirs_of = {}  # robot -> the paths with its runs
     for p in paths:
         try:
-            rows += read_runs(p, columns)
+            mine = read_runs(p, columns)
         except BenchFileError as e:
             fail(str(e))
+        rows += mine
+        for robot in ordered([r["robot"] for r in mine], []):
+            dirs_of.setdefault(robot, []).append(p)
     if not rows:
         fail("no run in " + ", ".join(paths))
     out = []
     for robot in ordered([r["robot"] for r in rows], []):
-        out += ["", "**%s**" % robot, "",
+        out += ["", "**%s**" % robot, "", stamp(dirs_of[robot]), "",
                 "| set | controller | success (95 % interval) | false-converged | unobservable: runs (successes, "
                 "false-converged) | symmetric | set-up failures | median final error (mm / deg) | compute a period, "
                 "median / p95 (ms) | over the yardstick, median / p95 | CPU a run (s) |",
@@ -239,6 +249,7 @@ def main(argv):
     if not dirs:
         fail("no OUTDIR given (usage: vispmorph-bench-table.py [--controller NAME | --by-controller] OUTDIR ...)")
     if side_by_side:
+        print(stamp(dirs) + "\n")
         print(by_controller(dirs))
         return 0
     if full:
@@ -247,6 +258,7 @@ def main(argv):
     data = [read_dir(d, controller) for d in dirs]
     if not any(d["rows"] for d in data):
         fail("no run of controller '%s' in %s" % (controller, ", ".join(dirs)))
+    print(stamp(dirs) + "\n")
     print(table(data, controller))
     return 0
 

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""The README's re-identification and retrieval tables, from the runs' own files.
+"""The README's re-identification, retrieval and correspondence speed tables, from the runs' own files.
 
 Usage: vispmorph-results-table.py --reid OUTDIR
        vispmorph-results-table.py --retrieval OUTDIR [OUTDIR ...]
+       vispmorph-results-table.py --match FILE.json
 
 --reid reads OUTDIR/summary.json of a vispmorph-reid run and prints a row per model and group of conditions (pose,
 noise, blur, tilt; occlusion, combined-occlusion; any other condition of the run after them): the right answers,
@@ -13,13 +14,21 @@ their image folder) and prints a row per distance: the Kimia-99 counts at ranks 
 bull's-eye score and the wall time of the MPEG-7 matrix. The first row is Shape Context's published figures (a
 citation, not a run: Sebastian, Klein and Kimia, PAMI 2004, for Kimia-99; Belongie, Malik and Puzicha, PAMI 2002,
 for MPEG-7).
-The tables are computed from the files only: what they say is what the runs did. Exit status: 0, or 2 on a missing or
-malformed file or bad arguments.
+--match reads the JSON that vispmorph-perf-match writes (--benchmark_out=FILE.json --benchmark_out_format=json) and
+prints a row per polygon size N: the brute force, the fast exact search, its speed-up over the brute force and the
+windowed search (starts within +-4 vertices of the previous frame's), each the CPU time of its fastest repetition
+(the least disturbed by whatever else the machine runs).
+Above each table, the commit its runs were measured at (the summaries' "commit", the benchmark context's "commit";
+"commit not recorded" for older runs). The tables are computed from the files only: what they say is what the runs
+did. Exit status: 0, or 2 on a missing or malformed file or bad arguments.
 """
 
 import json
 import os
+import re
 import sys
+
+from vispmorph_bench_files import commit_stamp
 
 REID_GROUPS = (("pose", "noise", "blur", "tilt"), ("occlusion", "combined-occlusion"))
 REID_FIELDS = ("model", "condition", "views", "right", "wrong", "rejected", "absent_views", "false_accepts")
@@ -27,6 +36,8 @@ RETRIEVAL_FIELDS = ("images", "distance", "rank_counts", "rank_counts_sum", "bul
                     "threads")
 DATASETS = {"kimia99": "Kimia-99", "mpeg7": "MPEG-7"}
 SHAPE_CONTEXT = "| Shape Context (published; cited, not run) | 97 91 88 85 84 77 75 66 56 37 (756) | 76.51 % | |"
+MATCH_SEARCHES = ("brute", "fast", "window")
+TIME_UNITS = {"ns": 1e-3, "us": 1.0, "ms": 1e3, "s": 1e6}  # in microseconds
 
 
 class ResultsFileError(Exception):
@@ -52,6 +63,8 @@ def read_summary(outdir, fields):
     missing = [k for k in fields if k not in summary]
     if missing:
         raise ResultsFileError("'%s' has no %s" % (path, ", ".join(missing)))
+    if not isinstance(summary.get("commit", ""), str):
+        raise ResultsFileError("'%s': commit is not a string" % path)
     return path, summary
 
 
@@ -92,7 +105,8 @@ def reid_table(outdir):
     grouped = {c for g in groups for c in g}
     groups = [g for g in groups if g] + [[c] for c in conditions if c not in grouped]
     absent = sorted({r["absent_views"] for r in rows})
-    lines = ["| model | condition | right | wrong | rejected | false accepts (%s absent) |" %
+    lines = [commit_stamp([(outdir, summary.get("commit"))]), "",
+             "| model | condition | right | wrong | rejected | false accepts (%s absent) |" %
              " / ".join(str(a) for a in absent), "|---|---|---|---|---|---|"]
     for m in models:
         for g in groups:
@@ -117,8 +131,10 @@ def distance_label(d, path):
 def retrieval_table(outdirs):
     rows = {}  # label -> {dataset: (path, summary)}
     threads = set()
+    commits = []
     for outdir in outdirs:
         path, s = read_summary(outdir, RETRIEVAL_FIELDS)
+        commits.append((outdir, s.get("commit")))
         name = os.path.basename(os.path.normpath(str(s["images"]))).lower()
         if name not in DATASETS:
             raise ResultsFileError("'%s': images '%s' is neither of %s" % (path, s["images"], ", ".join(DATASETS)))
@@ -131,7 +147,8 @@ def retrieval_table(outdirs):
         rows[label][name] = s
         if name == "mpeg7":
             threads.add(s["threads"])
-    lines = ["| distance | Kimia-99 ranks 1..10 (sum) | MPEG-7 bull's-eye | MPEG-7 matrix, wall time (%s threads) |" %
+    lines = [commit_stamp(commits), "",
+             "| distance | Kimia-99 ranks 1..10 (sum) | MPEG-7 bull's-eye | MPEG-7 matrix, wall time (%s threads) |" %
              (" / ".join(str(t) for t in sorted(threads)) or "-"), "|---|---|---|---|", SHAPE_CONTEXT]
     for label, runs in rows.items():
         k, m = runs.get("kimia99"), runs.get("mpeg7")
@@ -141,11 +158,51 @@ def retrieval_table(outdirs):
     return lines
 
 
+def match_table(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            report = json.load(f)
+    except OSError as e:
+        raise ResultsFileError("cannot read '%s': %s" % (path, e.strerror))
+    except ValueError as e:
+        raise ResultsFileError("'%s' is not JSON: %s" % (path, e))
+    if not isinstance(report, dict) or not isinstance(report.get("benchmarks"), list) or \
+            not isinstance(report.get("context", {}), dict):
+        raise ResultsFileError("'%s': not a Google Benchmark report (context, benchmarks)" % path)
+    commit = report.get("context", {}).get("commit")
+    if commit is not None and not isinstance(commit, str):
+        raise ResultsFileError("'%s': commit is not a string" % path)
+    fastest = {}  # (search, N) -> least CPU time of a repetition, us
+    for b in report["benchmarks"]:
+        if not isinstance(b, dict) or b.get("run_type", "iteration") != "iteration" or b.get("error_occurred"):
+            continue
+        m = re.fullmatch(r"BM_(%s)/([0-9]+)" % "|".join(MATCH_SEARCHES), str(b.get("run_name", b.get("name", ""))))
+        if not m:
+            continue
+        try:
+            t = float(b["cpu_time"]) * TIME_UNITS[b["time_unit"]]
+        except (KeyError, TypeError, ValueError):
+            raise ResultsFileError("'%s': %s has no cpu_time in a known time_unit" % (path, m.group(0)))
+        key = (m.group(1), int(m.group(2)))
+        fastest[key] = min(t, fastest.get(key, t))
+    sizes = sorted({n for (search, n) in fastest if ("brute", n) in fastest and ("fast", n) in fastest})
+    if not sizes:
+        raise ResultsFileError("'%s': no N with both BM_brute/N and BM_fast/N" % path)
+    lines = [commit_stamp([(path, commit)]), "",
+             "| N | brute force | fast exact | speed-up | window (+-4 starts) |", "|---|---|---|---|---|"]
+    for n in sizes:
+        b, f, w = fastest[("brute", n)], fastest[("fast", n)], fastest.get(("window", n))
+        lines.append("| %d | %.0f us | %.0f us | %.1fx | %s |" % (n, b, f, b / f, "%.0f us" % w if w else "-"))
+    return lines
+
+
 def main(argv):
     if len(argv) == 2 and argv[0] == "--reid":
         make = lambda: reid_table(argv[1])
     elif len(argv) >= 2 and argv[0] == "--retrieval":
         make = lambda: retrieval_table(argv[1:])
+    elif len(argv) == 2 and argv[0] == "--match":
+        make = lambda: match_table(argv[1])
     else:
         sys.stderr.write(__doc__)
         return 2

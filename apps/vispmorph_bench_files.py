@@ -1,6 +1,7 @@
 """What vispmorph-bench-plots.py and vispmorph-bench-table.py both read from a vispmorph-bench output folder: the
-canonical order of the sets, runs.csv's fields as numbers, and the CSV files themselves. No matplotlib here: the
-table needs none.
+canonical order of the sets, runs.csv's fields as numbers, and the CSV files themselves; and the "Measured at" line
+that vispmorph-bench-table.py and vispmorph-results-table.py print above a table. No matplotlib here: the tables need
+none.
 """
 
 import csv
@@ -118,3 +119,17 @@ def yardstick(meta):
     values = [number(meta.get(k)) for k in ("yardstick_extract_ms_before", "yardstick_extract_ms_after")]
     values = [v for v in values if v and v > 0]
     return sum(values) / len(values) if values else None
+
+
+def commit_stamp(runs):
+    """The line above a table: "Measured at <commit>." from [(run name, commit or None)], the commit each run's tool was
+    built at (None: not recorded, a run older than the stamp). Runs at several commits, or some without one, are each
+    named after theirs: the table says what it mixes."""
+    commits = ordered([c for _, c in runs], [])
+    if commits == [None]:
+        return "Measured at: commit not recorded."
+    if len(commits) == 1:
+        return "Measured at %s." % commits[0]
+    return "Measured at: %s." % ", ".join(
+        "%s (%s)" % (c if c is not None else "commit not recorded", ", ".join(n for n, x in runs if x == c))
+        for c in commits)
