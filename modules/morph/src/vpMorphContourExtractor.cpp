@@ -14,6 +14,7 @@
 #include <visp3/morph/vpMorphPolygonApproximation.h>
 
 #include "vpMorphGreyClasses.h"
+#include "vpMorphRegionJoin.h"
 #include "vpMorphRegionMeasure.h"
 
 using vpMorphRegionMeasure::measure;
@@ -168,168 +169,124 @@ vpMorphContour polygon(const Region &r)
   return c;
 }
 
-// Closest pair of pixels between two chains (brute force: chains are a few thousand pixels at most).
-double closestPair(const std::vector<cv::Point> &a, const std::vector<cv::Point> &b, cv::Point &pa, cv::Point &pb)
+/*
+  The silhouette of \e seed: alone, or joined with those of \e pieces near it (vpMorphRegionJoin, gaps up to
+  joinedMaxGap() times the seed's bounding-box diagonal). A joined outline's edge is measured with the seed's grey
+  levels: the bridge's pixels (background, occluder) would move the object's median and every edge with it. It
+  carries no measured region: part of its area is a bridge, not the object's grey levels. \e joined, if not null,
+  tells whether a piece was joined.
+*/
+vpMorphContour silhouette(const cv::Mat &grey, const cv::Mat &bin, Region &seed, const std::vector<const Region *> &pieces,
+                          bool *joined = nullptr)
 {
-  long best = LONG_MAX;
-  for (const cv::Point &p : a)
-    for (const cv::Point &q : b) {
-      const long dx = p.x - q.x, dy = p.y - q.y, d2 = dx * dx + dy * dy;
-      if (d2 < best) {
-        best = d2;
-        pa = p;
-        pb = q;
-      }
-    }
-  return best == LONG_MAX ? INFINITY : std::sqrt(double(best));
+  const cv::Rect box = cv::boundingRect(seed.chain);
+  const double maxGap = vpMorphContourExtractor::joinedMaxGap() * std::hypot(double(box.width), double(box.height));
+  Region r;
+  const bool any = !pieces.empty() && vpMorphRegionJoin::join(seed, pieces, maxGap, r);
+  if (joined)
+    *joined = any;
+  if (!any) {
+    measure(grey, bin, seed);
+    return polygon(seed);
+  }
+  measure(grey, bin, seed, nullptr, true);
+  measure(grey, bin, r, &seed);
+  r.subArea = 0.0;
+  return polygon(r);
 }
 
-// Distance between two rectangles (0 when they overlap): a lower bound of the distance between what they hold.
-double rectGap(const cv::Rect &a, const cv::Rect &b)
+// The regions, other than regs[seed], of at least joinedMinShare() of its area: the pieces it may be joined with.
+std::vector<const Region *> piecesOf(const std::vector<Region> &regs, std::size_t seed, bool smallerOnly)
 {
-  const int dx = std::max({0, b.x - (a.x + a.width - 1), a.x - (b.x + b.width - 1)});
-  const int dy = std::max({0, b.y - (a.y + a.height - 1), a.y - (b.y + b.height - 1)});
-  return std::hypot(double(dx), double(dy));
+  std::vector<const Region *> out;
+  for (std::size_t k = 0; k < regs.size(); ++k)
+    if (k != seed && regs[k].area >= vpMorphContourExtractor::joinedMinShare() * regs[seed].area &&
+        (!smallerOnly || k > seed))
+      out.push_back(&regs[k]);
+  return out;
 }
 
-// The pixels of a chain within r of a point.
-void near(const std::vector<cv::Point> &chain, const cv::Point &c, double r, std::vector<cv::Point> &out)
+cv::Mat greyOf(const vpImage<unsigned char> &I)
 {
-  for (const cv::Point &p : chain)
-    if (std::abs(p.x - c.x) <= r && std::abs(p.y - c.y) <= r && std::hypot(double(p.x - c.x), double(p.y - c.y)) <= r)
-      out.push_back(p);
-}
-
-// The pixels of a chain within r of c that lie within \e reach of the other chain.
-void cutEdge(const std::vector<cv::Point> &chain, const cv::Point &c, double r, const std::vector<cv::Point> &other,
-             double reach, std::vector<cv::Point> &out)
-{
-  std::vector<cv::Point> candidates, others;
-  near(chain, c, r, candidates);
-  if (candidates.empty())
-    return;
-  // Only the other chain's pixels within r + reach of c can be within reach of a candidate: a few dozen instead of
-  // the whole chain for each candidate (the same pixels result).
-  near(other, c, r + reach, others);
-  const double reach2 = reach * reach;
-  for (const cv::Point &p : candidates)
-    for (const cv::Point &q : others) {
-      const double dx = p.x - q.x, dy = p.y - q.y;
-      if (dx * dx + dy * dy <= reach2) {
-        out.push_back(p);
-        break;
-      }
-    }
+  return cv::Mat(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
+                 const_cast<unsigned char *>(I.bitmap));
 }
 } // namespace
 
 vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned char> &I) const
 {
   cv::Mat bin;
-  std::vector<Region> regs = regions(I, 0, &bin); // measured below: whole, or its levels only when joined
-  Region &largest = regs.front();
-  const cv::Mat grey(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
-                     const_cast<unsigned char *>(I.bitmap));
-  auto alone = [&]() {
-    measure(grey, bin, largest);
-    return polygon(largest);
-  };
-  const cv::Rect box = cv::boundingRect(largest.chain);
-  const double maxGap = joinedMaxGap() * std::hypot(double(box.width), double(box.height));
-  std::vector<const Region *> pieces;
-  for (std::size_t k = 1; k < regs.size(); ++k)
-    if (regs[k].area >= joinedMinShare() * largest.area)
-      pieces.push_back(&regs[k]);
-  if (pieces.empty())
-    return alone(); // the common case: one piece, no mask to draw
-  // The join is drawn over the pieces' box only (a pixel of background all round), not the whole image.
-  cv::Rect all = box;
-  for (const Region *p : pieces)
-    all |= cv::boundingRect(p->chain);
-  const cv::Point offset = cv::Point(1, 1) - all.tl();
-  cv::Mat joined = cv::Mat::zeros(all.height + 2, all.width + 2, CV_8UC1);
-  auto fill = [&joined, &offset](const std::vector<cv::Point> &poly, bool convex) {
-    std::vector<cv::Point> shifted(poly);
-    for (cv::Point &p : shifted)
-      p += offset;
-    if (convex)
-      cv::fillConvexPoly(joined, shifted, cv::Scalar(255), cv::LINE_8);
-    else
-      cv::drawContours(joined, std::vector<std::vector<cv::Point> >{shifted}, 0, cv::Scalar(255), cv::FILLED);
-  };
-  fill(largest.chain, false);
-  // Nearest piece first, each gap bridged by the convex hull of both sides' pixels near it (within 1.5 gaps): a
-  // cut straight across a limb is closed by the limb's own width, a bite out of a side is not filled beyond it.
-  // Each piece keeps its nearest link to the group, updated as pieces join (one chain-to-chain search per pair at
-  // most, none for pairs whose boxes are already farther apart: a noisy frame can hold many pieces).
-  struct Link
-  {
-    double d = INFINITY;
-    const Region *g = nullptr;
-    cv::Point pg, pp;
-  };
-  std::vector<Link> links(pieces.size());
-  std::vector<cv::Rect> boxes;
-  for (const Region *p : pieces)
-    boxes.push_back(cv::boundingRect(p->chain));
-  auto linkTo = [&](const Region *g) {
-    const cv::Rect gb = cv::boundingRect(g->chain);
-    for (std::size_t k = 0; k < pieces.size(); ++k) {
-      if (rectGap(gb, boxes[k]) > std::min(links[k].d, maxGap))
-        continue;
-      cv::Point a, b;
-      const double d = closestPair(g->chain, pieces[k]->chain, a, b);
-      if (d < links[k].d)
-        links[k] = Link{d, g, a, b};
-    }
-  };
-  linkTo(&largest);
-  bool any = false;
-  while (!pieces.empty()) {
-    std::size_t bestPiece = 0;
-    for (std::size_t k = 1; k < pieces.size(); ++k)
-      if (links[k].d < links[bestPiece].d)
-        bestPiece = k;
-    const Link best = links[bestPiece];
-    if (!(best.d <= maxGap))
-      break;
-    // Of the pixels near the gap, those about as close to the other side as the closest pair: the two cut edges
-    // (a card's edges are parallel, so each lies at the gap's width from the other) and the start of the limb's
-    // sides. Not the rest of a bow or a head within 1.5 gaps of a long cut, whose hull would fill a triangle
-    // between them (a key cut along its shaft joined into a blob).
-    const double r = std::max(1.5 * best.d, 3.0), slack = std::max(2.0, 0.25 * best.d);
-    std::vector<cv::Point> bridge, hull;
-    cutEdge(best.g->chain, best.pg, r, pieces[bestPiece]->chain, best.d + slack, bridge);
-    cutEdge(pieces[bestPiece]->chain, best.pp, r, best.g->chain, best.d + slack, bridge);
-    cv::convexHull(bridge, hull);
-    fill(pieces[bestPiece]->chain, false);
-    fill(hull, true);
-    const Region *joinedPiece = pieces[bestPiece];
-    pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(bestPiece));
-    links.erase(links.begin() + static_cast<std::ptrdiff_t>(bestPiece));
-    boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(bestPiece));
-    linkTo(joinedPiece);
-    any = true;
+  std::vector<Region> regs = regions(I, 0, &bin); // measured by silhouette(): whole, or its levels only when joined
+  return silhouette(greyOf(I), bin, regs.front(), piecesOf(regs, 0, true));
+}
+
+std::vector<vpMorphContour> vpMorphContourExtractor::extractCandidates(const vpImage<unsigned char> &I) const
+{
+  cv::Mat bin;
+  std::vector<Region> regs = regions(I, 0, &bin);
+  const cv::Mat grey = greyOf(I);
+  std::vector<vpMorphContour> out;
+  for (std::size_t k = 0; k < regs.size() && regs[k].area >= joinedMinShare() * regs.front().area; ++k) {
+    bool joined = false;
+    out.push_back(silhouette(grey, bin, regs[k], piecesOf(regs, k, true), &joined));
+    if (joined)
+      out.push_back(silhouette(grey, bin, regs[k], {}));
   }
-  if (!any)
-    return alone();
-  std::vector<std::vector<cv::Point> > contours;
-  cv::findContours(joined, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-  const auto it = std::max_element(contours.begin(), contours.end(), [](const auto &a, const auto &b) {
-    return cv::contourArea(a) < cv::contourArea(b);
-  });
-  Region r{*it, cv::contourArea(*it), cv::Point()};
-  for (cv::Point &p : r.chain)
-    p -= offset;
-  // The measured edge along the joined boundary: where it runs over the bridge there is no object edge (no
-  // gradient, or the occluder's, which an outline fit drops as it drops an occluder's edge on a single piece), the
-  // rest is the object's. Its levels are the largest piece's: the bridge's pixels (background, occluder) would
-  // move the object's median and every edge with it (measured: 0.6 px outward on a hammer cut from its head, its
-  // depth 3.3 mm off). No measured region: part of its area is a bridge, not the object's grey levels.
-  measure(grey, bin, largest, nullptr, true);
-  measure(grey, bin, r, &largest);
-  r.subArea = 0.0;
-  return polygon(r);
+  return out;
+}
+
+std::vector<vpMorphContour> vpMorphContourExtractor::extractCandidates(const vpImage<vpRGBa> &I) const
+{
+  return extractCandidates(toGrey(I));
+}
+
+vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned char> &I,
+                                                      const vpMorphContour &previous) const
+{
+  if (previous.empty())
+    return extractJoined(I);
+  if (previous.units() != vpMorphContour::PIXEL)
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphContourExtractor::extractJoined: the previous contour must be in PIXEL units");
+  cv::Mat bin;
+  std::vector<Region> regs = regions(I, 0, &bin);
+  // The previous outline's pixels, over its box clipped to the image.
+  std::vector<cv::Point> poly;
+  poly.reserve(previous.size());
+  for (std::size_t k = 0; k < previous.size(); ++k)
+    poly.emplace_back(static_cast<int>(std::lround(previous.x(k))), static_cast<int>(std::lround(previous.y(k))));
+  const cv::Rect image(0, 0, bin.cols, bin.rows);
+  const cv::Rect pbox = cv::boundingRect(poly) & image;
+  std::vector<long> inside(regs.size(), 0), count(regs.size(), 0);
+  if (pbox.area() > 0) {
+    cv::Mat was = cv::Mat::zeros(pbox.size(), CV_8UC1);
+    cv::fillPoly(was, std::vector<std::vector<cv::Point> >{poly}, cv::Scalar(255), cv::LINE_8, 0, -pbox.tl());
+    for (std::size_t k = 0; k < regs.size(); ++k) {
+      const cv::Rect box = cv::boundingRect(regs[k].chain);
+      const cv::Rect common = box & pbox;
+      if (common.area() == 0)
+        continue;
+      cv::Mat is = cv::Mat::zeros(box.size(), CV_8UC1);
+      cv::drawContours(is, std::vector<std::vector<cv::Point> >{regs[k].chain}, 0, cv::Scalar(255), cv::FILLED,
+                       cv::LINE_8, cv::noArray(), INT_MAX, -box.tl());
+      count[k] = cv::countNonZero(is);
+      inside[k] = cv::countNonZero(is(common - box.tl()) & was(common - pbox.tl()));
+    }
+  }
+  const std::size_t seed = static_cast<std::size_t>(std::max_element(inside.begin(), inside.end()) - inside.begin());
+  if (inside[seed] == 0)
+    fail("no object region where the previous outline was (the object left the view or was lost)");
+  // The other pieces of the object: regions lying mostly where the object was (a distractor lies elsewhere).
+  std::vector<const Region *> pieces;
+  for (const Region *p : piecesOf(regs, seed, false))
+    if (2 * inside[static_cast<std::size_t>(p - regs.data())] > count[static_cast<std::size_t>(p - regs.data())])
+      pieces.push_back(p);
+  return silhouette(greyOf(I), bin, regs[seed], pieces);
+}
+
+vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<vpRGBa> &I, const vpMorphContour &previous) const
+{
+  return extractJoined(toGrey(I), previous);
 }
 
 vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<vpRGBa> &I) const

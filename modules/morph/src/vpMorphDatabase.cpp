@@ -446,6 +446,25 @@ vpMorphRecognition vpMorphDatabase::recognize(const vpMorphContour &c, bool prun
   return search(c, m_distance.prepare(c), prune, matcher);
 }
 
+vpMorphRecognition vpMorphDatabase::recognize(const std::vector<vpMorphContour> &candidates, std::size_t &chosen) const
+{
+  if (candidates.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::recognize: no candidate contour");
+  auto share = [](const vpMorphRecognition &r) {
+    return std::isfinite(r.threshold) && r.threshold > 0.0 ? r.distance / r.threshold : r.distance;
+  };
+  vpMorphRecognition best;
+  chosen = 0;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    vpMorphRecognition r = recognize(candidates[k]);
+    if (k == 0 || (r.accepted && (!best.accepted || share(r) < share(best)))) {
+      best = std::move(r);
+      chosen = k;
+    }
+  }
+  return best;
+}
+
 std::vector<vpMorphRecognition> vpMorphDatabase::recognizeAll(const std::vector<vpMorphContour> &contours,
                                                               unsigned int threads, const Progress &progress) const
 {

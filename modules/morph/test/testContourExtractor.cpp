@@ -13,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <visp3/core/vpCameraParameters.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphPolygonApproximation.h>
@@ -270,6 +271,77 @@ TEST_CASE("extractor: extractJoined joins the pieces an occluder cut, not distan
   CHECK(lone.area() == Approx(full.area()).epsilon(1e-9));
   CHECK(lone.hasRegion());
   CHECK_THROWS_AS(ex.extractJoined(vpImage<unsigned char>(50, 50, 128)), vpMorphException);
+}
+
+TEST_CASE("extractor: a larger region elsewhere is not the object: candidates first, then where the object was",
+          "[extract]")
+{
+  // The slanted bar of the test above, whole and cut by a 40 px gap, beside a slab larger than the bar (120 x 90 px
+  // against 300 x 24) whose nearest corner is within the largest gap extractJoined() bridges.
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  auto bar = [&](double a, double b, double du = 0.0, double dv = 0.0) {
+    Poly p;
+    const double u[] = {a, b, b, a}, v[] = {-12, -12, 12, 12};
+    for (int k = 0; k < 4; ++k) {
+      p.x.push_back(320 + du + c * u[k] - s * v[k]);
+      p.y.push_back(240 + dv + s * u[k] + c * v[k]);
+    }
+    return p;
+  };
+  Poly slab;
+  slab.x = {420, 540, 540, 420};
+  slab.y = {340, 340, 430, 430};
+  const Poly whole = bar(-150, 150), left = bar(-150, 10), right = bar(50, 150);
+  const vpMorphContourExtractor ex;
+  const vpMorphContour full = ex.extract(render({whole}, 0, 255));
+  const vpImage<unsigned char> withSlab = render({whole, slab}, 0, 255), cutWithSlab = render({left, right, slab}, 0, 255);
+  REQUIRE(ex.extract(withSlab).area() > 1.4 * full.area()); // the largest region is the slab
+
+  // A first image: the candidates hold the bar, alone and (cut) joined without the slab; the first is extractJoined().
+  for (const vpImage<unsigned char> *I : {&withSlab, &cutWithSlab}) {
+    const std::vector<vpMorphContour> cands = ex.extractCandidates(*I);
+    REQUIRE(!cands.empty());
+    CHECK(cands.front().area() == Approx(ex.extractJoined(*I).area()).epsilon(1e-12));
+    int bars = 0;
+    for (const vpMorphContour &k : cands) {
+      checkValid(k);
+      bars += std::fabs(k.area() / full.area() - 1.0) < 0.02 && maxDistTo(k, whole.x, whole.y) <= 2.0 ? 1 : 0;
+    }
+    CHECK(bars == 1);
+  }
+
+  // Afterwards: the region where the bar was a frame before (3 px right, 2 px down), its cut pieces joined, the slab
+  // left out although it is larger and nearer than the largest gap.
+  const vpMorphContour before = ex.extract(render({bar(-150, 150, 3, 2)}, 0, 255));
+  const vpMorphContour tracked = ex.extractJoined(withSlab, before), trackedCut = ex.extractJoined(cutWithSlab, before);
+  CHECK(tracked.hasRegion());
+  CHECK(tracked.regionArea() == Approx(full.regionArea()).epsilon(1e-9));
+  checkValid(trackedCut);
+  CHECK_FALSE(trackedCut.hasRegion());
+  CHECK(trackedCut.area() == Approx(full.area()).epsilon(0.02));
+  CHECK(maxDistTo(trackedCut, whole.x, whole.y) <= 2.0);
+  // The slab followed the same way is the slab, alone.
+  const vpMorphContour slabBefore = ex.extract(render({slab}, 0, 255));
+  CHECK(ex.extractJoined(cutWithSlab, slabBefore).regionArea() == Approx(slabBefore.regionArea()).epsilon(1e-9));
+  // No previous outline: extractJoined(I). Nothing where the object was, or a previous outline in other units: errors.
+  CHECK(ex.extractJoined(cutWithSlab, vpMorphContour()).area() == Approx(ex.extractJoined(cutWithSlab).area()));
+  Poly corner;
+  corner.x = {5, 40, 40, 5};
+  corner.y = {5, 5, 30, 30};
+  const vpMorphContour elsewhere = ex.extract(render({corner}, 0, 255));
+  try {
+    (void)ex.extractJoined(withSlab, elsewhere);
+    FAIL("no region where the previous outline was: an error expected");
+  } catch (const vpMorphException &e) {
+    CHECK(e.getCode() == vpMorphException::badImageError);
+  }
+  vpCameraParameters cam(800, 800, 320, 240);
+  try {
+    (void)ex.extractJoined(withSlab, before.toNormalized(cam));
+    FAIL("a previous outline in normalised units: an error expected");
+  } catch (const vpMorphException &e) {
+    CHECK(e.getCode() == vpMorphException::badParameterError);
+  }
 }
 
 TEST_CASE("approximation: vertex count is stable under image noise and sub-pixel motion", "[approx][noise]")

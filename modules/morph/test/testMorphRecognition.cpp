@@ -175,6 +175,40 @@ TEST_CASE("recognition: objects that are not in the database are rejected", "[re
   CHECK_FALSE(r.accepted);
 }
 
+TEST_CASE("recognition: among candidate outlines of one view, the one a template explains best", "[recognition]")
+{
+  const vpMorphDatabase &db = objectDatabase();
+  const vpMorphContour star = extract(unknownObject(0)), crescent = extract(unknownObject(1));
+  for (std::size_t k = 0; k < db.size(); ++k) {
+    const cv::Mat src = readGray(objectPath(kObjects[k]));
+    const vpMorphContour clean = extract(view(src, 73, 40, -25, 0, 0));
+    const vpMorphContour hidden = extract(occlude(view(src, 30, 0, 0, 0, 0), 0.1, 0.15));
+    std::size_t chosen = 99;
+    const vpMorphRecognition r = db.recognize({star, clean, crescent}, chosen);
+    CAPTURE(kObjects[k], r.distance, r.threshold);
+    CHECK(chosen == 1);
+    CHECK(r.index == k);
+    CHECK(r.accepted);
+    // Two accepted candidates: the smaller share of its threshold wins, whatever the order.
+    const vpMorphRecognition a = db.recognize(clean), b = db.recognize(hidden);
+    REQUIRE(a.accepted);
+    REQUIRE(b.accepted);
+    const std::size_t better = a.distance / a.threshold <= b.distance / b.threshold ? 0 : 1;
+    (void)db.recognize({clean, hidden}, chosen);
+    CHECK(chosen == better);
+    (void)db.recognize({hidden, clean}, chosen);
+    CHECK(chosen == 1 - better);
+  }
+  // None accepted: the first candidate's answer, rejected.
+  std::size_t chosen = 99;
+  const vpMorphRecognition none = db.recognize({crescent, star}, chosen);
+  CHECK(chosen == 0);
+  CHECK_FALSE(none.accepted);
+  CHECK(none.index == db.recognize(crescent).index);
+  CHECK_THROWS_AS(db.recognize(std::vector<vpMorphContour>(), chosen), vpMorphException);
+  CHECK_THROWS_AS(db.recognize({star, vpMorphContour()}, chosen), vpMorphException);
+}
+
 TEST_CASE("recognition: a view with a square bitten out of its outline is accepted by its support", "[recognition]")
 {
   const vpMorphDatabase &db = objectDatabase();

@@ -139,11 +139,15 @@ vpMorphRecognition vpMorphBench::recognizeStart(const vpMorphBenchScenario &sc, 
   std::vector<vpImagePoint> corners;
   if (!scene.tagPoseEstimator().estimate(I, cMt, &corners))
     corners.clear(); // nothing to mask
-  const vpMorphContour c = vpMorphTagPoseEstimator::silhouette(I, corners);
-  if (shown)
-    *shown = c;
+  const std::vector<vpMorphContour> candidates = vpMorphTagPoseEstimator::silhouetteCandidates(I, corners);
   const vpMorphDatabase &db = database(sc.variant, sc.set);
-  return c.empty() || db.empty() ? vpMorphRecognition() : db.recognize(c);
+  if (candidates.empty() || db.empty())
+    return vpMorphRecognition();
+  std::size_t chosen = 0;
+  const vpMorphRecognition r = db.recognize(candidates, chosen);
+  if (shown)
+    *shown = candidates[chosen];
+  return r;
 }
 
 vpMorphBenchResult vpMorphBench::run(const vpMorphBenchScenario &sc, const std::string &controllerName,

@@ -30,40 +30,52 @@ protected:
   static constexpr double kSwitchRatio = 1.2; // vpMorphServoGuard::getMismatchRatio()
 
   /*!
-    The silhouette of image \e I and, on the first one, the recognition. False when the caller must return
-    \e cmd as it is (hold: no silhouette; stop: rejected); true with cmd.measureMs set.
+    The silhouette of image \e I. On the first one, the database tells which region is the object
+    (vpMorphTagPoseEstimator::silhouetteCandidates(), vpMorphDatabase::recognize() on the list); afterwards the
+    silhouette is the one that continues the last (a larger region elsewhere is not the object). False when the caller
+    must return \e cmd as it is (hold: no silhouette; stop: rejected); true with cmd.measureMs set.
   */
   bool observe(const vpImage<unsigned char> &I, vpMorphContour &c, Command &cmd)
   {
     double ms = 0;
     const TagView tag = detectTag(I);
-    c = vpMorphTagPoseEstimator::silhouette(I, tag.corners, &ms);
-    if (c.empty()) {
-      cmd = holdCommand(ms);
-      return false;
-    }
     std::string reason;
-    if (!recognize(c, reason)) {
-      cmd = stopCommand(reason);
-      return false;
+    if (!m_template) {
+      const std::vector<vpMorphContour> candidates = vpMorphTagPoseEstimator::silhouetteCandidates(I, tag.corners, &ms);
+      if (candidates.empty()) {
+        cmd = holdCommand(ms);
+        return false;
+      }
+      if (!recognize(candidates, c, reason)) {
+        cmd = stopCommand(reason);
+        return false;
+      }
+    } else {
+      c = vpMorphTagPoseEstimator::silhouette(I, tag.corners, m_previous, &ms);
+      if (c.empty()) {
+        cmd = holdCommand(ms);
+        return false;
+      }
     }
+    m_previous = c;
     cmd = Command();
     cmd.measureMs = ms;
     return true;
   }
-  //! Recognises the object on the first contour; returns false (and sets \e reason) if it is rejected.
-  bool recognize(const vpMorphContour &c, std::string &reason)
+  //! Recognises the object among the first image's \e candidates into \e c; false (and \e reason) if rejected.
+  bool recognize(const std::vector<vpMorphContour> &candidates, vpMorphContour &c, std::string &reason)
   {
-    if (m_template)
-      return true;
     if (!m_ctx.database || m_ctx.database->empty())
       throw vpMorphException(vpMorphException::badParameterError, "morph controller: no template database");
     if (!m_ctx.forcedTemplate.empty()) { // fault injection: a recognition error
       m_template = &(*m_ctx.database)[m_ctx.forcedTemplate];
       m_object = m_template->name();
+      c = candidates.front();
       return true;
     }
-    const vpMorphRecognition r = m_ctx.database->recognize(c);
+    std::size_t chosen = 0;
+    const vpMorphRecognition r = m_ctx.database->recognize(candidates, chosen);
+    c = candidates[chosen];
     if (r.index == vpMorphRecognition::npos || !r.accepted) {
       reason = "recognition";
       return false;
@@ -116,11 +128,13 @@ protected:
     m_template = nullptr;
     m_object.clear();
     m_rejected.clear();
+    m_previous = vpMorphContour();
   }
 
   const vpMorphTemplate *m_template = nullptr;
   std::string m_object;
   std::vector<std::size_t> m_rejected;
+  vpMorphContour m_previous; //!< the last silhouette, which the next one continues
 };
 
 #endif

@@ -99,24 +99,53 @@ void vpMorphTagPoseEstimator::poseDifference(const vpHomogeneousMatrix &aMo, con
   rotation = std::sqrt(tu[0] * tu[0] + tu[1] * tu[1] + tu[2] * tu[2]);
 }
 
-vpMorphContour vpMorphTagPoseEstimator::silhouette(const vpImage<unsigned char> &I,
-                                                   const std::vector<vpImagePoint> &corners, double *extractionMs)
+namespace
+{
+// \e extract applied to \e I with the tag masked; \e empty when the extractor finds no object.
+template <typename T, typename F>
+T extractMasked(const vpImage<unsigned char> &I, const std::vector<vpImagePoint> &corners, double *extractionMs,
+                F extract)
 {
   vpImage<unsigned char> J = I;
   if (corners.size() == 4)
-    maskTag(J, corners);
+    vpMorphTagPoseEstimator::maskTag(J, corners);
   const vpMorphThreadCpuClock::time_point t0 = vpMorphThreadCpuClock::now();
-  vpMorphContour c;
+  T out;
   try {
-    c = vpMorphContourExtractor().extractJoined(J);
+    out = extract(J);
   } catch (const vpMorphException &e) {
     if (e.getCode() != vpMorphException::badImageError)
       throw;
-    c = vpMorphContour(); // no object in the image
+    out = T(); // no object in the image
   }
   if (extractionMs)
     *extractionMs = vpMorphThreadCpuClock::millisecondsSince(t0);
-  return c;
+  return out;
+}
+} // namespace
+
+vpMorphContour vpMorphTagPoseEstimator::silhouette(const vpImage<unsigned char> &I,
+                                                   const std::vector<vpImagePoint> &corners, double *extractionMs)
+{
+  return silhouette(I, corners, vpMorphContour(), extractionMs);
+}
+
+vpMorphContour vpMorphTagPoseEstimator::silhouette(const vpImage<unsigned char> &I,
+                                                   const std::vector<vpImagePoint> &corners,
+                                                   const vpMorphContour &previous, double *extractionMs)
+{
+  return extractMasked<vpMorphContour>(I, corners, extractionMs, [&previous](const vpImage<unsigned char> &J) {
+    return vpMorphContourExtractor().extractJoined(J, previous);
+  });
+}
+
+std::vector<vpMorphContour> vpMorphTagPoseEstimator::silhouetteCandidates(const vpImage<unsigned char> &I,
+                                                                        const std::vector<vpImagePoint> &corners,
+                                                                        double *extractionMs)
+{
+  return extractMasked<std::vector<vpMorphContour> >(
+      I, corners, extractionMs,
+      [](const vpImage<unsigned char> &J) { return vpMorphContourExtractor().extractCandidates(J); });
 }
 
 void vpMorphTagPoseEstimator::maskTag(vpImage<unsigned char> &I, const std::vector<vpImagePoint> &corners,

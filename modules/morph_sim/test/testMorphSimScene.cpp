@@ -242,6 +242,53 @@ TEST_CASE("AprilTag pose agrees with the simulator's pose", "[morph_sim][tag]")
   CHECK(worstT < 0.002);
 }
 
+TEST_CASE("the silhouette is recognised among the first view's regions, then followed past a larger one",
+          "[morph_sim][tag]")
+{
+  vpMorphPlanarScene scene(object("pliers"));
+  scene.setTagPlacement(0.0, -0.1);
+  vpMorphPlanarScene::Faults f;
+  f.noiseSigma = 2;
+  f.largeDistractorArea = 1.4 * scene.objectArea();
+  f.largeDistractorAspect = 1.5;
+  f.largeDistractorX = 0.14;
+  f.largeDistractorY = 0.02;
+  f.largeDistractorAngle = M_PI / 2;
+  scene.setFaults(f);
+  auto look = [&scene](const vpHomogeneousMatrix &cMo, vpImage<unsigned char> &I, std::vector<vpImagePoint> &corners) {
+    scene.render(cMo, I);
+    vpHomogeneousMatrix cMo_tag;
+    REQUIRE(scene.tagPoseEstimator().estimate(I, cMo_tag, &corners));
+  };
+  const vpHomogeneousMatrix first = view(0.01, -0.01, 0.5, 3, 0, 10), second = view(0.013, -0.008, 0.498, 3, 0, 10.5);
+  vpImage<unsigned char> I;
+  std::vector<vpImagePoint> corners;
+  look(first, I, corners);
+  double m, mx;
+  contourError(vpMorphTagPoseEstimator::silhouette(I, corners), scene.projectedContour(first), m, mx);
+  REQUIRE(m > 10); // the largest region is the distractor (joined with the object or not)
+  // The first view: one of the candidates is the object, which a template database tells apart.
+  double ms = -1;
+  const std::vector<vpMorphContour> cands = vpMorphTagPoseEstimator::silhouetteCandidates(I, corners, &ms);
+  CHECK(ms >= 0);
+  vpMorphContour previous;
+  for (const vpMorphContour &c : cands) {
+    contourError(c, scene.projectedContour(first), m, mx);
+    if (m < 0.8)
+      previous = c;
+  }
+  REQUIRE_FALSE(previous.empty());
+  // The next view: the silhouette that continues it is the object's, region measured.
+  look(second, I, corners);
+  const vpMorphContour next = vpMorphTagPoseEstimator::silhouette(I, corners, previous, &ms);
+  contourError(next, scene.projectedContour(second), m, mx);
+  CHECK(m < 0.8);
+  CHECK(next.hasRegion());
+  // Where nothing is, an empty silhouette (a control loop holds); no object at all: no candidate.
+  CHECK(vpMorphTagPoseEstimator::silhouette(I, corners, previous.transformed(0, -1000, 0)).empty());
+  CHECK(vpMorphTagPoseEstimator::silhouetteCandidates(vpImage<unsigned char>(48, 64, 128), {}).empty());
+}
+
 TEST_CASE("masking the detected tag leaves the object as the largest region", "[morph_sim][tag]")
 {
   vpMorphPlanarScene scene(object("pliers"));

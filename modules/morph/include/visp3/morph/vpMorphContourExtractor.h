@@ -71,6 +71,28 @@ public:
   vpMorphContour extractJoined(const vpImage<unsigned char> &I) const;
   //! Same on a colour image.
   vpMorphContour extractJoined(const vpImage<vpRGBa> &I) const;
+  /*!
+    The object that continues \e previous (its outline in the last image, PIXEL units), among regions that may be
+    larger (a distractor, the floor beyond the plane's edge): the region that overlaps \e previous most, joined as
+    extractJoined() does with the other regions of which more than half lies inside \e previous (an occluder's cut
+    pieces lie where the object was, a distractor elsewhere). Why: between two images the object moves a small part
+    of its size, so where it was tells it from other regions without a rule on size. An empty \e previous gives
+    extractJoined(I). \throw vpMorphException::badImageError as extract(), and when no region overlaps \e previous
+    (the object left the view or is lost); badParameterError when \e previous is not in PIXEL units.
+  */
+  vpMorphContour extractJoined(const vpImage<unsigned char> &I, const vpMorphContour &previous) const;
+  //! Same on a colour image.
+  vpMorphContour extractJoined(const vpImage<vpRGBa> &I, const vpMorphContour &previous) const;
+  /*!
+    The outlines the object may have, for a first image where nothing says which region it is: for each region of at
+    least joinedMinShare() of the largest one's area (largest first), the region joined with the smaller pieces near
+    it (extractJoined()'s rule around it), then, when a piece was joined, the region alone. The first is
+    extractJoined(I). A template database tells which one shows a known part (vpMorphDatabase::recognize() on a
+    list); extractJoined(I, previous) follows it afterwards. \throw vpMorphException::badImageError as extract().
+  */
+  std::vector<vpMorphContour> extractCandidates(const vpImage<unsigned char> &I) const;
+  //! Same on a colour image.
+  std::vector<vpMorphContour> extractCandidates(const vpImage<vpRGBa> &I) const;
   //! Smallest area of a piece joined by extractJoined(), as a share of the largest region's (smaller: specks).
   static double joinedMinShare() { return 0.1; }
   //! Largest gap bridged by extractJoined(), as a share of the largest region's bounding-box diagonal.

@@ -208,6 +208,14 @@ public:
     \throw vpMorphException::notFoundError on an empty database, badContourError on an empty contour.
   */
   vpMorphRecognition recognize(const vpMorphContour &c, bool prune = true) const;
+  /*!
+    Which of several candidate outlines of one view shows a known part (vpMorphContourExtractor::extractCandidates()):
+    each is recognised, and \e chosen receives the index of the accepted one whose distance is the smallest share of
+    its template's threshold (the distance itself when the threshold is not finite), the first candidate when none is
+    accepted. Why the share: thresholds differ between templates, and it says how well each candidate is explained.
+    \throw vpMorphException::notFoundError on an empty database, badContourError on no candidate or an empty one.
+  */
+  vpMorphRecognition recognize(const std::vector<vpMorphContour> &candidates, std::size_t &chosen) const;
   //! recognize() for many contours on \e threads threads (0: all cores); \e progress counts the contours.
   std::vector<vpMorphRecognition> recognizeAll(const std::vector<vpMorphContour> &contours, unsigned int threads = 0,
                                                const Progress &progress = Progress()) const;

@@ -108,8 +108,8 @@ public:
 
   /*!
     The recognition of a scenario's first view, as the controllers see it before they move: its scene rendered from
-    the start pose (the free camera's), the tag found and masked, the silhouette extracted and recognised by
-    its database. \e shown, if not null, receives the silhouette (empty when there is none; then the recognition
+    the start pose (the free camera's), the tag found and masked, the candidate silhouettes extracted and the one
+    its database recognises best chosen. \e shown, if not null, receives the silhouette (empty when there is none; then the recognition
     has no template, index npos). A check of the recognition on many starts without servoing them.
   */
   vpMorphRecognition recognizeStart(const vpMorphBenchScenario &scenario, vpMorphContour *shown = nullptr) const;

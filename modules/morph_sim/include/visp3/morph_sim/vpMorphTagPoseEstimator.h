@@ -76,6 +76,20 @@ public:
   */
   static vpMorphContour silhouette(const vpImage<unsigned char> &I, const std::vector<vpImagePoint> &corners,
                                    double *extractionMs = nullptr);
+  /*!
+    silhouette() of the object that continues \e previous, its silhouette in the last image
+    (vpMorphContourExtractor::extractJoined(I, previous)): a larger region elsewhere is not taken for it. Empty when
+    no object region lies where \e previous was. An empty \e previous gives silhouette(I, corners).
+  */
+  static vpMorphContour silhouette(const vpImage<unsigned char> &I, const std::vector<vpImagePoint> &corners,
+                                   const vpMorphContour &previous, double *extractionMs = nullptr);
+  /*!
+    The outlines the object may have in a first image (vpMorphContourExtractor::extractCandidates()), the tag masked
+    as by silhouette(); empty when the image shows no object. For vpMorphDatabase::recognize() on a list.
+  */
+  static std::vector<vpMorphContour> silhouetteCandidates(const vpImage<unsigned char> &I,
+                                                          const std::vector<vpImagePoint> &corners,
+                                                          double *extractionMs = nullptr);
 
   /*!
     Difference between two poses of the object seen from a camera: distance between the object origins (metres,
