@@ -257,7 +257,7 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
     poly.emplace_back(static_cast<int>(std::lround(previous.x(k))), static_cast<int>(std::lround(previous.y(k))));
   const cv::Rect image(0, 0, bin.cols, bin.rows);
   const cv::Rect pbox = cv::boundingRect(poly) & image;
-  std::vector<long> inside(regs.size(), 0), count(regs.size(), 0);
+  std::vector<long> inside(regs.size(), 0);
   if (pbox.area() > 0) {
     cv::Mat was = cv::Mat::zeros(pbox.size(), CV_8UC1);
     cv::fillPoly(was, std::vector<std::vector<cv::Point> >{poly}, cv::Scalar(255), cv::LINE_8, 0, -pbox.tl());
@@ -269,17 +269,17 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
       cv::Mat is = cv::Mat::zeros(box.size(), CV_8UC1);
       cv::drawContours(is, std::vector<std::vector<cv::Point> >{regs[k].chain}, 0, cv::Scalar(255), cv::FILLED,
                        cv::LINE_8, cv::noArray(), INT_MAX, -box.tl());
-      count[k] = cv::countNonZero(is);
       inside[k] = cv::countNonZero(is(common - box.tl()) & was(common - pbox.tl()));
     }
   }
-  const std::size_t seed = static_cast<std::size_t>(std::max_element(inside.begin(), inside.end()) - inside.begin());
-  if (inside[seed] == 0)
+  // The object's regions: those that overlap where it was (a distractor lies elsewhere); the largest is the seed.
+  const std::size_t seed = static_cast<std::size_t>(
+      std::find_if(inside.begin(), inside.end(), [](long n) { return n > 0; }) - inside.begin());
+  if (seed == regs.size())
     fail("no object region where the previous outline was (the object left the view or was lost)");
-  // The other pieces of the object: regions lying mostly where the object was (a distractor lies elsewhere).
   std::vector<const Region *> pieces;
-  for (const Region *p : piecesOf(regs, seed, false))
-    if (2 * inside[static_cast<std::size_t>(p - regs.data())] > count[static_cast<std::size_t>(p - regs.data())])
+  for (const Region *p : piecesOf(regs, seed, true))
+    if (inside[static_cast<std::size_t>(p - regs.data())] > 0)
       pieces.push_back(p);
   return silhouette(greyOf(I), bin, regs[seed], pieces);
 }

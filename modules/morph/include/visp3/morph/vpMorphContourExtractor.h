@@ -73,10 +73,10 @@ public:
   vpMorphContour extractJoined(const vpImage<vpRGBa> &I) const;
   /*!
     The object that continues \e previous (its outline in the last image, PIXEL units), among regions that may be
-    larger (a distractor, the floor beyond the plane's edge): the region that overlaps \e previous most, joined as
-    extractJoined() does with the other regions of which more than half lies inside \e previous (an occluder's cut
-    pieces lie where the object was, a distractor elsewhere). Why: between two images the object moves a small part
-    of its size, so where it was tells it from other regions without a rule on size. An empty \e previous gives
+    larger (a distractor, the floor beyond the plane's edge): extractJoined() restricted to the regions that overlap
+    \e previous (the largest of them joined with the others near it). Why: between two images the object moves less
+    than the gap that separates it from other regions, so where it was tells it from them without a rule on size,
+    and an occluder's cut pieces, which lie where the object was, are joined back. An empty \e previous gives
     extractJoined(I). \throw vpMorphException::badImageError as extract(), and when no region overlaps \e previous
     (the object left the view or is lost); badParameterError when \e previous is not in PIXEL units.
   */
