@@ -152,14 +152,22 @@ vpMorphContour polygon(const Region &r)
       // Not a valid region (grey levels inconsistent with the mask): the contour keeps its polygon measures.
     }
   }
-  if (r.outline.size() >= 4) {
-    std::vector<double> x, y;
-    x.reserve(r.outline.size());
-    y.reserve(r.outline.size());
-    for (const cv::Point2d &p : r.outline) {
+  // Where the chain turns back inside a slit a pixel or two wide, two of its pixels measure the same edge crossing:
+  // one point for both. Kept twice, a rounding error apart, a change of units would make them one repeated vertex.
+  constexpr double kSamePoint = 1e-9; // px: far above the rounding of coordinates under 1e4 px, far below edge noise
+  std::vector<double> x, y;
+  x.reserve(r.outline.size());
+  y.reserve(r.outline.size());
+  for (const cv::Point2d &p : r.outline)
+    if (x.empty() || std::hypot(p.x - x.back(), p.y - y.back()) > kSamePoint) {
       x.push_back(p.x);
       y.push_back(p.y);
     }
+  while (x.size() > 1 && std::hypot(x.front() - x.back(), y.front() - y.back()) <= kSamePoint) {
+    x.pop_back();
+    y.pop_back();
+  }
+  if (x.size() >= 4) {
     try {
       c.setOutline(vpMorphContour(x, y));
     } catch (const vpMorphException &) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <random>
@@ -14,9 +15,12 @@
 #include <opencv2/imgproc.hpp>
 
 #include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphPolygonApproximation.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
 
 namespace
 {
@@ -342,6 +346,27 @@ TEST_CASE("extractor: a larger region elsewhere is not the object: candidates fi
   } catch (const vpMorphException &e) {
     CHECK(e.getCode() == vpMorphException::badParameterError);
   }
+}
+
+TEST_CASE("extractor: the edge outline of a grooved part survives a change of units", "[extract][outline]")
+{
+  // A rendered view of a triangular part with narrow grooves (an MPEG-7 development shape, as the bench renders it):
+  // where its boundary chain turns at a groove's lip, two chain pixels measure the same edge crossing. Kept as two
+  // points a rounding error apart (7e-15 px), they became one repeated vertex in normalised units, and every rigid fit
+  // on the outline threw (the servo held on a "degenerate contour" until it stopped).
+  vpImage<unsigned char> I;
+  vpImageIo::read(I, (std::filesystem::path(__FILE__).parent_path() / "data" / "grooved-part-view.png").string());
+  const vpMorphContour e = vpMorphContourExtractor().extract(I);
+  REQUIRE(e.hasOutline());
+  const vpMorphContour &o = e.outline();
+  double closest = INFINITY;
+  for (std::size_t k = 0; k < o.size(); ++k) {
+    const std::size_t p = (k + o.size() - 1) % o.size();
+    closest = std::min(closest, std::hypot(o.x(k) - o.x(p), o.y(k) - o.y(p)));
+  }
+  CHECK(closest > 1e-6);
+  const vpCameraParameters cam(800, 800, 320, 240);
+  CHECK_NOTHROW(vpMorphRigidTransform(0.3, 0.01, -0.02, 1.1).apply(e.toNormalized(cam)));
 }
 
 TEST_CASE("approximation: vertex count is stable under image noise and sub-pixel motion", "[approx][noise]")
