@@ -33,6 +33,9 @@
   - <b>Validity floor:</b> a region must enclose an area of at least minRegionArea() square pixels (a 3x3
     pixel block) to be an object. Smaller specks cannot form a polygon of non-zero area; this is a safety floor
     of the pixel grid, not a tuning knob.
+  - <b>Which region:</b> extract() takes the largest. Where a larger region may be in view (a distractor, the floor
+    beyond the plane's edge), extractCandidates() lists the outlines the object may have for a template database to
+    choose on a first image, and extractJoined(I, previous) follows the chosen one in the next images.
   - <b>Polygon:</b> vpMorphPolygonApproximation (parameterless, L1 vertex placement, counter-clockwise in
     the (x, y) axes).
 
@@ -44,6 +47,13 @@
   vpImage<unsigned char> I;
   vpImageIo::read(I, "view.png");
   vpMorphContour c = vpMorphContourExtractor().extract(I); // largest object, polygonised, region and outline
+
+  // In a servo loop, among other regions: recognised once, then followed.
+  std::size_t chosen = 0;
+  const std::vector<vpMorphContour> candidates = vpMorphContourExtractor().extractCandidates(I);
+  vpMorphRecognition r = db.recognize(candidates, chosen);
+  vpMorphContour last = candidates[chosen];
+  // ... next image: last = vpMorphContourExtractor().extractJoined(I, last);
   \endcode
   \sa vpMorphPolygonApproximation, \ref page_design_morph
 */
