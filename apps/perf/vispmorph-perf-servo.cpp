@@ -11,6 +11,8 @@
     std 1.5 px, gain 0.7, offset -25), where the mask is ragged and the edge is found under noise;
   - BM_extractCut: the same view with a card hiding 15 % of the pliers across their middle, cut in two and joined
     again (vpMorphContourExtractor::extractJoined(), as the benchmark's controllers extract every view);
+  - BM_extractCutFollow: the same view followed from its own joined outline (extractJoined(I, previous), as the
+    benchmark's controllers extract every view after the first): the cost of finding the object where it was;
   - BM_approximate: its polygonal approximation alone (vpMorphPolygonApproximation on that image's boundary chain),
     the part of the extraction that grows with the boundary's length;
   - BM_morphIteration: vpServoMorph::computeControlLaw() over the recorded run (tracked correspondence, fit,
@@ -207,6 +209,22 @@ void BM_extractCut(benchmark::State &state)
     state.SkipWithError("the card does not cut the pliers in two in this view");
   for (auto _ : state)
     benchmark::DoNotOptimize(extractor.extractJoined(I).size());
+}
+
+void BM_extractCutFollow(benchmark::State &state)
+{
+  vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
+  vpMorphPlanarScene::Faults f;
+  f.occludedShare = 0.15;
+  f.occluderPosition = 0.5;
+  vpImage<unsigned char> I = firstView(scene, f);
+  vpMorphTagPoseEstimator::maskTag(I, scene.projectedTagCorners(recording().firstcMo));
+  vpMorphContourExtractor extractor;
+  const vpMorphContour previous = extractor.extractJoined(I);
+  if (previous.hasRegion())
+    state.SkipWithError("the card does not cut the pliers in two in this view");
+  for (auto _ : state)
+    benchmark::DoNotOptimize(extractor.extractJoined(I, previous).size());
 }
 
 void BM_approximate(benchmark::State &state)
@@ -427,6 +445,7 @@ public:
 BENCHMARK(BM_extract)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_extractNoisy)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_extractCut)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_extractCutFollow)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_approximate)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIteration)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIterationTilt)->Unit(benchmark::kMicrosecond);
