@@ -49,15 +49,20 @@ def fail(message):
     sys.exit(2)
 
 
-def read_summary(outdir, fields):
-    path = os.path.join(outdir, "summary.json")
+def read_json(path):
+    """The JSON value of the file at PATH, or ResultsFileError saying why not."""
     try:
         with open(path, encoding="utf-8") as f:
-            summary = json.load(f)
+            return json.load(f)
     except OSError as e:
         raise ResultsFileError("cannot read '%s': %s" % (path, e.strerror))
     except ValueError as e:
         raise ResultsFileError("'%s' is not JSON: %s" % (path, e))
+
+
+def read_summary(outdir, fields):
+    path = os.path.join(outdir, "summary.json")
+    summary = read_json(path)
     if not isinstance(summary, dict):
         raise ResultsFileError("'%s': expected an object" % path)
     missing = [k for k in fields if k not in summary]
@@ -159,13 +164,7 @@ def retrieval_table(outdirs):
 
 
 def match_table(path):
-    try:
-        with open(path, encoding="utf-8") as f:
-            report = json.load(f)
-    except OSError as e:
-        raise ResultsFileError("cannot read '%s': %s" % (path, e.strerror))
-    except ValueError as e:
-        raise ResultsFileError("'%s' is not JSON: %s" % (path, e))
+    report = read_json(path)
     if not isinstance(report, dict) or not isinstance(report.get("benchmarks"), list) or \
             not isinstance(report.get("context", {}), dict):
         raise ResultsFileError("'%s': not a Google Benchmark report (context, benchmarks)" % path)

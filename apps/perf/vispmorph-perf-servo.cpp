@@ -196,7 +196,8 @@ void BM_extractNoisy(benchmark::State &state)
     benchmark::DoNotOptimize(extractor.extract(I).size());
 }
 
-void BM_extractCut(benchmark::State &state)
+// The recording's first view with a card hiding 15 % of the pliers across their middle, the tag masked.
+vpImage<unsigned char> cutView()
 {
   vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
   vpMorphPlanarScene::Faults f;
@@ -204,6 +205,12 @@ void BM_extractCut(benchmark::State &state)
   f.occluderPosition = 0.5;
   vpImage<unsigned char> I = firstView(scene, f);
   vpMorphTagPoseEstimator::maskTag(I, scene.projectedTagCorners(recording().firstcMo));
+  return I;
+}
+
+void BM_extractCut(benchmark::State &state)
+{
+  const vpImage<unsigned char> I = cutView();
   vpMorphContourExtractor extractor;
   if (extractor.extractJoined(I).hasRegion())
     state.SkipWithError("the card does not cut the pliers in two in this view");
@@ -213,12 +220,7 @@ void BM_extractCut(benchmark::State &state)
 
 void BM_extractCutFollow(benchmark::State &state)
 {
-  vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
-  vpMorphPlanarScene::Faults f;
-  f.occludedShare = 0.15;
-  f.occluderPosition = 0.5;
-  vpImage<unsigned char> I = firstView(scene, f);
-  vpMorphTagPoseEstimator::maskTag(I, scene.projectedTagCorners(recording().firstcMo));
+  const vpImage<unsigned char> I = cutView();
   vpMorphContourExtractor extractor;
   const vpMorphContour previous = extractor.extractJoined(I);
   if (previous.hasRegion())
