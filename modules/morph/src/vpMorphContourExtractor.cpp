@@ -214,6 +214,32 @@ std::vector<const Region *> piecesOf(const std::vector<Region> &regs, std::size_
   return out;
 }
 
+// The polygon (x, y) clipped to the rectangle [lo, hi]^2 per axis (Sutherland-Hodgman): what of it can overlap an
+// image, in coordinates that fit the raster's integers whatever the input's magnitude.
+std::vector<cv::Point> clippedPixels(std::vector<cv::Point2d> poly, const cv::Point2d &lo, const cv::Point2d &hi)
+{
+  for (int side = 0; side < 4 && !poly.empty(); ++side) {
+    const bool isX = side % 2 == 0, isLow = side < 2;
+    const double bound = isX ? (isLow ? lo.x : hi.x) : (isLow ? lo.y : hi.y);
+    auto in = [&](const cv::Point2d &p) { return isLow ? (isX ? p.x : p.y) >= bound : (isX ? p.x : p.y) <= bound; };
+    std::vector<cv::Point2d> out;
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const cv::Point2d &a = poly[(k + poly.size() - 1) % poly.size()], &b = poly[k];
+      if (in(a) != in(b)) {
+        const double t = ((isX ? a.x : a.y) - bound) / ((isX ? a.x : a.y) - (isX ? b.x : b.y));
+        out.push_back(a + t * (b - a));
+      }
+      if (in(b))
+        out.push_back(b);
+    }
+    poly.swap(out);
+  }
+  std::vector<cv::Point> px;
+  for (const cv::Point2d &p : poly)
+    px.emplace_back(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
+  return px;
+}
+
 cv::Mat greyOf(const vpImage<unsigned char> &I)
 {
   return cv::Mat(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
@@ -258,13 +284,14 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
                            "vpMorphContourExtractor::extractJoined: the previous contour must be in PIXEL units");
   cv::Mat bin;
   std::vector<Region> regs = regions(I, 0, &bin);
-  // The previous outline's pixels, over its box clipped to the image.
-  std::vector<cv::Point> poly;
-  poly.reserve(previous.size());
+  // The previous outline's pixels, over its box clipped to the image (a pixel of margin all round).
+  std::vector<cv::Point2d> outline;
+  outline.reserve(previous.size());
   for (std::size_t k = 0; k < previous.size(); ++k)
-    poly.emplace_back(static_cast<int>(std::lround(previous.x(k))), static_cast<int>(std::lround(previous.y(k))));
+    outline.emplace_back(previous.x(k), previous.y(k));
+  const std::vector<cv::Point> poly = clippedPixels(outline, {-1.0, -1.0}, {double(bin.cols), double(bin.rows)});
   const cv::Rect image(0, 0, bin.cols, bin.rows);
-  const cv::Rect pbox = cv::boundingRect(poly) & image;
+  const cv::Rect pbox = poly.empty() ? cv::Rect() : cv::boundingRect(poly) & image;
   std::vector<long> inside(regs.size(), 0);
   if (pbox.area() > 0) {
     cv::Mat was = cv::Mat::zeros(pbox.size(), CV_8UC1);

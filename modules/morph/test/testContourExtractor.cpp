@@ -327,6 +327,9 @@ TEST_CASE("extractor: a larger region elsewhere is not the object: candidates fi
   // The slab followed the same way is the slab, alone.
   const vpMorphContour slabBefore = ex.extract(render({slab}, 0, 255));
   CHECK(ex.extractJoined(cutWithSlab, slabBefore).regionArea() == Approx(slabBefore.regionArea()).epsilon(1e-9));
+  // An outline around the whole view, however large its coordinates: every region was there, extractJoined(I).
+  const vpMorphContour everywhere({-1e20, 1e20, 1e20, -1e20}, {-1e20, -1e20, 1e20, 1e20});
+  CHECK(ex.extractJoined(cutWithSlab, everywhere).area() == Approx(ex.extractJoined(cutWithSlab).area()));
   // No previous outline: extractJoined(I). Nothing where the object was, or a previous outline in other units: errors.
   CHECK(ex.extractJoined(cutWithSlab, vpMorphContour()).area() == Approx(ex.extractJoined(cutWithSlab).area()));
   Poly corner;
