@@ -35,6 +35,13 @@ vpImage<unsigned char> toGrey(const vpImage<vpRGBa> &I)
   return g;
 }
 
+// Wraps the ViSP buffer (row-major, 8 bits) without copying; it is only read.
+cv::Mat greyOf(const vpImage<unsigned char> &I)
+{
+  return cv::Mat(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
+                 const_cast<unsigned char *>(I.bitmap));
+}
+
 /*
   Object mask (255 = object) from the two grey classes (vpMorphGreyClasses) and the border-minority polarity rule. It
   is a view of \e padded, which has one pixel of background all round (what findContours() needs to close objects that
@@ -51,9 +58,7 @@ cv::Mat mask(const vpImage<unsigned char> &I, cv::Mat &padded)
        << "x" << minSide;
     fail(os.str());
   }
-  // Wraps the ViSP buffer (row-major, 8 bits) without copying; it is only read.
-  const cv::Mat grey(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
-                     const_cast<unsigned char *>(I.bitmap));
+  const cv::Mat grey = greyOf(I);
   const long total = static_cast<long>(I.getSize());
   const vpMorphGreyClasses::Histogram h = vpMorphGreyClasses::histogram(I.bitmap, I.getSize());
   const auto lo = std::find_if(h.begin(), h.end(), [](long c) { return c > 0; });
@@ -127,8 +132,7 @@ std::vector<Region> regions(const vpImage<unsigned char> &I, std::size_t measure
       return a.area > b.area;
     return a.first.y < b.first.y || (a.first.y == b.first.y && a.first.x < b.first.x);
   });
-  const cv::Mat grey(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
-                     const_cast<unsigned char *>(I.bitmap));
+  const cv::Mat grey = greyOf(I);
   for (std::size_t k = 0; k < std::min(measured, out.size()); ++k)
     measure(grey, bin, out[k]);
   return out;
@@ -152,22 +156,14 @@ vpMorphContour polygon(const Region &r)
       // Not a valid region (grey levels inconsistent with the mask): the contour keeps its polygon measures.
     }
   }
-  // Where the chain turns back inside a slit a pixel or two wide, two of its pixels measure the same edge crossing:
-  // one point for both. Kept twice, a rounding error apart, a change of units would make them one repeated vertex.
-  constexpr double kSamePoint = 1e-9; // px: far above the rounding of coordinates under 1e4 px, far below edge noise
-  std::vector<double> x, y;
-  x.reserve(r.outline.size());
-  y.reserve(r.outline.size());
-  for (const cv::Point2d &p : r.outline)
-    if (x.empty() || std::hypot(p.x - x.back(), p.y - y.back()) > kSamePoint) {
+  if (r.outline.size() >= 4) {
+    std::vector<double> x, y;
+    x.reserve(r.outline.size());
+    y.reserve(r.outline.size());
+    for (const cv::Point2d &p : r.outline) {
       x.push_back(p.x);
       y.push_back(p.y);
     }
-  while (x.size() > 1 && std::hypot(x.front() - x.back(), y.front() - y.back()) <= kSamePoint) {
-    x.pop_back();
-    y.pop_back();
-  }
-  if (x.size() >= 4) {
     try {
       c.setOutline(vpMorphContour(x, y));
     } catch (const vpMorphException &) {
@@ -238,12 +234,6 @@ std::vector<cv::Point> clippedPixels(std::vector<cv::Point2d> poly, const cv::Po
   for (const cv::Point2d &p : poly)
     px.emplace_back(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
   return px;
-}
-
-cv::Mat greyOf(const vpImage<unsigned char> &I)
-{
-  return cv::Mat(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1,
-                 const_cast<unsigned char *>(I.bitmap));
 }
 } // namespace
 

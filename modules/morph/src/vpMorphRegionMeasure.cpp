@@ -17,6 +17,10 @@ using vpMorphRegionMeasure::Region;
 
 namespace
 {
+// The half-width of a surface's levels about their centre: 4 sigma of a normal noise (sigma = 1.4826 MAD), at least
+// half a grey level (the quantisation's).
+double fourSigma(double mad) { return std::max(0.5, 4.0 * 1.4826 * mad); }
+
 /*
   The histogram of the grey levels under a mask: built once per mask, it gives the level under it, the share of it at
   a saturated level and the least-squares sums of any window of levels (each a whole pass over the region's box
@@ -79,7 +83,7 @@ struct LevelHistogram
     std::array<long, 256> dev{}; // histogram of |level - median|
     for (int v = 0; v < 256; ++v)
       dev[std::abs(v - med)] += h[v];
-    halfWidth = std::max(0.5, 4.0 * 1.4826 * median(dev));
+    halfWidth = fourSigma(median(dev));
   }
 
   /*
@@ -162,7 +166,7 @@ Level affineLevel(const cv::Mat &g, const cv::Mat &m, const cv::Point &tl, const
         dev.push_back(std::fabs(pg[c] - p(0) - p(1) * (c - cx) - p(2) * (r - cy)));
   }
   std::nth_element(dev.begin(), dev.begin() + long(dev.size() / 2), dev.end());
-  const double within = std::max(0.5, 4.0 * 1.4826 * dev[dev.size() / 2]);
+  const double within = fourSigma(dev[dev.size() / 2]);
   vpMorphAffineLevel::Sums s;
   for (int r = 0; r < m.rows; ++r) {
     const unsigned char *pm = m.ptr<unsigned char>(r), *pg = g.ptr<unsigned char>(r);
@@ -377,8 +381,13 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
   auto at = [&g](double x, double y) { return bilinear<unsigned char>(g, x, y); };
   std::vector<cv::Point2d> out;
   out.reserve(chain.size());
-  auto add = [&out](const cv::Point2d &q) { // neighbouring pixels may give the same point
-    if (out.empty() || q != out.back())
+  // Neighbouring pixels may measure the same crossing (two pixels of one row, or where the chain turns at a narrow
+  // groove's lip), equal but for rounding: one point for both. Kept twice, a change of units can make them one
+  // repeated vertex, an invalid outline.
+  constexpr double kSamePoint = 1e-9; // px: far above the rounding of coordinates under 1e4 px, far below edge noise
+  auto same = [](const cv::Point2d &a, const cv::Point2d &b) { return std::hypot(a.x - b.x, a.y - b.y) <= kSamePoint; };
+  auto add = [&](const cv::Point2d &q) {
+    if (out.empty() || !same(q, out.back()))
       out.push_back(q);
   };
   const int steps = 8;
@@ -414,7 +423,7 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
       continue;
     add(cv::Point2d(p0.x + best * nx, p0.y + best * ny));
   }
-  if (out.size() > 1 && out.front() == out.back())
+  while (out.size() > 1 && same(out.front(), out.back()))
     out.pop_back();
   return out;
 }
