@@ -69,6 +69,15 @@ vpImage<unsigned char> render(const std::vector<Poly> &polys, unsigned char obj,
   return I;
 }
 
+// \e I blurred by a Gaussian of std \e sigma px (a camera's edge), as an OpenCV image of its own.
+cv::Mat blurred(const vpImage<unsigned char> &I, double sigma)
+{
+  const cv::Mat m(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1, I.bitmap);
+  cv::Mat b;
+  cv::GaussianBlur(m, b, cv::Size(0, 0), sigma);
+  return b;
+}
+
 double segDist(double ax, double ay, double bx, double by, double px, double py)
 {
   const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
@@ -788,8 +797,7 @@ TEST_CASE("extractor: a background clipped by the sensor does not shrink the reg
   const vpMorphContour truth(p.x, p.y);
   auto measured = [&](double gain, double offset) {
     const vpImage<unsigned char> I = render({p}, 40, 210);
-    cv::Mat m(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1, I.bitmap), b;
-    cv::GaussianBlur(m, b, cv::Size(0, 0), 1.2);
+    const cv::Mat b = blurred(I, 1.2);
     std::mt19937 rng(5);
     std::normal_distribution<double> noise(0.0, 1.0);
     vpImage<unsigned char> J(I.getHeight(), I.getWidth());
@@ -819,8 +827,7 @@ TEST_CASE("extractor: a light falling off across the view neither joins the plan
   const Poly p = testPolygon(300, 250, 0.4);
   auto view = [&](double fallOff, double angle) {
     const vpImage<unsigned char> I = render({p}, 40, 210);
-    cv::Mat m(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1, I.bitmap), b;
-    cv::GaussianBlur(m, b, cv::Size(0, 0), 1.0);
+    const cv::Mat b = blurred(I, 1.0);
     std::mt19937 rng(9);
     std::normal_distribution<double> noise(0.0, 1.0);
     const double cu = 0.5 * (I.getWidth() - 1), cv = 0.5 * (I.getHeight() - 1), half = std::hypot(cu, cv);
@@ -911,8 +918,7 @@ TEST_CASE("extractor: the edge outline lies on the object's edge to a few hundre
           p.y.push_back((cvRound((drawn.y[v] + 0.5) * 8 - 0.5) + 0.5) / 8 - 0.5);
         }
         if (kind == 2) { // blurred, background lifted to the sensor's limit
-          cv::Mat m(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1, I.bitmap), b;
-          cv::GaussianBlur(m, b, cv::Size(0, 0), 1.2);
+          const cv::Mat b = blurred(I, 1.2);
           for (unsigned int k = 0; k < I.getSize(); ++k)
             I.bitmap[k] = cv::saturate_cast<unsigned char>(1.3 * b.data[k] + 13.0);
         }
