@@ -313,23 +313,39 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
   const std::size_t N = SI.size() + ST.size();
   std::vector<double> r(N), rw(N);
   std::vector<Eigen::Matrix<double, 1, 8>> J(N);
+  std::vector<Vec3> U(N);         // the samples mapped at this iteration (homogeneous)
+  std::vector<double> X(N), Y(N); // and the same in the other contour's coordinates
   vpMorphHomography out;
   unsigned int it = 0;
   bool converged = false;
   const unsigned int huberIterations = std::min(4u, std::max(1u, maxIterations / 2));
   Mat8 Minv = Mat8::Zero(); // inverse of the last normal matrix, for the covariance
+  double sigma = 0.0;       // the last iteration's robust scale
   for (it = 0; it < maxIterations && !converged; ++it) {
     const Mat3 Gi = G.inverse();
-    bool ok = true;
-    for (std::size_t k = 0; k < N && ok; ++k) {
+    double moved = 0.0; // the largest move of a mapped sample since the last iteration
+    for (std::size_t k = 0; k < N; ++k) {
       const bool fwd = k < SI.size();
       const Point &p = fwd ? SI[k] : ST[k - SI.size()];
       const Vec3 u = (fwd ? G : Gi) * Vec3(p.x, p.y, 1.0);
-      if (!(std::fabs(u[2]) > 1e-12 * u.norm())) {
-        ok = false;
-        break;
-      }
+      if (!(std::fabs(u[2]) > 1e-12 * u.norm()))
+        degenerate("the homography maps part of an outline to infinity");
       const double x = u[0] / u[2], y = u[1] / u[2];
+      if (it > 0)
+        moved = std::max({moved, std::fabs(x - X[k]), std::fabs(y - Y[k])});
+      U[k] = u;
+      X[k] = x;
+      Y[k] = y;
+    }
+    // Settled once an update (of the Tukey rounds) moves no sample by a hundredth of the edges' noise: what is left
+    // is far below the estimate's own deviation. The nearest edges are then not searched again.
+    if (it > huberIterations && moved < 0.01 * sigma)
+      break;
+    for (std::size_t k = 0; k < N; ++k) {
+      const bool fwd = k < SI.size();
+      const Point &p = fwd ? SI[k] : ST[k - SI.size()];
+      const Vec3 &u = U[k];
+      const double x = X[k], y = Y[k];
       double mx, my;
       r[k] = (fwd ? nearestTarget : nearestInput)(x, y, mx, my);
       // d(residual) = m^T dpi, dpi = (1/u3) [1 0 -x; 0 1 -y] du; forward du = G D p, backward du = -D u.
@@ -343,16 +359,13 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
         g = -g;
         q = u;
       }
-      J[k] << g[0] * q[0], g[0] * q[1], g[0] * q[2], g[1] * q[0], g[1] * q[1], g[1] * q[2], g[2] * q[0],
-          g[2] * q[1];
+      J[k] << g[0] * q[0], g[0] * q[1], g[0] * q[2], g[1] * q[0], g[1] * q[1], g[1] * q[2], g[2] * q[0], g[2] * q[1];
     }
-    if (!ok)
-      degenerate("the homography maps part of an outline to infinity");
     std::vector<double> ar(N);
     for (std::size_t k = 0; k < N; ++k)
       ar[k] = std::fabs(r[k]);
     const bool tukey = it >= huberIterations;
-    const double sigma = std::max({minSigma, 1.4826 * median(ar), 1e-13 * scale});
+    sigma = std::max({minSigma, 1.4826 * median(ar), 1e-13 * scale});
     Mat8 M = Mat8::Zero();
     Vec8 b = Vec8::Zero();
     for (std::size_t k = 0; k < N; ++k) {
