@@ -29,7 +29,7 @@ void vpMorphHandEyeExploration::setAngle(double rad, unsigned int imageWidth, un
 void vpMorphHandEyeExploration::reset()
 {
   m_phase = m_angle > 0.0 ? OUT : NONE;
-  m_theta = m_lastReadTheta = 0.0;
+  m_theta = m_lastReadTheta = m_lastTurn = 0.0;
   m_turned = 0.0;
   m_jumps = m_since = m_count = m_pass = 0;
   m_correction = vpThetaUVector(0, 0, 0);
@@ -108,6 +108,7 @@ vpMorphHandEyeExploration::Result vpMorphHandEyeExploration::step(
 bool vpMorphHandEyeExploration::command(vpMorphHandEyeEstimator &handEye, double dt, vpColVector &ve)
 {
   ++m_count;
+  m_lastTurn = 0.0;
   const double step = getSpeed() * dt;
   double w = 0.0;
   if (m_phase == OUT) {
@@ -130,6 +131,7 @@ bool vpMorphHandEyeExploration::command(vpMorphHandEyeEstimator &handEye, double
   }
   m_theta += w;
   m_turned += w;
+  m_lastTurn = w;
   ++m_since;
   vpColVector vc(6, 0.0);
   vc[5] = w / dt;

@@ -58,6 +58,15 @@ void vpMorphViewAligner::setStart(const vpMorphRigidTransform &currentToGoal, do
   m_haveStart = true;
 }
 
+void vpMorphViewAligner::turnStart(double rad)
+{
+  if (!std::isfinite(rad))
+    throw vpMorphException(vpMorphException::badParameterError, "vpMorphViewAligner::turnStart: non-finite turn");
+  // A point of the new view is where the last view had it turned by rad about the optical axis.
+  if (m_haveStart && rad != 0.0)
+    m_start = m_start * vpMorphRigidTransform(rad, 0.0, 0.0);
+}
+
 void vpMorphViewAligner::reset()
 {
   m_tracker.reset();

@@ -354,7 +354,8 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
     if (m_exploration.isActive()) {
       // The exploration turn before the first plan: the view laid on the target reads its tilt.
       // A view the target does not explain (another region joined to the object at the image's border) is not read,
-      // and the turn goes on by its own rules.
+      // and the turn goes on by its own rules. The view turned by the last command since the last one.
+      m_aligner.turnStart(m_exploration.getLastTurn());
       const vpMorphViewAlignment a = m_aligner.align(current);
       const vpMorphSubGoalPlanner &p = m_planner;
       const vpMorphHandEyeExploration::Result r = m_exploration.step(

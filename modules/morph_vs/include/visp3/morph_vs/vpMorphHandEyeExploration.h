@@ -69,6 +69,8 @@ public:
   void reset();
   //! True while the turn runs.
   bool isActive() const { return m_phase == OUT || m_phase == BACK; }
+  //! The turn about the optical axis commanded at the last step() (rad; 0 before the first).
+  double getLastTurn() const { return m_lastTurn; }
   //! The rotation applied to eMc, about axes of the image plane (zero when none was applied).
   const vpThetaUVector &getCorrection() const { return m_correction; }
 
@@ -106,7 +108,7 @@ private:
   bool command(vpMorphHandEyeEstimator &handEye, double dt, vpColVector &ve);
   double finish(vpMorphHandEyeEstimator &handEye);
 
-  double m_angle = 0.0, m_theta = 0.0, m_lastReadTheta = 0.0;
+  double m_angle = 0.0, m_theta = 0.0, m_lastReadTheta = 0.0, m_lastTurn = 0.0;
   unsigned int m_width = 0, m_height = 0;
   Phase m_phase = NONE;
   // The last view read (centroid, area), the turn commanded since, the views in a row displaced from it.

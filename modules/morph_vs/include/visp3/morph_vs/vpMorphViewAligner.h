@@ -86,6 +86,12 @@ public:
     \throw vpMorphException::badParameterError on a negative or non-finite sigma.
   */
   void setStart(const vpMorphRigidTransform &currentToGoal, double sigmaPx = 0.0);
+  /*!
+    The camera turned by \e rad about its optical axis since the last view (a commanded turn): the next align()
+    starts from the last alignment composed with that turn, the view having turned about the principal point. Nothing
+    to turn without a last alignment.
+  */
+  void turnStart(double rad);
   //! Forgets the last alignment and the correspondence (after a jump of the view).
   void reset();
   //! The method (default OUTLINE); forgets the last alignment.
