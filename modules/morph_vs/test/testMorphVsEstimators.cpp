@@ -1,5 +1,6 @@
-// Tests of the two helpers of the servo: the correspondence tracker (tracked vs full searches, reliability test,
-// margin) and the hand-eye estimator (exact recovery from consistent moves, averaging, bad parameters).
+// Tests of the helpers of the servo: the correspondence tracker (tracked vs full searches, reliability test, margin),
+// the view aligner's start and the hand-eye estimator (exact recovery from consistent moves, averaging, bad
+// parameters).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_vs/vpMorphCorrespondenceTracker.h>
 #include <visp3/morph_vs/vpMorphHandEyeEstimator.h>
+#include <visp3/morph_vs/vpMorphViewAligner.h>
 
 #include "testMorphVsScene.h"
 
@@ -123,6 +125,41 @@ TEST_CASE("vpMorphCorrespondenceTracker checks its full searches on the regions"
   // Tracked from there, it stays.
   CHECK(std::fabs(turn(checked.update(bent, wedge))) < 15.0);
   CHECK(checked.lastSource() == vpMorphCorrespondenceTracker::TRACKED);
+}
+
+TEST_CASE("vpMorphViewAligner: a turn commanded since the last view starts the next alignment turned by it",
+          "[aligner]")
+{
+  const vpMorphContour goal = projectPixels(planarPose(20, 0.01, 0));
+  const vpHomogeneousMatrix cMo = planarPose(35, 0.02, -0.01);
+  const double turn = vpMath::rad(60);
+  const vpMorphContour turned =
+      projectPixels(vpHomogeneousMatrix(0, 0, 0, 0, 0, -turn) * cMo); // camera turned by +turn
+  auto aligner = [&]() {
+    vpMorphViewAligner a;
+    a.setCameraParameters(camera());
+    a.setGoal(goal);
+    return a;
+  };
+  vpMorphViewAligner cold = aligner();
+  cold.turnStart(turn); // no last alignment: nothing to turn
+  const vpMorphViewAlignment reference = cold.align(turned);
+  REQUIRE(reference.explained());
+  CHECK(reference.fromCorrespondence);
+  for (const bool told : {false, true}) {
+    vpMorphViewAligner a = aligner();
+    REQUIRE(a.align(projectPixels(cMo)).explained());
+    if (told)
+      a.turnStart(turn);
+    const vpMorphViewAlignment b = a.align(turned);
+    REQUIRE(b.explained());
+    // Told, the last alignment turned lays the view at once; untold, it has lost the view by 60 deg.
+    CHECK(b.fromCorrespondence == !told);
+    CHECK(b.transform.theta() == Approx(reference.transform.theta()).margin(1e-6));
+    CHECK(b.transform.tx() == Approx(reference.transform.tx()).margin(1e-6));
+    CHECK(b.transform.scale() == Approx(reference.transform.scale()).margin(1e-6));
+  }
+  CHECK_THROWS_AS(cold.turnStart(std::nan("")), vpMorphException);
 }
 
 TEST_CASE("vpMorphHandEyeEstimator recovers the planar hand-eye error and the projection scale", "[calibration]")
