@@ -42,6 +42,7 @@ vpMorphHandEyeExploration::Result vpMorphHandEyeExploration::step(
     vpMorphHandEyeEstimator &handEye, const vpMatrix &eJe, const vpColVector &q, const vpColVector &qMin,
     const vpColVector &qMax, double dt, double jumpPx, vpColVector &ve)
 {
+  m_lastTurn = 0.0;
   if (!isActive())
     return FINISHED;
   double cx, cy;
@@ -108,7 +109,6 @@ vpMorphHandEyeExploration::Result vpMorphHandEyeExploration::step(
 bool vpMorphHandEyeExploration::command(vpMorphHandEyeEstimator &handEye, double dt, vpColVector &ve)
 {
   ++m_count;
-  m_lastTurn = 0.0;
   const double step = getSpeed() * dt;
   double w = 0.0;
   if (m_phase == OUT) {

@@ -69,7 +69,7 @@ public:
   void reset();
   //! True while the turn runs.
   bool isActive() const { return m_phase == OUT || m_phase == BACK; }
-  //! The turn about the optical axis commanded at the last step() (rad; 0 before the first).
+  //! The turn about the optical axis commanded by the last step() (rad; 0 when it commanded none).
   double getLastTurn() const { return m_lastTurn; }
   //! The rotation applied to eMc, about axes of the image plane (zero when none was applied).
   const vpThetaUVector &getCorrection() const { return m_correction; }
