@@ -187,7 +187,12 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
   if (!ok)
     return false;
   // The same tests as a similarity's, on the view laid by the homography: the larger part of it on the goal and of the
-  // goal on it (eight parameters bend many an outline onto part of another).
+  // goal on it (eight parameters bend many an outline onto part of another). The simpler model first: a part hidden
+  // or bent is read under the homography only where no similarity reads the view at all (a similarity's part model
+  // is not traded for a tilt that bends the part onto the goal).
+  const bool partAllowed = !warmOnly && !a.explained();
+  vpMorphViewAlignment::Model model = vpMorphViewAlignment::RIGID;
+  double outside = 0.0, inside = 0.0; // shares of the laid view in runs of outliers off and on the goal
   try {
     const vpMorphContour laid = G.apply(currentN.outline());
     vpMorphOutlineFit check(m_goalN);
@@ -197,11 +202,17 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
     const vpMorphContour region = laid.size() > kRegionPoints ? laid.resampled(kRegionPoints) : laid;
     const double area = region.area();
     const double overlap = area > 0.0 ? region.overlapArea(m_goalRegion) / area : 0.0;
-    // Rigid up to the homography: no run of outliers beyond what the noise makes (a bent or hidden part keeps its own
-    // under any homography that lays the rest).
-    if (!(check.getGoalCoverage() >= kBreakdown) || !(overlap >= kBreakdown) || !(check.getSigma() <= limit) ||
-        check.getOutsideShare() + check.getInsideShare() > 0.0)
+    if (!(check.getGoalCoverage() >= kBreakdown) || !(overlap >= kBreakdown) || !(check.getSigma() <= limit))
       return false;
+    // Rigid up to the homography when no run of outliers is beyond what the noise makes; else the side the runs lie on
+    // tells a part hidden from a part bent, as for a similarity.
+    outside = check.getOutsideShare();
+    inside = check.getInsideShare();
+    if (outside + inside > 0.0) {
+      if (!partAllowed)
+        return false;
+      model = outside > inside ? vpMorphViewAlignment::PART_BENT : vpMorphViewAlignment::PART_HIDDEN;
+    }
     a.goalCoverage = check.getGoalCoverage();
     // How well the goal pins the laid view's similarity: the uncertainty of the homography's similarity part.
     a.covariance = check.getCovariance();
@@ -217,8 +228,10 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
   a.transform = procrustes(o.xs(), o.ys(), X, Y);
   m_homography = G;
   m_haveHomography = true;
-  a.model = vpMorphViewAlignment::RIGID;
+  a.model = model;
   a.perspective = true;
+  a.outsideShare = outside;
+  a.insideShare = inside;
   a.inlierShare = G.inlierShare();
   a.sigmaPx = G.residual() * std::max(m_cam.get_px(), m_cam.get_py());
   a.overlapShare = overlapShare(a.transform, currentN);

@@ -162,6 +162,64 @@ TEST_CASE("vpMorphViewAligner: a turn commanded since the last view starts the n
   CHECK_THROWS_AS(cold.turnStart(std::nan("")), vpMorphException);
 }
 
+namespace
+{
+// The object seen from cMo with a measured outline of n samples; the samples [from, from + count) pushed away from the
+// centroid by bumpPx (a part of the view that the goal does not have).
+vpMorphContour measuredView(const vpHomogeneousMatrix &cMo, std::size_t from = 0, std::size_t count = 0,
+                            double bumpPx = 0.0, std::size_t n = 400)
+{
+  vpMorphContour c = projectPixels(cMo);
+  const vpMorphContour o = c.resampled(n);
+  double cx = 0, cy = 0;
+  o.centroid(cx, cy);
+  std::vector<double> x = o.xs(), y = o.ys();
+  for (std::size_t k = from; k < from + count; ++k) {
+    const double r = std::hypot(x[k] - cx, y[k] - cy);
+    x[k] += bumpPx * (x[k] - cx) / r;
+    y[k] += bumpPx * (y[k] - cy) / r;
+  }
+  c.setOutline(vpMorphContour(x, y));
+  return c;
+}
+} // namespace
+
+TEST_CASE("vpMorphViewAligner: a tilted view with a part off the goal is read under the homography, a flat one is not",
+          "[aligner]")
+{
+  const vpMorphContour goal = measuredView(planarPose(20, 0.01, 0));
+  vpMorphViewAligner a;
+  a.setCameraParameters(camera());
+  const vpHomogeneousMatrix flat = planarPose(35, 0.02, -0.01);
+  const vpHomogeneousMatrix tilted = flat * vpHomogeneousMatrix(0, 0, 0, vpMath::rad(40), vpMath::rad(10), 0);
+  const std::size_t from = 40, count = 10; // 2.5 % of the outline, 8 px off
+  auto align = [&](const vpMorphContour &view) {
+    a.setGoal(goal); // no warm start
+    return a.align(view);
+  };
+  // Whole and tilted by 41 deg: no similarity explains it, the homography does, rigid.
+  const vpMorphViewAlignment whole = align(measuredView(tilted));
+  REQUIRE(whole.explained());
+  CHECK(whole.perspective);
+  CHECK(whole.model == vpMorphViewAlignment::RIGID);
+  // Tilted with a part off the goal (no similarity explains it either): the homography, the part under the model
+  // test (laid outside the goal).
+  const vpMorphViewAlignment part = align(measuredView(tilted, from, count, 8.0));
+  REQUIRE(part.explained());
+  CHECK(part.perspective);
+  CHECK(part.model == vpMorphViewAlignment::PART_BENT);
+  CHECK(part.outsideShare > 0.0);
+  // Its similarity is the homography's over the whole view, the part included: 2.5 % of the samples 8 px off move
+  // it by about 0.2 px, i.e. 0.1 deg and 0.2 % over the outline's 100 px radius (twice that allowed).
+  CHECK(part.transform.theta() == Approx(whole.transform.theta()).margin(vpMath::rad(0.2)));
+  CHECK(part.transform.scale() == Approx(whole.transform.scale()).epsilon(4e-3));
+  // Flat with the same part: a similarity explains it with the part, and no homography bends the part onto the goal.
+  const vpMorphViewAlignment flatPart = align(measuredView(flat, from, count, 8.0));
+  REQUIRE(flatPart.explained());
+  CHECK(!flatPart.perspective);
+  CHECK(flatPart.model == vpMorphViewAlignment::PART_BENT);
+}
+
 TEST_CASE("vpMorphHandEyeEstimator recovers the planar hand-eye error and the projection scale", "[calibration]")
 {
   const vpHomogeneousMatrix eMcTrue(0.01, 0.05, 0.12, vpMath::rad(5), vpMath::rad(-3), vpMath::rad(90));

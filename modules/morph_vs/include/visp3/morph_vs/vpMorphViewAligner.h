@@ -31,8 +31,10 @@
   vertex fit, which finds the rotation at any angle; when both ran, the lower robust cost at one scale wins.
   Hidden, bent and articulated parts are the robust fit's outliers: the part of the view that lies on the goal fixes
   the pose (up to half of the view may be anything else), and vpMorphViewAlignment::model says which model explains
-  the residuals. A view that no similarity explains but a homography does is the goal seen tilted: RIGID, its
-  similarity the homography's own over the view (vpMorphViewAlignment::perspective). Measured outlines
+  the residuals. A view that a similarity explains only with a part hidden or bent, but a homography explains
+  whole, is the goal seen tilted: RIGID, its similarity the homography's own over the view
+  (vpMorphViewAlignment::perspective). A view that no similarity explains at all is read under the homography with
+  the same model test (a tilted view whose narrow gap the foreshortening closed: a part bent). Measured outlines
   (vpMorphContourExtractor) are fitted as they are; polygons without them are fitted edge to edge, their robust scale
   floored at half a pixel (vertices on the pixel grid).
 

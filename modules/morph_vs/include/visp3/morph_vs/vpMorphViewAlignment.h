@@ -66,7 +66,8 @@ public:
   double goalCoverage = 0.0; //!< share of the goal's outline on the view's edges, [0, 1]
   double outsideShare = 0.0; //!< share beyond the cut outside the goal's region
   double insideShare = 0.0;  //!< share beyond the cut inside the goal's region
-  //! The view is the goal seen tilted: no similarity explained it, a homography did (the transform is its own).
+  //! The view is the goal seen tilted: a homography explained it (the model is the test's under it), no similarity
+  //! did as well (the transform is the homography's own).
   bool perspective = false;
   bool fromCorrespondence = false; //!< the fit started from the correspondence (no usable warm start)
   double work = std::numeric_limits<double>::quiet_NaN();   //!< work of the correspondence, when it was run
