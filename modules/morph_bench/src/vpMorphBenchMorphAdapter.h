@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph_vs/vpMorphJointVelocity.h>
 
 #include "vpMorphBenchAdapter.h"
 
@@ -123,8 +124,23 @@ protected:
     }
     return false;
   }
+  /*!
+    \e cmd with its end-effector twist sent as joint velocities from the Jacobian at the middle of the period
+    (vpMorphJointVelocity), the conversion's time counted in the law's: held for the period from the Jacobian at its
+    start, a long turn tilts the camera, which a planar law does not take back.
+  */
+  Command toJoints(Command cmd, const vpMatrix &eJe, const vpColVector &q)
+  {
+    const Clock::time_point t0 = Clock::now();
+    cmd.v = m_joints.compute(eJe, q, cmd.v);
+    cmd.controlMs += msSince(t0);
+    cmd.frame = vpRobot::JOINT_STATE;
+    return cmd;
+  }
   void reset() override
   {
+    m_joints.setSamplingTime(m_ctx.samplingTime);
+    m_joints.reset();
     m_template = nullptr;
     m_object.clear();
     m_rejected.clear();
@@ -135,6 +151,7 @@ protected:
   std::string m_object;
   std::vector<std::size_t> m_rejected;
   vpMorphContour m_previous; //!< the last silhouette, which the next one continues
+  vpMorphJointVelocity m_joints;
 };
 
 #endif

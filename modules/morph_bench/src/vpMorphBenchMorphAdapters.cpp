@@ -69,11 +69,7 @@ public:
       cmd.v = m_servo->computeControlLaw(c);
     }
     cmd = fromStatus(cmd);
-    const Clock::time_point t1 = Clock::now(); // the joint velocities are part of the law's time
-    cmd.v = m_joints.compute(eJe, q, cmd.v);
-    cmd.controlMs += msSince(t1);
-    cmd.frame = vpRobot::JOINT_STATE;
-    return cmd;
+    return toJoints(cmd, eJe, q);
   }
   Command missingFrame() override
   {
@@ -143,28 +139,26 @@ private:
       m_servo->setTiltCorrection(vpServoMorph::TILT_FINAL_APPROACH);
     m_servo->getGuard().setMaxLostIterations(8); // its own stop before the loop's feature-lost (10)
     m_targetSet = false;
-    m_joints.setSamplingTime(m_ctx.samplingTime);
-    m_joints.reset();
   }
 
   bool m_tilt, m_paper;
   std::string m_name;
   std::unique_ptr<vpServoMorph> m_servo;
-  vpMorphJointVelocity m_joints;
   bool m_targetSet = false;
 };
 
 /*!
   vpFeatureMorph in a stock vpServo, to the final goal (no sub-goals): EYEINHAND_CAMERA with the tilt rotations
   disabled (setCameraDoF: the feature has 4 components for a planar task), current L, then the camera velocity
-  is mapped to the end-effector with the estimated eMc. The depth comes from the area ratio to the template.
+  is mapped to the end-effector with the estimated eMc and sent as joint velocities from the Jacobian at the middle
+  of the period, as "morph" sends its own (the planar law does not take back a tilt). The depth comes from the area ratio to the template.
   The target check runs on the first image and every kCheckPeriod measured iterations.
 */
 class MorphVpServoController : public vpMorphBenchMorphAdapter
 {
 public:
   std::string name() const override { return "morph-vpservo"; }
-  Command step(const vpImage<unsigned char> &I, const vpMatrix &, const vpColVector &) override
+  Command step(const vpImage<unsigned char> &I, const vpMatrix &eJe, const vpColVector &q) override
   {
     vpMorphContour c;
     Command cmd;
@@ -217,10 +211,9 @@ public:
       return stopCommand("feature-error");
     }
     cmd.controlMs = msSince(t0);
-    cmd.frame = vpRobot::END_EFFECTOR_FRAME;
     if (!finite(cmd.v))
       return stopCommand("nan");
-    return cmd;
+    return toJoints(cmd, eJe, q);
   }
   std::pair<const vpFeatureMorph *, const vpFeatureMorph *> features() const override { return {&m_s, &m_sd}; }
 
