@@ -151,8 +151,8 @@ private:
   vpFeatureMorph in a stock vpServo, to the final goal (no sub-goals): EYEINHAND_CAMERA with the tilt rotations
   disabled (setCameraDoF: the feature has 4 components for a planar task), current L, then the camera velocity
   is mapped to the end-effector with the estimated eMc and sent as joint velocities from the Jacobian at the middle
-  of the period, as "morph" sends its own (the planar law does not take back a tilt). The depth comes from the area ratio to the template.
-  The target check runs on the first image and every kCheckPeriod measured iterations.
+  of the period, as "morph" sends its own (the planar law does not take back a tilt). The depth comes from the area
+  ratio to the template. The target check runs on the first image and every kCheckPeriod measured iterations.
 */
 class MorphVpServoController : public vpMorphBenchMorphAdapter
 {
