@@ -19,6 +19,16 @@ const double kBreakdown = 0.5;
 const std::size_t kRegionPoints = 128;
 // IRLS rounds of the correspondence's robust fit: Tukey's weights settle in a few rounds from the least squares.
 const unsigned int kRobustIterations = 30;
+
+// The model of a fit that stands for the view, from the shares of the view's samples in runs of outliers longer than
+// the noise makes, off the goal's region (\e outside) and on it (\e inside): none, rigid; else the side they lie on
+// tells a part bent out of the goal from a part hidden (an occluder's edge inside the goal).
+vpMorphViewAlignment::Model modelOf(double outside, double inside)
+{
+  if (outside + inside == 0.0)
+    return vpMorphViewAlignment::RIGID;
+  return outside > inside ? vpMorphViewAlignment::PART_BENT : vpMorphViewAlignment::PART_HIDDEN;
+}
 } // namespace
 
 vpMorphViewAligner::vpMorphViewAligner() : m_cam(getDefaultCameraParameters())
@@ -100,19 +110,15 @@ vpMorphViewAlignment vpMorphViewAligner::fromFit(const vpMorphRigidTransform &T,
   a.outsideShare = fit.getOutsideShare();
   a.insideShare = fit.getInsideShare();
   a.fromCorrespondence = cold;
-  // The model test: runs of outliers longer than the noise makes (vpMorphOutlineFit::getOutsideShare()) are a part of
-  // the view that the goal does not have; the side they lie on tells a part hidden (an occluder's edge inside the
-  // goal) from a part bent out of it. Beyond the breakdown point, or a robust scale that no edge noise makes, the fit
-  // does not stand for the view.
+  // The model test: beyond the breakdown point, or a robust scale that no edge noise makes, the fit does not stand for
+  // the view; else its runs of outliers (vpMorphOutlineFit::getOutsideShare()) are a part the goal does not have.
   a.overlapShare = overlapShare(T, currentN);
   a.goalCoverage = fit.getGoalCoverage();
   if (a.overlapShare < kBreakdown || !(a.goalCoverage >= kBreakdown) ||
       !(a.sigmaPx <= (measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx())))
     a.model = vpMorphViewAlignment::UNEXPLAINED;
-  else if (a.outsideShare + a.insideShare == 0.0)
-    a.model = vpMorphViewAlignment::RIGID;
   else
-    a.model = a.outsideShare > a.insideShare ? vpMorphViewAlignment::PART_BENT : vpMorphViewAlignment::PART_HIDDEN;
+    a.model = modelOf(a.outsideShare, a.insideShare);
   return a;
 }
 
@@ -204,15 +210,12 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
     const double overlap = area > 0.0 ? region.overlapArea(m_goalRegion) / area : 0.0;
     if (!(check.getGoalCoverage() >= kBreakdown) || !(overlap >= kBreakdown) || !(check.getSigma() <= limit))
       return false;
-    // Rigid up to the homography when no run of outliers is beyond what the noise makes; else the side the runs lie on
-    // tells a part hidden from a part bent, as for a similarity.
+    // The same model test as a similarity's, up to the homography.
     outside = check.getOutsideShare();
     inside = check.getInsideShare();
-    if (outside + inside > 0.0) {
-      if (!partAllowed)
-        return false;
-      model = outside > inside ? vpMorphViewAlignment::PART_BENT : vpMorphViewAlignment::PART_HIDDEN;
-    }
+    model = modelOf(outside, inside);
+    if (model != vpMorphViewAlignment::RIGID && !partAllowed)
+      return false;
     a.goalCoverage = check.getGoalCoverage();
     // How well the goal pins the laid view's similarity: the uncertainty of the homography's similarity part.
     a.covariance = check.getCovariance();
