@@ -19,7 +19,8 @@ namespace
 using Mat3 = Eigen::Matrix3d;
 using Vec3 = Eigen::Vector3d;
 using Mat8 = Eigen::Matrix<double, 8, 8>;
-using Vec8 = Eigen::Matrix<double, 8, 1>;
+using Mat9 = Eigen::Matrix<double, 9, 9>;
+using Vec9 = Eigen::Matrix<double, 9, 1>;
 
 struct Point
 {
@@ -66,8 +67,9 @@ bool project(const Mat3 &M, double x, double y, double &xo, double &yo)
   return std::isfinite(xo) && std::isfinite(yo);
 }
 
-// n points evenly spaced along the closed polygon, starting at vertex 0.
-std::vector<Point> sampleOutline(const vpMorphContour &c, unsigned int n)
+// n points evenly spaced along the closed polygon, starting at vertex 0, and (when \e normals is given) the unit left
+// normal (-dy, dx) of the edge each lies on.
+std::vector<Point> sampleOutline(const vpMorphContour &c, unsigned int n, std::vector<Point> *normals = nullptr)
 {
   const double L = c.perimeter();
   std::vector<Point> out;
@@ -85,6 +87,8 @@ std::vector<Point> sampleOutline(const vpMorphContour &c, unsigned int n)
     const std::size_t l = (k + 1) % c.size();
     const double t = len > 0 ? std::min(1.0, (s - s0) / len) : 0.0;
     out.push_back({c.x(k) + t * (c.x(l) - c.x(k)), c.y(k) + t * (c.y(l) - c.y(k))});
+    if (normals)
+      normals->push_back(len > 0 ? Point{-(c.y(l) - c.y(k)) / len, (c.x(l) - c.x(k)) / len} : Point{0.0, 0.0});
   }
   return out;
 }
@@ -160,6 +164,20 @@ bool dlt(const std::vector<Point> &A, const std::vector<Point> &B, const std::ve
   Gn << h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7], h[8];
   G = Tb.inverse() * Gn * Ta;
   return finite(G) && std::fabs(G.determinant()) > 0;
+}
+
+/*
+  Distance from (x, y) to the edges of \e nearest moved by delta along their left normals, as the level delta of the
+  polygon's distance: an outline grown (or shrunk) all round is that level set, with rounded corners as a blurred edge
+  makes them. \e side is -d(distance)/d(delta): +1 where the point lies on the side the normals point to, -1 opposite.
+*/
+double offsetDistance(const vpMorphNearestEdge &nearest, double x, double y, double delta, double &mx, double &my,
+                      double &side)
+{
+  double along;
+  const double r = nearest(x, y, mx, my, along);
+  side = along > 0.0 ? 1.0 : (along < 0.0 ? -1.0 : 0.0);
+  return r - side * delta;
 }
 
 [[noreturn]] void degenerate(const std::string &msg)
@@ -242,6 +260,7 @@ vpMorphHomography vpMorphHomography::inverse() const
   h.m_residual = m_residual;
   h.m_inlierShare = m_inlierShare;
   h.m_iterations = m_iterations;
+  h.m_edgeOffset = 0.0;
   return h;
 }
 
@@ -302,32 +321,53 @@ vpMorphHomography vpMorphHomography::fit(const vpMorphContour &input, const vpMo
 
 vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const vpMorphContour &target,
                                             const vpMorphHomography &initial, double minSigma, unsigned int samples,
-                                            unsigned int maxIterations)
+                                            unsigned int maxIterations, bool edgeOffset)
 {
   checkFitInput(input, target, minSigma, samples, maxIterations, "vpMorphHomography::refine");
   const double scale = 0.5 * (input.perimeter() + target.perimeter());
   Mat3 G = toEigen(initial.m_G);
   const vpMorphNearestEdge nearestInput(input), nearestTarget(target);
-  // 2. Gauss-Newton on point-to-segment distances, both ways, nearest points recomputed at each iteration.
-  const std::vector<Point> SI = sampleOutline(input, samples), ST = sampleOutline(target, samples);
+  // 2. Gauss-Newton on point-to-segment distances, both ways, nearest points recomputed at each iteration. The
+  // parameters: D (8) of G (I + D), and the common offset delta of the target's edges along their left normals.
+  std::vector<Point> NT; // the target samples' edge normals
+  const std::vector<Point> SI = sampleOutline(input, samples), ST = sampleOutline(target, samples, &NT);
   const std::size_t N = SI.size() + ST.size();
-  std::vector<double> r(N), rw(N);
-  std::vector<Eigen::Matrix<double, 1, 8>> J(N);
+  std::vector<double> r(N);
+  Eigen::Matrix<double, Eigen::Dynamic, 9> J(N, 9), WJ(N, 9); // the rows' Jacobians, and weighted
+  Eigen::VectorXd rw(N);
   std::vector<Vec3> U(N);         // the samples mapped at this iteration (homogeneous)
   std::vector<double> X(N), Y(N); // and the same in the other contour's coordinates
+  // The offset along the target's left normals, from the initial homography's when it has one (the last image's).
+  const bool ccw = target.isCounterClockwise();
+  double delta = edgeOffset ? (ccw ? -initial.m_edgeOffset : initial.m_edgeOffset) : 0.0;
+  // Sample k mapped into the other contour at (G, delta): a target sample is first moved with its edge.
+  auto map = [&](const Mat3 &Gk, const Mat3 &Gik, std::size_t k) -> Vec3 {
+    if (k < SI.size())
+      return Gk * Vec3(SI[k].x, SI[k].y, 1.0);
+    const std::size_t j = k - SI.size();
+    return Gik * Vec3(ST[j].x + delta * NT[j].x, ST[j].y + delta * NT[j].y, 1.0);
+  };
   vpMorphHomography out;
   unsigned int it = 0;
   bool converged = false;
+  // The offset is fitted from when G is within the noise with it held (below), or at once from a homography that
+  // carries one (refined with its offset on the last image).
+  bool offsetFree = edgeOffset && delta != 0.0;
+  // At a settled G: whether the fit is done, else the offset is freed (G settled before the offset was).
+  auto done = [&]() {
+    if (offsetFree || !edgeOffset)
+      return true;
+    offsetFree = true;
+    return false;
+  };
   const unsigned int huberIterations = std::min(4u, std::max(1u, maxIterations / 2));
-  Mat8 Minv = Mat8::Zero(); // inverse of the last normal matrix, for the covariance
+  Mat9 Minv = Mat9::Zero(); // inverse of the last normal matrix, for the covariance
   double sigma = 0.0;       // the last iteration's robust scale
   for (it = 0; it < maxIterations && !converged; ++it) {
     const Mat3 Gi = G.inverse();
     double moved = 0.0; // the largest move of a mapped sample since the last iteration
     for (std::size_t k = 0; k < N; ++k) {
-      const bool fwd = k < SI.size();
-      const Point &p = fwd ? SI[k] : ST[k - SI.size()];
-      const Vec3 u = (fwd ? G : Gi) * Vec3(p.x, p.y, 1.0);
+      const Vec3 u = map(G, Gi, k);
       if (!(std::fabs(u[2]) > 1e-12 * u.norm()))
         degenerate("the homography maps part of an outline to infinity");
       const double x = u[0] / u[2], y = u[1] / u[2];
@@ -338,68 +378,81 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
       Y[k] = y;
     }
     // Settled once an update (of the Tukey rounds) moves no sample by a hundredth of the edges' noise: what is left
-    // is far below the estimate's own deviation. The nearest edges are then not searched again.
-    if (it > huberIterations && moved < 0.01 * sigma)
+    // is far below the estimate's own deviation. The nearest edges are then not searched again. The offset is held at
+    // 0 until an update moves no sample by the noise: the misfit G has yet to remove is then below it.
+    if (it > huberIterations && moved < 0.01 * sigma && done())
       break;
+    if (edgeOffset && it > huberIterations && moved < sigma)
+      offsetFree = true;
     for (std::size_t k = 0; k < N; ++k) {
       const bool fwd = k < SI.size();
-      const Point &p = fwd ? SI[k] : ST[k - SI.size()];
       const Vec3 &u = U[k];
       const double x = X[k], y = Y[k];
-      double mx, my;
-      r[k] = (fwd ? nearestTarget : nearestInput)(x, y, mx, my);
-      // d(residual) = m^T dpi, dpi = (1/u3) [1 0 -x; 0 1 -y] du; forward du = G D p, backward du = -D u.
+      double mx, my, side = 0.0;
+      r[k] = fwd ? offsetDistance(nearestTarget, x, y, delta, mx, my, side) : nearestInput(x, y, mx, my);
+      // d(residual) = m^T dpi, dpi = (1/u3) [1 0 -x; 0 1 -y] du; forward du = G D p, backward du = -D u, and the
+      // target's edges moved by d(delta) n: forward -side d(delta), backward du = G^-1 n d(delta).
       Eigen::Matrix<double, 1, 3> g;
       g << mx / u[2], my / u[2], -(mx * x + my * y) / u[2];
       Vec3 q;
+      double dDelta;
       if (fwd) {
+        q = Vec3(SI[k].x, SI[k].y, 1.0);
         g = g * G;
-        q = Vec3(p.x, p.y, 1.0);
+        dDelta = -side;
       } else {
+        const Point &n = NT[k - SI.size()];
+        dDelta = (g * Gi * Vec3(n.x, n.y, 0.0)).value();
         g = -g;
         q = u;
       }
-      J[k] << g[0] * q[0], g[0] * q[1], g[0] * q[2], g[1] * q[0], g[1] * q[1], g[1] * q[2], g[2] * q[0], g[2] * q[1];
+      J.row(k) << g[0] * q[0], g[0] * q[1], g[0] * q[2], g[1] * q[0], g[1] * q[1], g[1] * q[2], g[2] * q[0],
+          g[2] * q[1], dDelta;
     }
     std::vector<double> ar(N);
     for (std::size_t k = 0; k < N; ++k)
       ar[k] = std::fabs(r[k]);
     const bool tukey = it >= huberIterations;
     sigma = std::max({minSigma, 1.4826 * median(ar), 1e-13 * scale});
-    Mat8 M = Mat8::Zero();
-    Vec8 b = Vec8::Zero();
+    Eigen::VectorXd wr(N);
     for (std::size_t k = 0; k < N; ++k) {
       rw[k] = robustWeight(r[k], sigma, tukey);
-      if (rw[k] > 0) {
-        // The upper triangle, mirrored below: the same products as the full outer product, in half the time.
-        for (int i = 0; i < 8; ++i) {
-          const double wi = rw[k] * J[k][i];
-          for (int j = i; j < 8; ++j)
-            M(i, j) += wi * J[k][j];
-          b[i] -= wi * r[k];
-        }
+      if (!(rw[k] > 0)) { // a far residual weighs nothing, whatever its size
+        rw[k] = 0.0;
+        J.row(k).setZero();
       }
+      wr[k] = rw[k] > 0 ? rw[k] * r[k] : 0.0;
     }
-    for (int i = 0; i < 8; ++i)
-      for (int j = 0; j < i; ++j)
-        M(i, j) = M(j, i);
-    // Conditioning on the Jacobi-scaled normal matrix: a sliver or a collapsed outline leaves directions free.
-    Vec8 dg;
-    for (int i = 0; i < 8; ++i)
+    WJ.noalias() = rw.asDiagonal() * J;
+    Mat9 M = J.transpose() * WJ;
+    Vec9 b = -(J.transpose() * wr);
+    if (!offsetFree) {
+      M.row(8).setZero();
+      M.col(8).setZero();
+      M(8, 8) = 1.0;
+      b[8] = 0.0;
+    }
+    // Conditioning of G's part on the Jacobi-scaled normal matrix: a sliver or a collapsed outline leaves directions
+    // free. Growing an outline all round and scaling it are one motion on a disc: the offset's step has a faint prior
+    // at 0.
+    Vec9 dg;
+    for (int i = 0; i < 9; ++i)
       dg[i] = M(i, i) > 0 ? 1.0 / std::sqrt(M(i, i)) : 0.0;
-    const Mat8 Ms = dg.asDiagonal() * M * dg.asDiagonal();
-    const Eigen::SelfAdjointEigenSolver<Mat8> es(Ms, Eigen::EigenvaluesOnly);
+    Mat9 Ms = dg.asDiagonal() * M * dg.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Mat8> es(Ms.topLeftCorner<8, 8>(), Eigen::EigenvaluesOnly);
     if (!(dg.minCoeff() > 0) || !(es.eigenvalues()[0] > 1e-10 * es.eigenvalues()[7]))
       degenerate("the outlines leave the homography undetermined (ill-conditioned normal equations)");
-    const Eigen::LDLT<Mat8> ldlt(Ms);
-    const Vec8 d = dg.asDiagonal() * ldlt.solve(dg.asDiagonal() * b);
-    Minv = dg.asDiagonal() * ldlt.solve(Mat8::Identity()) * dg.asDiagonal();
+    Ms(8, 8) += 1e-9;
+    const Eigen::LDLT<Mat9> ldlt(Ms);
+    const Vec9 d = dg.asDiagonal() * ldlt.solve(dg.asDiagonal() * b);
+    Minv = dg.asDiagonal() * ldlt.solve(Mat9::Identity()) * dg.asDiagonal();
     if (!d.allFinite())
       degenerate("non-finite update");
     Mat3 D;
     D << d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], 0.0;
     G = normalise(G * (Mat3::Identity() + D));
-    converged = tukey && d.lpNorm<Eigen::Infinity>() < 1e-13;
+    delta += d[8];
+    converged = tukey && d.lpNorm<Eigen::Infinity>() < 1e-13 && done();
   }
   if (!finite(G) || !(std::fabs(G.determinant()) > 1e-14))
     degenerate("singular result");
@@ -410,12 +463,12 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     std::vector<double> ar;
     ar.reserve(N);
     for (std::size_t k = 0; k < N; ++k) {
-      const bool fwd = k < SI.size();
-      const Point &p = fwd ? SI[k] : ST[k - SI.size()];
-      double x, y, mx, my;
-      if (!project(fwd ? G : Gi, p.x, p.y, x, y))
+      const Vec3 u = map(G, Gi, k);
+      if (!(std::fabs(u[2]) > 1e-12 * u.norm()))
         degenerate("the homography maps part of an outline to infinity");
-      r[k] = (fwd ? nearestTarget : nearestInput)(x, y, mx, my);
+      const double x = u[0] / u[2], y = u[1] / u[2];
+      double mx, my, side;
+      r[k] = k < SI.size() ? offsetDistance(nearestTarget, x, y, delta, mx, my, side) : nearestInput(x, y, mx, my);
       ar.push_back(std::fabs(r[k]));
     }
     const double sigma = std::max({minSigma, 1.4826 * median(ar), 1e-13 * scale});
@@ -432,14 +485,17 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     }
     out.m_residual = n > 0 ? std::sqrt(s2 / n) : 0.0;
     out.m_inlierShare = double(n) / double(N);
-    // sigma^2 (J^T W J)^-1, sigma^2 from the weighted residuals over the degrees of freedom left.
-    const Mat8 C = (sw > 8.0 ? ws2 / (sw - 8.0) : 0.0) * Minv;
+    // sigma^2 (J^T W J)^-1 with the offset marginalised (the block of G's part), sigma^2 from the weighted residuals
+    // over the degrees of freedom left.
+    const double dof = edgeOffset ? 9.0 : 8.0;
+    const Mat8 C = (sw > dof ? ws2 / (sw - dof) : 0.0) * Minv.topLeftCorner<8, 8>();
     out.m_covariance.resize(8, 8);
     for (int i = 0; i < 8; ++i)
       for (int j = 0; j < 8; ++j)
         out.m_covariance[i][j] = C(i, j);
   }
   out.m_G = toVisp(G);
+  out.m_edgeOffset = ccw ? -delta : delta; // the left normals point in on a CCW outline
   out.m_iterations = it;
   return out;
 }

@@ -187,6 +187,51 @@ TEST_CASE("vpMorphHomography recovers tilt and depth from noisy outlines and a h
   CHECK(r < 0.5);
 }
 
+TEST_CASE("vpMorphHomography takes an outline grown all round for an edge offset, not a tilt", "[homography][refine]")
+{
+  // Near the goal (the final approach), the current view's outline measured a pixel out all round (px = 800: a
+  // lighting that clips). The bracket is asymmetric: grown, it is no similar or projective image of itself, so a
+  // homography without the offset bends the growth into a tilt.
+  const double px = 800;
+  const vpMorphContour target = project(cdMo, object(40));
+  const double near[][6] = {
+      {1.0, 30, 0.0, 10, 0.005, 0.0}, {0.5, -120, 0.1, -40, 0.0, 0.01}, {2.0, 200, -0.1, 170, -0.01, 0.0}};
+  for (const auto &s : near) {
+    const vpHomogeneousMatrix cMo = start(s[0], s[1], s[2], s[3], s[4], s[5]);
+    const vpMorphContour exact = project(cMo, object(40));
+    const double out = exact.isCounterClockwise() ? 1.0 : -1.0;
+    std::vector<double> x, y; // each vertex moved a pixel along the outward normal of its neighbours' chord
+    for (std::size_t k = 0; k < exact.size(); ++k) {
+      const std::size_t a = (k + exact.size() - 1) % exact.size(), b = (k + 1) % exact.size();
+      const double tx = exact.x(b) - exact.x(a), ty = exact.y(b) - exact.y(a), l = std::hypot(tx, ty);
+      x.push_back(exact.x(k) + out * ty / l / px);
+      y.push_back(exact.y(k) - out * tx / l / px);
+    }
+    const vpMorphContour grown(x, y, vpMorphContour::NORMALIZED);
+    const vpMorphContour coarse = project(cMo, object()), coarseTarget = project(cdMo, object());
+    const vpMorphHomography G0 =
+        vpMorphHomography::fit(coarse, coarseTarget, vpMorphMatcher().match(coarse, coarseTarget));
+    const vpMorphHomography G = vpMorphHomography::refine(grown, target, G0, 0.5 / px, 200, 20, true);
+    const vpMorphHomography plain = vpMorphHomography::refine(grown, target, G0, 0.5 / px);
+    const vpHomogeneousMatrix est = G.inputMtarget(Zd);
+    const double tiltErr = std::fabs(tiltOf(est.inverse() * cdMo) - tiltOf(cMo));
+    double t, r, tPlain, rPlain;
+    poseDiff(est, cMo * cdMo.inverse(), t, r);
+    poseDiff(plain.inputMtarget(Zd), cMo * cdMo.inverse(), tPlain, rPlain);
+    std::printf("[homography] outline 1 px out all round, tilt %.1f deg: tilt error %.3f deg, pose error %.2f mm %.3f "
+                "deg, offset %.3f px; without the offset %.2f mm %.3f deg\n",
+                s[0], tiltErr, 1000 * t, r, G.edgeOffset() * px, 1000 * tPlain, rPlain);
+    CHECK(plain.edgeOffset() == 0.0);
+    CHECK(tPlain > 10e-3);
+    // Without the offset the growth is read as a tilt and tens of millimetres; with it, what is left is the corners,
+    // which the test grows along the chord of their neighbours, not rounded as the offset's level set.
+    CHECK(G.edgeOffset() * px == Approx(1.0).margin(0.15));
+    CHECK(tiltErr < 0.1);
+    CHECK(r < 0.1);
+    CHECK(t < 1e-3);
+  }
+}
+
 TEST_CASE("vpMorphHomography rejects degenerate input", "[homography][safety]")
 {
   const vpMorphContour target = project(cdMo, object());

@@ -35,6 +35,14 @@
      images), so that an occluded or deformed part of an outline stops pulling the fit. Distances measured
      along the outline do not matter, so the vertex placement does not bias the result.
 
+  <b>Edge offset</b> (refine() on measured edges). An outline measured on the grey levels at a biased edge level (a
+  lighting that clips, a blur) is the object's outline grown or shrunk all round: eight parameters would bend that
+  growth into a tilt and a depth. refine() can fit one common offset of the target's edges with G: the target's
+  distance level set at that offset (corners rounded, as a blurred edge makes them). It is held at 0 until an update
+  of G moves no sample by the edges' robust scale (far from it, an offset would take up the misfit G has yet to
+  remove). Polygon edges are chords placed by the approximation, not measured edges: their misfit is no offset,
+  which would only trade it for scale.
+
   On two exact projections of the same polygon the residual is zero at the true homography, which is then found
   to numerical precision.
 
@@ -58,6 +66,11 @@
 class vpMorphHomography
 {
 public:
+  //! Samples per contour of fit() and refine() by default.
+  static const unsigned int kDefaultSamples = 200;
+  //! Gauss-Newton iterations of fit() and refine() at most, by default.
+  static const unsigned int kDefaultIterations = 20;
+
   //! Identity.
   vpMorphHomography();
   /*!
@@ -80,6 +93,12 @@ public:
 
   //! RMS of the point-to-segment distances of the inlier samples after fit() (units of the contours).
   double residual() const { return m_residual; }
+  /*!
+    The common offset of the target's edges along their outward normals that the fit found (units of the contours;
+    positive when the mapped input is measured larger than the target all round), after refine() with the offset; 0
+    otherwise.
+  */
+  double edgeOffset() const { return m_edgeOffset; }
   //! Share of the samples whose final robust weight is not zero, after fit() (1 for a constructed homography).
   double inlierShare() const { return m_inlierShare; }
   //! Gauss-Newton iterations run by fit().
@@ -90,7 +109,8 @@ public:
     of freedom left. Why: how well the outlines fix each part of G, the perspective part (d6, d7: about the tilt in
     radians when G is near the identity in normalised coordinates) above all, which a thin object barely fixes.
     The samples along an outline are not independent (neighbouring edge points share pixels), so it is optimistic
-    by the number of samples per independent one. Zero for a constructed or inverted homography.
+    by the number of samples per independent one. The edge offset is marginalised. Zero for a constructed or
+    inverted homography.
   */
   const vpMatrix &covariance() const { return m_covariance; }
 
@@ -104,7 +124,7 @@ public:
   */
   static vpMorphHomography fit(const vpMorphContour &input, const vpMorphContour &target,
                                const vpMorphCorrespondence &correspondence, double minSigma = 0.0,
-                               unsigned int samples = 200, unsigned int maxIterations = 20);
+                               unsigned int samples = kDefaultSamples, unsigned int maxIterations = kDefaultIterations);
 
   /*!
     Robust refinement of \e initial (step 2 of fit() alone: two-way point-to-segment Gauss-Newton, Huber then
@@ -112,11 +132,15 @@ public:
     sequence, refined on dense outlines (vpMorphContour::outline(): a point per boundary pixel), is fixed to a few
     hundredths of a pixel, where polygons leave tenths. Nearest edges are found through a grid, so the cost grows
     with the samples, not with the outlines' sizes.
+    \param edgeOffset fit the common edge offset too (see the class description): for outlines measured on the
+    grey levels (vpMorphContour::hasOutline()), not for polygons. It starts from \e initial's edgeOffset() (a
+    homography refined on the last image of a sequence carries it).
     \throw vpMorphException as fit() (no correspondence is involved).
   */
   static vpMorphHomography refine(const vpMorphContour &input, const vpMorphContour &target,
-                                  const vpMorphHomography &initial, double minSigma = 0.0, unsigned int samples = 200,
-                                  unsigned int maxIterations = 20);
+                                  const vpMorphHomography &initial, double minSigma = 0.0,
+                                  unsigned int samples = kDefaultSamples,
+                                  unsigned int maxIterations = kDefaultIterations, bool edgeOffset = false);
 
   /*!
     The pose of the target camera in the input camera frame, iMt (with the current view as input and the desired
@@ -130,7 +154,7 @@ public:
 private:
   vpMatrix m_G;
   vpMatrix m_covariance = vpMatrix(8, 8, 0.0);
-  double m_residual = 0.0, m_inlierShare = 1.0;
+  double m_residual = 0.0, m_inlierShare = 1.0, m_edgeOffset = 0.0;
   unsigned int m_iterations = 0;
 };
 
