@@ -14,8 +14,8 @@
 
 namespace
 {
-// Outline points of a homography fit (vpMorphHomography's default).
-const unsigned int kSamples = 200;
+// Outline points of a homography fit.
+const unsigned int kSamples = vpMorphHomography::kDefaultSamples;
 
 // The largest standard deviation of a 2x2 covariance [c00 c01; c01 c11].
 double largestDeviation(double c00, double c01, double c11)
@@ -102,13 +102,14 @@ bool vpMorphTiltEstimator::homography(const vpMorphContour &currentN, const vpMo
                                       vpMorphHomography &G) const
 {
   // The robust scale floored as the view aligner's (the edges' noise); measured outlines sampled twice as densely as
-  // polygons (every few pixels of a tool's outline: what the tilt's second-order effect needs).
+  // polygons (every few pixels of a tool's outline: what the tilt's second-order effect needs), with the common edge
+  // offset that measured edges carry.
   const bool dense = currentN.hasOutline() && targetN.hasOutline();
   try {
     G = vpMorphHomography::refine(
         currentN.outline(), targetN.outline(), start,
         (dense ? vpMorphViewAligner::outlineSigmaFloorPx() : vpMorphViewAligner::polygonSigmaFloorPx()) * m_pixel,
-        dense ? 2 * kSamples : kSamples);
+        dense ? 2 * kSamples : kSamples, vpMorphHomography::kDefaultIterations, dense);
   } catch (const vpException &) {
     return false;
   }

@@ -176,7 +176,9 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
   for (int start = m_haveHomography ? 0 : 1; start < (warmOnly ? 1 : 2) && !ok; ++start) {
     try {
       const vpMorphHomography G0 = start == 0 ? m_homography : vpMorphHomography(a.transform.toMatrix());
-      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G0, floor);
+      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G0, floor,
+                                    vpMorphHomography::kDefaultSamples, vpMorphHomography::kDefaultIterations,
+                                    measured);
       ok = explains(G);
     } catch (const vpException &) {
     }
@@ -185,7 +187,8 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
     try {
       const vpMorphCorrespondence &corr = m_tracker.update(currentN, m_goalN);
       G = vpMorphHomography::fit(currentN, m_goalN, corr, floor);
-      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G, floor);
+      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G, floor, vpMorphHomography::kDefaultSamples,
+                                    vpMorphHomography::kDefaultIterations, measured);
       ok = explains(G);
     } catch (const vpException &) {
     }
