@@ -260,7 +260,6 @@ vpMorphHomography vpMorphHomography::inverse() const
   h.m_residual = m_residual;
   h.m_inlierShare = m_inlierShare;
   h.m_iterations = m_iterations;
-  h.m_edgeOffset = 0.0;
   return h;
 }
 
@@ -340,12 +339,17 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
   // The offset along the target's left normals, from the initial homography's when it has one (the last image's).
   const bool ccw = target.isCounterClockwise();
   double delta = edgeOffset ? (ccw ? -initial.m_edgeOffset : initial.m_edgeOffset) : 0.0;
-  // Sample k mapped into the other contour at (G, delta): a target sample is first moved with its edge.
-  auto map = [&](const Mat3 &Gk, const Mat3 &Gik, std::size_t k) -> Vec3 {
-    if (k < SI.size())
-      return Gk * Vec3(SI[k].x, SI[k].y, 1.0);
+  // Sample k mapped into the other contour at (G, delta), homogeneous, and (x, y): a target sample is first moved with
+  // its edge.
+  auto map = [&](const Mat3 &Gk, const Mat3 &Gik, std::size_t k, double &x, double &y) -> Vec3 {
     const std::size_t j = k - SI.size();
-    return Gik * Vec3(ST[j].x + delta * NT[j].x, ST[j].y + delta * NT[j].y, 1.0);
+    const Vec3 u = k < SI.size() ? Vec3(Gk * Vec3(SI[k].x, SI[k].y, 1.0))
+                                 : Vec3(Gik * Vec3(ST[j].x + delta * NT[j].x, ST[j].y + delta * NT[j].y, 1.0));
+    if (!(std::fabs(u[2]) > 1e-12 * u.norm()))
+      degenerate("the homography maps part of an outline to infinity");
+    x = u[0] / u[2];
+    y = u[1] / u[2];
+    return u;
   };
   vpMorphHomography out;
   unsigned int it = 0;
@@ -367,10 +371,8 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     const Mat3 Gi = G.inverse();
     double moved = 0.0; // the largest move of a mapped sample since the last iteration
     for (std::size_t k = 0; k < N; ++k) {
-      const Vec3 u = map(G, Gi, k);
-      if (!(std::fabs(u[2]) > 1e-12 * u.norm()))
-        degenerate("the homography maps part of an outline to infinity");
-      const double x = u[0] / u[2], y = u[1] / u[2];
+      double x, y;
+      const Vec3 u = map(G, Gi, k, x, y);
       if (it > 0)
         moved = std::max({moved, std::fabs(x - X[k]), std::fabs(y - Y[k])});
       U[k] = u;
@@ -417,11 +419,12 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     Eigen::VectorXd wr(N);
     for (std::size_t k = 0; k < N; ++k) {
       rw[k] = robustWeight(r[k], sigma, tukey);
-      if (!(rw[k] > 0)) { // a far residual weighs nothing, whatever its size
-        rw[k] = 0.0;
+      if (rw[k] > 0) {
+        wr[k] = rw[k] * r[k];
+      } else { // a far residual weighs nothing, whatever its size
+        rw[k] = wr[k] = 0.0;
         J.row(k).setZero();
       }
-      wr[k] = rw[k] > 0 ? rw[k] * r[k] : 0.0;
     }
     WJ.noalias() = rw.asDiagonal() * J;
     Mat9 M = J.transpose() * WJ;
@@ -463,11 +466,8 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     std::vector<double> ar;
     ar.reserve(N);
     for (std::size_t k = 0; k < N; ++k) {
-      const Vec3 u = map(G, Gi, k);
-      if (!(std::fabs(u[2]) > 1e-12 * u.norm()))
-        degenerate("the homography maps part of an outline to infinity");
-      const double x = u[0] / u[2], y = u[1] / u[2];
-      double mx, my, side;
+      double x, y, mx, my, side;
+      map(G, Gi, k, x, y);
       r[k] = k < SI.size() ? offsetDistance(nearestTarget, x, y, delta, mx, my, side) : nearestInput(x, y, mx, my);
       ar.push_back(std::fabs(r[k]));
     }

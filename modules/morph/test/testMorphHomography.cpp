@@ -14,6 +14,8 @@
 #include <visp3/morph/vpMorphHomography.h>
 #include <visp3/morph/vpMorphMatcher.h>
 
+#include "testMorphShapes.h"
+
 namespace
 {
 // A 15 cm asymmetric bracket in the plane z = 0 of its frame, each edge split into \e split parts (more vertices).
@@ -199,15 +201,8 @@ TEST_CASE("vpMorphHomography takes an outline grown all round for an edge offset
   for (const auto &s : near) {
     const vpHomogeneousMatrix cMo = start(s[0], s[1], s[2], s[3], s[4], s[5]);
     const vpMorphContour exact = project(cMo, object(40));
-    const double out = exact.isCounterClockwise() ? 1.0 : -1.0;
-    std::vector<double> x, y; // each vertex moved a pixel along the outward normal of its neighbours' chord
-    for (std::size_t k = 0; k < exact.size(); ++k) {
-      const std::size_t a = (k + exact.size() - 1) % exact.size(), b = (k + 1) % exact.size();
-      const double tx = exact.x(b) - exact.x(a), ty = exact.y(b) - exact.y(a), l = std::hypot(tx, ty);
-      x.push_back(exact.x(k) + out * ty / l / px);
-      y.push_back(exact.y(k) - out * tx / l / px);
-    }
-    const vpMorphContour grown(x, y, vpMorphContour::NORMALIZED);
+    // The edges a pixel out (the left normals point in on a counter-clockwise outline).
+    const vpMorphContour grown = vpMorphTest::offsetEdges(exact, (exact.isCounterClockwise() ? -1.0 : 1.0) / px);
     const vpMorphContour coarse = project(cMo, object()), coarseTarget = project(cdMo, object());
     const vpMorphHomography G0 =
         vpMorphHomography::fit(coarse, coarseTarget, vpMorphMatcher().match(coarse, coarseTarget));
@@ -224,7 +219,7 @@ TEST_CASE("vpMorphHomography takes an outline grown all round for an edge offset
     CHECK(plain.edgeOffset() == 0.0);
     CHECK(tPlain > 10e-3);
     // Without the offset the growth is read as a tilt and tens of millimetres; with it, what is left is the corners,
-    // which the test grows along the chord of their neighbours, not rounded as the offset's level set.
+    // which the test grows mitred, not rounded as the offset's level set.
     CHECK(G.edgeOffset() * px == Approx(1.0).margin(0.15));
     CHECK(tiltErr < 0.1);
     CHECK(r < 0.1);

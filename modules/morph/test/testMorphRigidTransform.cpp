@@ -407,23 +407,6 @@ TEST_CASE("vpMorphRigidTransform: refineOnOutline aligns a cut outline to the wh
                   vpMorphException);
 }
 
-// \e c with every edge moved by d along its left normal (-dy, dx) / |d|, the vertices where the moved edges meet.
-vpMorphContour offsetEdges(const vpMorphContour &c, double d)
-{
-  const std::size_t n = c.size();
-  std::vector<double> x(n), y(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t p = (k + n - 1) % n, q = (k + 1) % n;
-    const double l1 = std::hypot(c.x(k) - c.x(p), c.y(k) - c.y(p)), l2 = std::hypot(c.x(q) - c.x(k), c.y(q) - c.y(k));
-    const double n1x = -(c.y(k) - c.y(p)) / l1, n1y = (c.x(k) - c.x(p)) / l1;
-    const double n2x = -(c.y(q) - c.y(k)) / l2, n2y = (c.x(q) - c.x(k)) / l2;
-    const double f = d / (1.0 + n1x * n2x + n1y * n2y);
-    x[k] = c.x(k) + f * (n1x + n2x);
-    y[k] = c.y(k) + f * (n1y + n2y);
-  }
-  return vpMorphContour(x, y);
-}
-
 TEST_CASE("vpMorphRigidTransform: refineOnOutline with an edge offset is not fooled by an outline grown all round",
           "[morph][rigid]")
 {
@@ -436,7 +419,7 @@ TEST_CASE("vpMorphRigidTransform: refineOnOutline with an edge offset is not foo
     const double grown = 0.1 + 0.02 * trial;                               // pixels, outwards
     const vpMorphRigidTransform truth = randomSimilarity(rng, B);
     // Counter-clockwise: the left normals point inwards, so growing is a negative offset along them.
-    const vpMorphContour A = truth.inverse().apply(offsetEdges(B, -grown));
+    const vpMorphContour A = truth.inverse().apply(vpMorphTest::offsetEdges(B, -grown));
     const vpMorphRigidTransform initial = vpMorphRigidTransform(0.01, 1.0, -1.0, 1.002, truth.cx(), truth.cy()) * truth;
     const vpMorphRigidTransform plain = vpMorphRigidTransform::refineOnOutline(A, B, initial, true, 0.01, 30);
     double offset = 1.0;
