@@ -94,7 +94,7 @@ void usage(std::ostream &os)
         "  --data DIR         the data/ folder (default: the repository's)\n"
         "  --no-curves        do not write curves.csv\n"
         "  --recognition      no runs: recognise each scenario's first view (recognition.csv, recognition.md)\n"
-        "  --recognition-model M  the databases' distance: polygon, paper, multiscale (default) or rigid\n"
+        "  --recognition-model M  the databases' distance: polygon, paper, multiscale (default), rigid or height\n"
         "  --video            no summary: each run recorded in DIR/video/ (frames, overlays, a video; choose the\n"
         "                     runs with --set, --only and --controllers)\n"
         "  --no-plots         do not run the plot script\n"

@@ -3,7 +3,7 @@
   \brief Template databases from the command line: build one from a folder of images, inspect it, recognise.
 
   \code
-  vispmorph-db build DIR --out db.json [--model rigid|multiscale|paper|polygon] [--threshold T] [--joints JDIR]
+  vispmorph-db build DIR --out db.json [--model rigid|multiscale|paper|polygon|height] [--threshold T] [--joints JDIR]
   vispmorph-db info db.json
   vispmorph-db recognize db.json IMAGE... [--json] [--exhaustive] [--min-support S|off]
   \endcode
@@ -46,7 +46,7 @@ namespace
 {
 void usage(std::ostream &os)
 {
-  os << "Usage: vispmorph-db build DIR --out db.json [--model rigid|multiscale|paper|polygon] [--threshold T]\n"
+  os << "Usage: vispmorph-db build DIR --out db.json [--model rigid|multiscale|paper|polygon|height] [--threshold T]\n"
         "                         [--joints JDIR]\n"
         "       vispmorph-db info db.json\n"
         "       vispmorph-db recognize db.json IMAGE... [--json] [--exhaustive] [--min-support S|off]\n"

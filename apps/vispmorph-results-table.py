@@ -127,10 +127,14 @@ def reid_table(outdir):
 
 def distance_label(d, path):
     try:
-        label = "%s (%d points%s, kb %g)" % (d["model"], d["points"], ", mirrors" if d["mirrors"] else "", d["kb"])
+        mirrors = ", mirrors" if d["mirrors"] else ""
+        if d["model"] == "height":
+            return "height (%d points, %d segments, skip %g, %d starts%s)" % (
+                d["points"], d["segments"], d["skip"], d["starts"], mirrors)
+        return "%s (%d points%s, kb %g)" % (d["model"], d["points"], mirrors, d["kb"])
     except (KeyError, TypeError, ValueError):
-        raise ResultsFileError("'%s': distance lacks its model, points, mirrors or kb" % path)
-    return label
+        raise ResultsFileError("'%s': distance lacks its model, points, mirrors, kb or the height model's settings"
+                               % path)
 
 
 def retrieval_table(outdirs):

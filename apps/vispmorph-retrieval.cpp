@@ -3,8 +3,9 @@
   \brief Shape retrieval benchmark by morph distance: full distance matrix, MPEG-7 bull's-eye, Kimia-99 ranks.
 
   \code
-  vispmorph-retrieval --images DIR [--classes classes.csv] --out OUTDIR [--model paper|multiscale|polygon]
-                      [--points N] [--kb K] [--no-mirrors] [--threads T] [--limit N]
+  vispmorph-retrieval --images DIR [--classes classes.csv] --out OUTDIR [--model paper|multiscale|polygon|height]
+                      [--points N] [--kb K] [--segments M] [--skip C] [--starts K] [--no-mirrors] [--threads T]
+                      [--limit N]
   \endcode
   Polygonises the largest object of every image of DIR (all cores), computes the full symmetric matrix of the
   chosen vpMorphShapeDistance (all cores, progress bar on stderr) and writes in OUTDIR:
@@ -51,11 +52,14 @@ void usage(std::ostream &os)
   os << "Usage: vispmorph-retrieval --images DIR --out OUTDIR [options]\n"
         "  --classes FILE   file,class CSV (default: DIR/classes.csv if present, else the file name up to its\n"
         "                   last '-' or '_')\n"
-        "  --model NAME     paper (64 points, mirrors), multiscale (default) or polygon\n"
-        "  --points N       vertices per resampled outline (paper, multiscale)\n"
+        "  --model NAME     paper (64 points, mirrors), multiscale (default), polygon or height\n"
+        "  --points N       vertices per resampled outline (paper, multiscale, height)\n"
         "  --kb K           bending stiffness of the work model\n"
         "  --cs C           collapse penalty of the work model, in (0, 1]\n"
         "  --scales a,b,..  Gaussian widths (fractions of the perimeter) of the multiscale model\n"
+        "  --segments M     descriptor entries of the height model (dividing its points)\n"
+        "  --skip C         cost of an unmatched point of the height model\n"
+        "  --starts K       starting points the height model's matching tries (0: all)\n"
         "  --no-mirrors     do not match mirror images\n"
         "  --threads T      threads (default: all cores)\n"
         "  --limit N        use only the first N images (quick runs)\n";
@@ -64,8 +68,8 @@ void usage(std::ostream &os)
 struct Options
 {
   std::string images, classes, out, model = "multiscale", scales;
-  long points = 0, threads = 0, limit = 0;
-  double kb = -1.0, cs = -1.0;
+  long points = 0, threads = 0, limit = 0, segments = 0, starts = -1;
+  double kb = -1.0, cs = -1.0, skip = -1.0;
   bool noMirrors = false;
 };
 
@@ -79,7 +83,8 @@ bool parse(int argc, char **argv, Options &o)
     } else if (s == "--no-mirrors") {
       o.noMirrors = true;
     } else if (s == "--images" || s == "--classes" || s == "--out" || s == "--model" || s == "--points" ||
-               s == "--kb" || s == "--cs" || s == "--threads" || s == "--limit" || s == "--scales") {
+               s == "--kb" || s == "--cs" || s == "--threads" || s == "--limit" || s == "--scales" ||
+               s == "--segments" || s == "--skip" || s == "--starts") {
       if (k + 1 >= argc) {
         std::cerr << "vispmorph-retrieval: " << s << " needs a value\n";
         return false;
@@ -96,8 +101,8 @@ bool parse(int argc, char **argv, Options &o)
         o.model = v;
       else if (s == "--scales")
         o.scales = v;
-      else if (s == "--kb" || s == "--cs") {
-        double &x = s == "--kb" ? o.kb : o.cs;
+      else if (s == "--kb" || s == "--cs" || s == "--skip") {
+        double &x = s == "--kb" ? o.kb : s == "--cs" ? o.cs : o.skip;
         x = std::strtod(v.c_str(), &end);
         if (v.empty() || *end != '\0' || !(x > 0.0)) {
           std::cerr << "vispmorph-retrieval: " << s << " needs a positive number (got '" << v << "')\n";
@@ -109,7 +114,11 @@ bool parse(int argc, char **argv, Options &o)
           std::cerr << "vispmorph-retrieval: " << s << " needs a non-negative integer (got '" << v << "')\n";
           return false;
         }
-        (s == "--points" ? o.points : s == "--threads" ? o.threads : o.limit) = x;
+        (s == "--points"     ? o.points
+         : s == "--threads"  ? o.threads
+         : s == "--segments" ? o.segments
+         : s == "--starts"   ? o.starts
+                             : o.limit) = x;
       }
     } else {
       std::cerr << "vispmorph-retrieval: unknown option '" << s << "'\n";
@@ -186,7 +195,18 @@ int main(int argc, char **argv)
   }
   try {
     vpMorphShapeDistance dist = vpMorphShapeDistance::fromName(o.model);
-    if (o.points > 0)
+    if (o.segments > 0 || o.skip > 0.0 || o.starts >= 0 ||
+        (o.points > 0 && dist.model() == vpMorphShapeDistance::HEIGHT)) {
+      vpMorphHeightFunction h = dist.heightFunction();
+      h.setPoints(o.points > 0 ? static_cast<std::size_t>(o.points) : h.getPoints(),
+                  o.segments > 0 ? static_cast<std::size_t>(o.segments) : h.getSegments());
+      if (o.skip > 0.0)
+        h.setSkipCost(o.skip);
+      if (o.starts >= 0)
+        h.setCandidateStarts(static_cast<std::size_t>(o.starts));
+      dist.setHeightFunction(h);
+    }
+    if (o.points > 0 && dist.model() != vpMorphShapeDistance::HEIGHT)
       dist.setPoints(static_cast<std::size_t>(o.points));
     if (o.kb > 0.0 || o.cs > 0.0)
       dist.setWorkModel(vpMorphWorkModel(dist.workModel().ks(), o.kb > 0.0 ? o.kb : dist.workModel().kb(),
@@ -329,6 +349,11 @@ int main(int argc, char **argv)
     j["distance"] = {{"model", dist.name()},       {"points", dist.points()},     {"mirrors", dist.mirrors()},
                      {"scales", dist.scales()},    {"ks", dist.workModel().ks()}, {"kb", dist.workModel().kb()},
                      {"cs", dist.workModel().cs()}};
+    const bool height = dist.model() == vpMorphShapeDistance::HEIGHT;
+    if (height)
+      j["distance"].update({{"segments", dist.heightFunction().getSegments()},
+                            {"skip", dist.heightFunction().getSkipCost()},
+                            {"starts", dist.heightFunction().getCandidateStarts()}});
     j["bullseye_percent"] = bullseye;
     j["rank_counts"] = rankCounts;
     j["rank_counts_sum"] = rankSum;
@@ -343,9 +368,13 @@ int main(int argc, char **argv)
     md << std::fixed << std::setprecision(2)
        << "| images | model | shapes | bull's-eye (top-40) | ranks 1..10 (sum) | top-1 | matrix time |\n"
        << "|---|---|---|---|---|---|---|\n"
-       << "| " << fs::path(o.images).filename().string() << " | " << dist.name() << " (" << dist.points() << " pts, kb "
-       << dist.workModel().kb() << ", cs " << dist.workModel().cs() << (dist.mirrors() ? ", mirrors" : "") << ") | "
-       << N << " | " << bullseye << " % | ";
+       << "| " << fs::path(o.images).filename().string() << " | " << dist.name() << " (" << dist.points() << " pts, ";
+    if (height)
+      md << dist.heightFunction().getSegments() << " segments, skip " << dist.heightFunction().getSkipCost()
+         << ", starts " << dist.heightFunction().getCandidateStarts();
+    else
+      md << "kb " << dist.workModel().kb() << ", cs " << dist.workModel().cs();
+    md << (dist.mirrors() ? ", mirrors" : "") << ") | " << N << " | " << bullseye << " % | ";
     for (std::size_t r = 0; r < 10; ++r)
       md << (r ? ", " : "") << rankCounts[r];
     md << " (" << rankSum << ") | " << top1acc << " % | " << std::setprecision(1) << secMatrix << " s ("

@@ -206,6 +206,10 @@ std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
   j["distance"] = {{"model", d.name()},       {"points", d.points()},     {"mirrors", d.mirrors()},
                    {"scales", d.scales()},    {"ks", d.workModel().ks()}, {"kb", d.workModel().kb()},
                    {"cs", d.workModel().cs()}};
+  if (d.model() == vpMorphShapeDistance::HEIGHT)
+    j["distance"].update({{"segments", d.heightFunction().getSegments()},
+                          {"skip", d.heightFunction().getSkipCost()},
+                          {"starts", d.heightFunction().getCandidateStarts()}});
   json cal;
   cal["calibrated"] = m_calibrated;
   cal["manual"] = m_manual;
@@ -317,7 +321,13 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
   try {
     d.setWorkModel(vpMorphWorkModel(field<double>(dj, "ks", "\"distance\""), field<double>(dj, "kb", "\"distance\""),
                                     field<double>(dj, "cs", "\"distance\"")));
-    if (d.model() != vpMorphShapeDistance::POLYGON) {
+    if (d.model() == vpMorphShapeDistance::HEIGHT) {
+      vpMorphHeightFunction h = d.heightFunction();
+      h.setPoints(field<std::size_t>(dj, "points", "\"distance\""), field<std::size_t>(dj, "segments", "\"distance\""));
+      h.setSkipCost(field<double>(dj, "skip", "\"distance\""));
+      h.setCandidateStarts(field<std::size_t>(dj, "starts", "\"distance\""));
+      d.setHeightFunction(h);
+    } else if (d.model() != vpMorphShapeDistance::POLYGON) {
       d.setPoints(field<std::size_t>(dj, "points", "\"distance\""));
       d.setScales(field<std::vector<double>>(dj, "scales", "\"distance\""));
     }

@@ -112,6 +112,10 @@ vpMorphShapeDistance::vpMorphShapeDistance(Model model) : m_model(model), m_poin
     break;
   case RIGID:
     break;
+  case HEIGHT:
+    m_points = m_height.getPoints();
+    m_mirrors = m_height.getMirrors();
+    break;
   }
 }
 
@@ -125,8 +129,10 @@ vpMorphShapeDistance vpMorphShapeDistance::fromName(const std::string &name)
     return vpMorphShapeDistance(MULTISCALE);
   if (name == "rigid")
     return vpMorphShapeDistance(RIGID);
-  throw vpMorphException(vpMorphException::badParameterError,
-                         "vpMorphShapeDistance: unknown model '" + name + "' (polygon, paper, multiscale or rigid)");
+  if (name == "height")
+    return vpMorphShapeDistance(HEIGHT);
+  throw vpMorphException(vpMorphException::badParameterError, "vpMorphShapeDistance: unknown model '" + name +
+                                                                  "' (polygon, paper, multiscale, rigid or height)");
 }
 
 std::string vpMorphShapeDistance::name() const
@@ -138,6 +144,8 @@ std::string vpMorphShapeDistance::name() const
     return "multiscale";
   case RIGID:
     return "rigid";
+  case HEIGHT:
+    return "height";
   default:
     return "polygon";
   }
@@ -150,7 +158,17 @@ void vpMorphShapeDistance::setPoints(std::size_t n)
     os << "vpMorphShapeDistance: " << n << " points per outline is too few (at least 8)";
     throw vpMorphException(vpMorphException::badParameterError, os.str());
   }
+  if (m_model == HEIGHT)
+    m_height.setPoints(n, m_height.getSegments());
   m_points = m_model == POLYGON || m_model == RIGID ? 0 : n;
+}
+
+void vpMorphShapeDistance::setHeightFunction(const vpMorphHeightFunction &h)
+{
+  m_height = h;
+  m_height.setMirrors(m_mirrors);
+  if (m_model == HEIGHT)
+    m_points = m_height.getPoints();
 }
 
 void vpMorphShapeDistance::setScales(const std::vector<double> &sigmas)
@@ -169,6 +187,10 @@ vpMorphShapeDistance::Shape vpMorphShapeDistance::prepare(const vpMorphContour &
   if (c.empty())
     throw vpMorphException(vpMorphException::badContourError, "vpMorphShapeDistance: empty contour");
   Shape s;
+  if (m_model == HEIGHT) {
+    s.height = m_height.describe(c);
+    return s;
+  }
   if (m_model == RIGID) {
     s.forms.push_back(c);
     s.rigid.emplace_back(c);
@@ -200,6 +222,13 @@ double vpMorphShapeDistance::distance(const Shape &a, const Shape &b, vpMorphMat
                                       bool *mirrored, vpMorphRigidCheck::Result *check) const
 {
   const std::size_t per = m_mirrors ? 2 : 1;
+  if (m_model == HEIGHT) {
+    bool m = false;
+    const double d = m_height.distance(a.height, b.height, &m);
+    if (mirrored)
+      *mirrored = m;
+    return d;
+  }
   if (m_model == RIGID) {
     if (a.rigid.size() != per || b.rigid.empty())
       throw vpMorphException(vpMorphException::badParameterError,
@@ -252,7 +281,7 @@ double vpMorphShapeDistance::distance(const vpMorphContour &a, const vpMorphCont
 
 double vpMorphShapeDistance::lowerBound(const Shape &a, const Shape &b) const
 {
-  if (m_model == RIGID)
+  if (m_model == RIGID || m_model == HEIGHT)
     return 0.0;
   double sum = 0.0;
   for (std::size_t s = 0; s < a.len.size() && s < b.len.size(); ++s) {

@@ -172,6 +172,26 @@ TEST_CASE("database: JSON round trip keeps every field", "[database]")
   CHECK(m.distance().scales() == db.distance().scales());
   CHECK(m.distance().points() == db.distance().points());
   CHECK_FALSE(m.isCalibrated());
+  // So is the height model, with the same answers.
+  vpMorphShapeDistance height(vpMorphShapeDistance::HEIGHT);
+  vpMorphHeightFunction h = height.heightFunction();
+  h.setPoints(120, 24);
+  h.setSkipCost(0.25);
+  h.setCandidateStarts(3);
+  height.setHeightFunction(h);
+  db.setDistance(height);
+  db.save(file.string());
+  const vpMorphDatabase hb = vpMorphDatabase::load(file.string());
+  CHECK(hb.distance().name() == "height");
+  CHECK(hb.distance().heightFunction().getPoints() == 120);
+  CHECK(hb.distance().heightFunction().getSegments() == 24);
+  CHECK(hb.distance().heightFunction().getSkipCost() == 0.25);
+  CHECK(hb.distance().heightFunction().getCandidateStarts() == 3);
+  const vpMorphContour q = db["wrench"].contour().transformed(1, 2, 3, 0.8);
+  const vpMorphRecognition ra = db.recognize(q), rb = hb.recognize(q);
+  CHECK(ra.index == db.find("wrench"));
+  CHECK(ra.index == rb.index);
+  CHECK(ra.distance == rb.distance);
 }
 
 TEST_CASE("database: bad files give clear errors", "[database]")

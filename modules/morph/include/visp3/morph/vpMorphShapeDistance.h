@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphHeightFunction.h>
 #include <visp3/morph/vpMorphMatcher.h>
 #include <visp3/morph/vpMorphRigidCheck.h>
 #include <visp3/morph/vpMorphRigidShape.h>
@@ -43,16 +44,20 @@
     deformation-tolerant D_morph absorbs them. Mirror images off (a part lying on a table shows one side; teach the
     other side as a template of its own, or turn mirrors on: the mirror image is then tried when the direct one
     costs more). Not symmetric in general (the first shape is laid on the second), nor a metric.
+  - HEIGHT: not D_morph. Height functions matched by a cyclic correspondence (vpMorphHeightFunction, its settings
+    through heightFunction()), mirror images included: where every other point of the outline lies as seen from each
+    point, which tells apart classes whose parts bend alike but differ in length or place. The best of these models
+    for shape retrieval.
 
   Every representation is computed once per contour (prepare()), so a matrix over N shapes costs N
   preparations and N(N-1)/2 distances. The distance is symmetric and invariant to translation, rotation and
   scale (the matcher normalises to unit perimeter).
 
-  <b>Lower bound.</b> (D_morph models; 0 for RIGID) lowerBound() is a cheap certificate that distance() cannot be
-  smaller: every vertex of each polygon is entered by exactly one step of a correspondence, and every step costs at
-  least as much as the cheapest step that could enter its vertex, so the sum over vertices of those minima (for either
-  polygon, take the larger) bounds D_morph from below; mirror images have the same lengths and turning angles so the
-  bound holds for them too. Used to skip templates that cannot win a recognition, without changing its result.
+  <b>Lower bound.</b> (D_morph models; 0 for RIGID and HEIGHT) lowerBound() is a cheap certificate that distance()
+  cannot be smaller: every vertex of each polygon is entered by exactly one step of a correspondence, and every step
+  costs at least as much as the cheapest step that could enter its vertex, so the sum over vertices of those minima (for
+  either polygon, take the larger) bounds D_morph from below; mirror images have the same lengths and turning angles so
+  the bound holds for them too. Used to skip templates that cannot win a recognition, without changing its result.
 
   \code
   const vpMorphShapeDistance d(vpMorphShapeDistance::MULTISCALE);
@@ -69,7 +74,8 @@ public:
     POLYGON,    //!< Parameterless polygons as extracted, no mirror.
     PAPER,      //!< 64 points by arc length, mirrors included.
     MULTISCALE, //!< Sum over Gaussian-smoothed scales, resampled, mirrors included.
-    RIGID       //!< The outlines laid on each other by a homography (vpMorphRigidCheck), no mirror.
+    RIGID,      //!< The outlines laid on each other by a homography (vpMorphRigidCheck), no mirror.
+    HEIGHT      //!< Height functions matched cyclically (vpMorphHeightFunction), mirrors included.
   };
 
   //! A contour in the representation(s) of a model, ready for distance() and lowerBound().
@@ -81,6 +87,7 @@ public:
     std::vector<std::vector<double>> lenSort; //!< per scale: lengths sorted
     std::vector<std::vector<double>> phiSort; //!< per scale: angles sorted
     std::vector<vpMorphRigidShape> rigid;     //!< RIGID: the contour, then its mirror image if mirrors are used
+    vpMorphHeightFunction::Descriptor height; //!< HEIGHT: the descriptor (and its mirror image's)
   };
 
   //! Progress of a batch job: \e done of \e total units; called from the calling thread only.
@@ -88,7 +95,8 @@ public:
 
   //! The model with its default settings (POLYGON: default work model).
   explicit vpMorphShapeDistance(Model model = POLYGON);
-  //! Named models: "polygon", "paper", "multiscale", "rigid". \throw vpMorphException::badParameterError if unknown.
+  //! Named models: "polygon", "paper", "multiscale", "rigid", "height". \throw vpMorphException::badParameterError if
+  //! unknown.
   static vpMorphShapeDistance fromName(const std::string &name);
   //! Name of the model, as accepted by fromName().
   std::string name() const;
@@ -101,12 +109,19 @@ public:
   void setWorkModel(const vpMorphWorkModel &w) { m_work = w; }
   //! Vertices per resampled outline (0 for POLYGON: the polygon as it is).
   std::size_t points() const { return m_points; }
-  //! \throw vpMorphException::badParameterError if n < 8 for a resampling model.
+  /*!
+    \throw vpMorphException::badParameterError if n < 8 for a resampling model, or (HEIGHT) if its segments do not
+    divide n.
+  */
   void setPoints(std::size_t n);
   //! Whether mirror images are tried.
   bool mirrors() const { return m_mirrors; }
   //! Tries mirror images too (or not).
-  void setMirrors(bool on) { m_mirrors = on; }
+  void setMirrors(bool on)
+  {
+    m_mirrors = on;
+    m_height.setMirrors(on);
+  }
   //! Gaussian widths (fractions of the perimeter) of the scales; {0} for a single unsmoothed scale.
   const std::vector<double> &scales() const { return m_scales; }
   //! \throw vpMorphException::badParameterError on an empty list or a negative or non-finite width.
@@ -114,12 +129,12 @@ public:
 
   /*!
     The representations of \e c used by this distance.
-    \throw vpMorphException::badContourError on an empty contour.
+    \throw vpMorphException::badContourError on an empty contour (HEIGHT: also on fewer than 3 vertices or no area).
   */
   Shape prepare(const vpMorphContour &c) const;
   /*!
-    Distance between two prepared shapes (symmetric for the D_morph models); \e abandonAbove: once the partial sum
-    over the scales exceeds it the computation stops and returns a value > abandonAbove (exact otherwise).
+    Distance between two prepared shapes (symmetric for the D_morph models and HEIGHT); \e abandonAbove: once the
+    partial sum over the scales exceeds it the computation stops and returns a value > abandonAbove (exact otherwise).
     \e mirrored (if not null) tells whether b's mirror image gave the distance. RIGID: a laid on b (b's mirror image:
     a's mirror image laid on b), and \e check (if not null) receives the comparison that gave it.
   */
@@ -132,6 +147,10 @@ public:
     cost of distance().
   */
   double lowerBound(const Shape &a, const Shape &b) const;
+  //! HEIGHT's descriptor and matching settings.
+  const vpMorphHeightFunction &heightFunction() const { return m_height; }
+  //! Sets HEIGHT's settings (its mirror setting follows setMirrors()).
+  void setHeightFunction(const vpMorphHeightFunction &h);
   //! A matcher configured with this work model (scale normalisation on).
   vpMorphMatcher matcher() const { return vpMorphMatcher(m_work, true); }
 
@@ -163,6 +182,7 @@ private:
   std::size_t m_points;
   bool m_mirrors;
   std::vector<double> m_scales;
+  vpMorphHeightFunction m_height;
 };
 
 #endif
