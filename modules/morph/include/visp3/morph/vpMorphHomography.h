@@ -17,44 +17,32 @@
   robust estimation from the two outlines, and its decomposition into the camera displacement when the plane is
   known in the target view.
 
-  Why: a similarity (vpMorphRigidTransform) describes two views of a plane only when both cameras look straight
-  at it. When one of them is tilted, the outline is distorted projectively; the tilt and the true depth are in
-  that distortion, and only a homography captures it. With normalised coordinates (x = X/Z) and the plane
-  fronto-parallel in the target view at depth d (a stored view), the homography gives the full camera
-  displacement, tilt included.
+  Why: a similarity (vpMorphRigidTransform) describes two views of a plane only when both cameras look straight at
+  it; a tilt distorts the outline projectively, and only a homography captures that distortion. With normalised
+  coordinates and the plane fronto-parallel at depth d in the target view, it gives the full camera displacement.
 
-  <b>Estimation</b> (fit()). The minimal-work correspondence is only a vertex association, and two polygonisations
-  of one outline do not place their vertices at the same points, so it serves only to start:
-  -# both contours are sampled densely along the corresponded segments (pairs k, k+1 of the correspondence,
-     sampled in proportion to their length) and a normalised DLT (Hartley), made robust by iteratively reweighted
-     least squares on the transfer error, gives the initial G;
-  -# G is refined by Gauss-Newton on point-to-segment distances, both ways: samples evenly spaced along the input
-     outline mapped by G onto the target polygon, and along the target mapped by G^-1 onto the input polygon (the
-     nearest point of the polygon, recomputed at each iteration as in ICP). Huber weights, then Tukey biweights,
-     with a robust scale 1.4826 MAD floored at \e minSigma (give half a pixel in these units for contours from
-     images), so that an occluded or deformed part of an outline stops pulling the fit. Distances measured
-     along the outline do not matter, so the vertex placement does not bias the result.
+  <b>Estimation</b> (fit()). The minimal-work correspondence only starts it (two polygonisations of one outline do not
+  place their vertices at the same points): a normalised DLT (Hartley), robust by iteratively reweighted least
+  squares, on samples taken along the corresponded segments; then Gauss-Newton on point-to-segment distances both
+  ways (input samples mapped by G onto the target polygon, target samples by G^-1 onto the input), nearest points
+  recomputed at each iteration as in ICP, Huber then Tukey weights with a robust scale 1.4826 MAD floored at
+  \e minSigma (half a pixel in these units for contours from images): an occluded or deformed part stops pulling.
+  Exact projections of one polygon give the true homography to numerical precision.
 
-  <b>Edge offset</b> (refine() on measured edges). An outline measured on the grey levels at a biased edge level (a
-  lighting that clips, a blur) is the object's outline grown or shrunk all round: eight parameters would bend that
-  growth into a tilt and a depth. refine() can fit one common offset of the target's edges with G: the target's
-  distance level set at that offset (corners rounded, as a blurred edge makes them). It is held at 0 until an update
-  of G moves no sample by the edges' robust scale (far from it, an offset would take up the misfit G has yet to
-  remove). Polygon edges are chords placed by the approximation, not measured edges: their misfit is no offset,
-  which would only trade it for scale.
+  <b>Edge offset</b> (refine() on measured edges). An outline measured at a biased edge level (a clipping light, a
+  blur) is the object's outline grown or shrunk all round, which eight parameters would bend into a tilt and a depth.
+  refine() can fit one common offset of the target's edges (its distance level set, corners rounded as a blurred edge
+  makes them), held at 0 until an update of G moves no sample by the edges' robust scale. Not for polygons: their
+  edges are chords, whose misfit is no offset.
 
-  On two exact projections of the same polygon the residual is zero at the true homography, which is then found
-  to numerical precision.
+  <b>Degenerate input</b> throws vpMorphException: empty contours, different units, a correspondence that does not
+  fit them, fewer than 4 vertices on either contour (a triangle does not fix a homography), normal equations too
+  ill-conditioned to solve (a sliver), or a singular result.
 
-  <b>Degenerate input</b> throws vpMorphException: empty contours, different units, a correspondence that does
-  not fit them, fewer than 4 vertices on either contour (a triangle's outline does not fix a homography: points
-  may slide along its edges), or normal equations too ill-conditioned to solve (a sliver), or a singular result.
-
-  <b>Decomposition</b> (inputMtarget()). With the plane \f$ n^T X = d \f$, n = (0, 0, 1), in the target camera
-  frame, the inverse \f$ H = G^{-1} \sim {}^iR_t + {}^it_t\, n^T / d \f$ maps target to input: its first two
-  columns, scaled to unit norm, are the first two columns of \f${}^iR_t\f$ (the nearest orthonormal pair is
-  taken: with wrong intrinsics they are not exactly orthonormal), their cross product the third, and the third
-  column minus it is \f${}^it_t / d\f$. The sign is the one that puts the plane in front of the input camera.
+  <b>Decomposition</b> (inputMtarget()). With the plane \f$ n^T X = d \f$, n = (0, 0, 1), in the target camera frame,
+  \f$ H = G^{-1} \sim {}^iR_t + {}^it_t\, n^T / d \f$: its first two columns, scaled to unit norm and made
+  orthonormal (wrong intrinsics make them not exactly so), are those of \f${}^iR_t\f$, their cross product the third,
+  and the third column minus it is \f${}^it_t / d\f$, signed to put the plane in front of the input camera.
 
   \code
   vpMorphContour cn = current.toNormalized(cam), tn = target.toNormalized(cam);

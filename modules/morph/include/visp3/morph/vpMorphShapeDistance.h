@@ -37,17 +37,12 @@
     single polygon weighs badly: one spurious notch costs as much as a real limb at a single scale. The finest
     width is not 0 on purpose: 1 % is about half the sample spacing, so the samples do not alias small
     features. Widths and kb: \ref page_design_recognition.
-  - RIGID: not D_morph. The view laid on the template by a plane homography
-    (vpMorphRigidShape::alignOn() for the start, then vpMorphRigidCheck) and the two-way truncated quadratic cost of
-    what does not coincide, in [0, 1]: a rigid part's view coincides with its own template to the outline's
-    measurement noise wherever it is not hidden, and a look-alike's differences stay uncovered, where the
-    deformation-tolerant D_morph absorbs them. Mirror images off (a part lying on a table shows one side; teach the
-    other side as a template of its own, or turn mirrors on: the mirror image is then tried when the direct one
-    costs more). Not symmetric in general (the first shape is laid on the second), nor a metric.
-  - HEIGHT: not D_morph. Height functions matched by a cyclic correspondence (vpMorphHeightFunction, its settings
-    through heightFunction()), mirror images included: where every other point of the outline lies as seen from each
-    point, which tells apart classes whose parts bend alike but differ in length or place. The best of these models
-    for shape retrieval.
+  - RIGID: not D_morph. The view laid on the template by a plane homography (vpMorphRigidShape::alignOn(), then
+    vpMorphRigidCheck), the two-way truncated quadratic cost of what does not coincide, in [0, 1]: a look-alike's
+    differences stay uncovered, where D_morph absorbs them. Mirrors off (a part on a table shows one side; mirrors on
+    try the mirror image when the direct one costs more). Not symmetric (the first shape is laid on the second).
+  - HEIGHT: not D_morph. Height functions matched by a cyclic correspondence (vpMorphHeightFunction, settings through
+    heightFunction()), mirrors included: the best of these models for shape retrieval.
 
   Every representation is computed once per contour (prepare()), so a matrix over N shapes costs N
   preparations and N(N-1)/2 distances. The distance is symmetric and invariant to translation, rotation and
