@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <sstream>
 
 #include <visp3/morph/vpMorphException.h>
@@ -115,7 +114,6 @@ float closedCost(const std::vector<float> &C, std::size_t N, std::size_t s, floa
   }
   return prev[N];
 }
-
 } // namespace
 
 double vpMorphHeightFunction::oriented(const std::vector<float> &a, const std::vector<float> &b) const

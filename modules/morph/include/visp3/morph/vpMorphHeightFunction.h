@@ -28,14 +28,15 @@
   (so the descriptor is in [-1, 1] and invariant to scale).
 
   <b>Distance</b> (distance()): the cost of matching point p of one outline with point q of the other is the weighted
-  L1 difference of their descriptors, the weight of entry m the inverse of its segment's distance along the outline
-  from the point (nearer parts of the outline matter more: they move less under articulation and occlusion); a point
-  left unmatched costs skipCost(). The distance is the least cost, over the starting points of the second outline,
-  of an order-preserving correspondence (dynamic programming), divided by the number of points; with mirrors, the
-  smaller of the direct and mirrored comparisons. Symmetric, invariant to a similarity and to the start of the
-  outlines. The starting point: the diagonal sums of the cost matrix rank every start in O(N^2), and the dynamic
-  programming runs from the best candidateStarts() of them (a correspondence that skips points recovers the offset
-  between two candidate starts).
+  L1 difference of their descriptors, the weight of entry m falling as 1 / (1 + its segment's distance from the point
+  in segments; nearer parts of the outline matter more: they move less under articulation and occlusion); a point
+  left unmatched costs getSkipCost(). The distance is the least cost of an order-preserving correspondence (dynamic
+  programming) over the starting points of the second outline, divided by the number of points; with mirrors, the
+  smaller of the direct and mirrored comparisons. Invariant to a similarity and to the start of the outlines;
+  symmetric up to where the cyclic correspondence is cut (at the first outline's first point). Starting points: the
+  cost matrix's diagonal sums rank every start in O(N^2), and the dynamic programming runs from the
+  getCandidateStarts() cheapest of their local minima (a correspondence that skips points reaches the starts next to
+  a candidate, so candidates are distinct basins).
 
   \code
   const vpMorphHeightFunction h;

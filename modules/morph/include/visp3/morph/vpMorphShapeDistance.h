@@ -128,10 +128,10 @@ public:
   */
   Shape prepare(const vpMorphContour &c) const;
   /*!
-    Distance between two prepared shapes (symmetric for the D_morph models and HEIGHT); \e abandonAbove: once the
-    partial sum over the scales exceeds it the computation stops and returns a value > abandonAbove (exact otherwise).
-    \e mirrored (if not null) tells whether b's mirror image gave the distance. RIGID: a laid on b (b's mirror image:
-    a's mirror image laid on b), and \e check (if not null) receives the comparison that gave it.
+    Distance between two prepared shapes (symmetric for the D_morph models, nearly for HEIGHT); \e abandonAbove: once
+    the partial sum over the scales exceeds it the computation stops and returns a value > abandonAbove (exact
+    otherwise). \e mirrored (if not null) tells whether b's mirror image gave the distance. RIGID: a laid on b (b's
+    mirror image: a's mirror image laid on b), and \e check (if not null) receives the comparison that gave it.
   */
   double distance(const Shape &a, const Shape &b, vpMorphMatcher &matcher, double abandonAbove = -1.0,
                   bool *mirrored = nullptr, vpMorphRigidCheck::Result *check = nullptr) const;
