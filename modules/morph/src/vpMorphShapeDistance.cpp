@@ -222,13 +222,8 @@ double vpMorphShapeDistance::distance(const Shape &a, const Shape &b, vpMorphMat
                                       bool *mirrored, vpMorphRigidCheck::Result *check) const
 {
   const std::size_t per = m_mirrors ? 2 : 1;
-  if (m_model == HEIGHT) {
-    bool m = false;
-    const double d = m_height.distance(a.height, b.height, &m);
-    if (mirrored)
-      *mirrored = m;
-    return d;
-  }
+  if (m_model == HEIGHT)
+    return m_height.distance(a.height, b.height, mirrored);
   if (m_model == RIGID) {
     if (a.rigid.size() != per || b.rigid.empty())
       throw vpMorphException(vpMorphException::badParameterError,

@@ -250,6 +250,21 @@ TEST_CASE("database: bad files give clear errors", "[database]")
     badFloor.replace(badFloor.find("\"support_floor\": 0.5"), 20, std::string("\"support_floor\": ") + bad);
     expectIo(loadText(badFloor), "support_floor must be a number in [0, 1]");
   }
+  // The height model's settings: missing, or points its segments do not divide.
+  {
+    vpMorphDatabase h = folderDatabase();
+    h.setDistance(vpMorphShapeDistance(vpMorphShapeDistance::HEIGHT));
+    h.save(good.string());
+    const std::string ht = readText(good);
+    const std::string segments = "\"segments\": 20";
+    REQUIRE(ht.find(segments) != std::string::npos);
+    std::string noSegments = ht;
+    noSegments.replace(noSegments.find(segments), segments.size(), "\"segmentz\": 20");
+    expectIo(loadText(noSegments), "segments");
+    std::string badSegments = ht;
+    badSegments.replace(badSegments.find(segments), segments.size(), "\"segments\": 7");
+    expectIo(loadText(badSegments), "invalid \"distance\"");
+  }
   // Files written before the support (or its floor) existed have the defaults.
   std::string noSupport = text;
   noSupport.replace(noSupport.find("\"support\": 0.75"), 15, "\"supporx\": 0.75");
