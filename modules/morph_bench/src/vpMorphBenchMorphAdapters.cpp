@@ -7,7 +7,10 @@
 
 #include <visp3/core/vpVelocityTwistMatrix.h>
 #include <visp3/morph_vs/vpFeatureMorph.h>
+#include <visp3/core/vpExponentialMap.h>
 #include <visp3/morph_vs/vpMorphJointVelocity.h>
+#include <visp3/morph_vs/vpMorphServoGuard.h>
+#include <visp3/morph_vs/vpMorphTiltEstimator.h>
 #include <visp3/morph_vs/vpServoMorph.h>
 #include <visp3/vs/vpServo.h>
 
@@ -149,10 +152,15 @@ private:
 
 /*!
   vpFeatureMorph in a stock vpServo, to the final goal (no sub-goals): EYEINHAND_CAMERA with the tilt rotations
-  disabled (setCameraDoF: the feature has 4 components for a planar task), current L, then the camera velocity
-  is mapped to the end-effector with the estimated eMc and sent as joint velocities from the Jacobian at the middle
-  of the period, as "morph" sends its own (the planar law does not take back a tilt). The depth comes from the area
-  ratio to the template. The target check runs on the first image and every kCheckPeriod measured iterations.
+  disabled (setCameraDoF: the feature has 4 components for a planar task), current L. The two rotations the feature
+  cannot see are vpMorphTiltEstimator's, as in vpServoMorph's final approach: its levelling twist, at the share of the
+  displacement the planar law executes a period, is added to the task's camera velocity (joint velocities held for a
+  period tilt an arm's camera as it turns about its optical axis). The camera velocity is mapped to the end-effector
+  with the estimated eMc and sent as joint velocities from the Jacobian at the middle of the period, as "morph" sends
+  its own. The depth comes from the area ratio to the template. The target check runs on the first image and every
+  kCheckPeriod measured iterations. Convergence: the adapter's stop rule on the error norm, the tilt levelled and
+  verified (vpMorphTiltEstimator::isVerified() at vpMorphServoGuard's sigmas); settled with the tilt not verified is a
+  safe stop ("unverified"), never a convergence.
 */
 class MorphVpServoController : public vpMorphBenchMorphAdapter
 {
@@ -179,6 +187,9 @@ public:
         const vpMorphContour goal = m_template->viewFor(c);
         m_sd.buildFrom(goal, m_ctx.cam, Zd);
         m_areaD = goal.area();
+        m_goalN = goal.toNormalized(m_ctx.cam);
+        m_tilt.reset();
+        m_tilt.setPixelSize(1.0 / std::max(m_ctx.cam.get_px(), m_ctx.cam.get_py()));
       }
       const double a = c.area();
       if (!(a > 25.0))
@@ -193,20 +204,33 @@ public:
         m_task->addFeature(m_s, m_sd);
         m_built = true;
       }
-      const vpColVector vc = m_task->computeControlLaw();
+      vpColVector vc = m_task->computeControlLaw();
       // A view the feature's aligner does not explain gives a zero error: not a goal reached, a view not measured.
       if (!m_s.getAlignment().explained())
         return holdCommand(msSince(t0));
       const vpColVector e = m_task->getError();
       if (errorJumped(e))
         return stopCommand("feature-jump");
+      // The tilt: levelled at the planar law's rate (its share of the error a period).
+      const double gain = std::min(1.0, m_ctx.lambda * m_ctx.samplingTime);
+      vpHomogeneousMatrix cMct;
+      double Zp = 0.0;
+      if (m_tilt.estimate(c.toNormalized(m_ctx.cam), m_goalN, Zd, al.transform,
+                          al.model == vpMorphViewAlignment::RIGID, true, gain, cMct, Zp))
+        vc += gain * vpExponentialMap::inverse(cMct, m_ctx.samplingTime);
       cmd.v = vpVelocityTwistMatrix(m_ctx.eMc) * vc;
-      // Stop rule: s - s* = (centroid, angle, log scale) as the outline's RMS displacement in pixels.
+      // Stop rule: s - s* = (centroid, angle, log scale) as the outline's RMS displacement in pixels, and the tilt.
       const double r = radiusPx(c);
-      cmd.converged = settled(std::sqrt(e[0] * e[0] * m_ctx.cam.get_px() * m_ctx.cam.get_px() +
-                                        e[1] * e[1] * m_ctx.cam.get_py() * m_ctx.cam.get_py() +
-                                        r * r * (e[2] * e[2] + e[3] * e[3])),
-                              outlineNoisePx(c.outline().size()));
+      const bool atGoal = settled(std::sqrt(e[0] * e[0] * m_ctx.cam.get_px() * m_ctx.cam.get_px() +
+                                            e[1] * e[1] * m_ctx.cam.get_py() * m_ctx.cam.get_py() +
+                                            r * r * (e[2] * e[2] + e[3] * e[3])),
+                                  outlineNoisePx(c.outline().size()));
+      const double sigmas = vpMorphServoGuard::getVerificationSigmas();
+      if (atGoal && !m_tilt.isLevelling(sigmas)) {
+        if (!m_tilt.isVerified(sigmas))
+          return stopCommand("unverified");
+        cmd.converged = true;
+      }
     } catch (const vpException &e) {
       return stopCommand("feature-error");
     }
@@ -250,8 +274,11 @@ private:
     m_sd = vpFeatureMorph();
     m_built = false;
     m_measured = 0;
+    m_tilt.reset();
   }
   vpFeatureMorph m_s, m_sd;
+  vpMorphContour m_goalN; // the goal, normalised: the tilt's target
+  vpMorphTiltEstimator m_tilt;
   std::unique_ptr<vpServo> m_task;
   double m_areaD = 0;
   bool m_built = false;

@@ -35,14 +35,16 @@ class vpServoMorph;
 
   Names (create()): "morph" (vpServoMorph through 10 sub-goals, online hand-eye estimation, tilt correction on the
   final approach), "morph-planar" (the same, the paper's planar law), "morph-paper" (vpServoMorph::PAPER),
-  "morph-vpservo" (vpFeatureMorph in a stock vpServo, EYEINHAND_CAMERA, tilts disabled), "ibvs-current",
+  "morph-vpservo" (vpFeatureMorph in a stock vpServo, EYEINHAND_CAMERA, tilts disabled, the tilt levelled by
+  vpMorphTiltEstimator), "ibvs-current",
   "ibvs-desired", "ibvs-mean" (4 tag corners, vpFeaturePoint), "pbvs" (vpFeatureTranslation(cdMc) and
   vpFeatureThetaU(cdRc) from the tag pose), "moments" (vpFeatureMomentCommon on the measured outline) and
   "moments-planar" (its planar features). All share one constant gain.
 
   <b>Convergence</b> (Command::converged ends the run): the VISPMorph servos when vpServoMorph reports CONVERGED; the
   others by a stop rule on their own error, the RMS image displacement of the points their feature stands for, within
-  3 times its own noise for 3 measured periods. Every other stop is zero velocity and a failure with its reason
+  3 times its own noise for 3 measured periods ("morph-vpservo": and its tilt verified, else a stop, "unverified").
+  Every other stop is zero velocity and a failure with its reason
   (Command::reason), never a convergence.
 
   <b>Faults</b>: a missing frame or features out of the image are a hold (zero velocity, Command::measured false);
