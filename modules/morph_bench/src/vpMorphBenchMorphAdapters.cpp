@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <visp3/core/vpExponentialMap.h>
 #include <visp3/core/vpVelocityTwistMatrix.h>
 #include <visp3/morph_vs/vpFeatureMorph.h>
-#include <visp3/core/vpExponentialMap.h>
 #include <visp3/morph_vs/vpMorphJointVelocity.h>
 #include <visp3/morph_vs/vpMorphServoGuard.h>
 #include <visp3/morph_vs/vpMorphTiltEstimator.h>
@@ -215,8 +215,8 @@ public:
       const double gain = std::min(1.0, m_ctx.lambda * m_ctx.samplingTime);
       vpHomogeneousMatrix cMct;
       double Zp = 0.0;
-      if (m_tilt.estimate(c.toNormalized(m_ctx.cam), m_goalN, Zd, al.transform,
-                          al.model == vpMorphViewAlignment::RIGID, true, gain, cMct, Zp))
+      if (m_tilt.estimate(c.toNormalized(m_ctx.cam), m_goalN, Zd, al.transform, al.model == vpMorphViewAlignment::RIGID,
+                          true, gain, cMct, Zp))
         vc += gain * vpExponentialMap::inverse(cMct, m_ctx.samplingTime);
       cmd.v = vpVelocityTwistMatrix(m_ctx.eMc) * vc;
       // Stop rule: s - s* = (centroid, angle, log scale) as the outline's RMS displacement in pixels, and the tilt.
