@@ -346,14 +346,8 @@ int main(int argc, char **argv)
     j["images"] = o.images;
     j["shapes"] = N;
     j["classes"] = classSize.size();
-    j["distance"] = {{"model", dist.name()},       {"points", dist.points()},     {"mirrors", dist.mirrors()},
-                     {"scales", dist.scales()},    {"ks", dist.workModel().ks()}, {"kb", dist.workModel().kb()},
-                     {"cs", dist.workModel().cs()}};
+    j["distance"] = nlohmann::json::parse(dist.settingsJson());
     const bool height = dist.model() == vpMorphShapeDistance::HEIGHT;
-    if (height)
-      j["distance"].update({{"segments", dist.heightFunction().getSegments()},
-                            {"skip", dist.heightFunction().getSkipCost()},
-                            {"starts", dist.heightFunction().getCandidateStarts()}});
     j["bullseye_percent"] = bullseye;
     j["rank_counts"] = rankCounts;
     j["rank_counts_sum"] = rankSum;

@@ -202,14 +202,7 @@ std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
   json j;
   j["format"] = kFormat;
   j["version"] = kVersion;
-  const vpMorphShapeDistance &d = m_distance;
-  j["distance"] = {{"model", d.name()},       {"points", d.points()},     {"mirrors", d.mirrors()},
-                   {"scales", d.scales()},    {"ks", d.workModel().ks()}, {"kb", d.workModel().kb()},
-                   {"cs", d.workModel().cs()}};
-  if (d.model() == vpMorphShapeDistance::HEIGHT)
-    j["distance"].update({{"segments", d.heightFunction().getSegments()},
-                          {"skip", d.heightFunction().getSkipCost()},
-                          {"starts", d.heightFunction().getCandidateStarts()}});
+  j["distance"] = json::parse(m_distance.settingsJson());
   json cal;
   cal["calibrated"] = m_calibrated;
   cal["manual"] = m_manual;

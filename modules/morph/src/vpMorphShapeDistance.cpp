@@ -11,6 +11,8 @@
 #include <sstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include <visp3/morph/vpMorphException.h>
 
 #include "vpMorphSmoothing.h"
@@ -133,6 +135,17 @@ vpMorphShapeDistance vpMorphShapeDistance::fromName(const std::string &name)
     return vpMorphShapeDistance(HEIGHT);
   throw vpMorphException(vpMorphException::badParameterError, "vpMorphShapeDistance: unknown model '" + name +
                                                                   "' (polygon, paper, multiscale, rigid or height)");
+}
+
+std::string vpMorphShapeDistance::settingsJson() const
+{
+  nlohmann::json j = {{"model", name()},   {"points", points()}, {"mirrors", mirrors()}, {"scales", scales()},
+                      {"ks", m_work.ks()}, {"kb", m_work.kb()},  {"cs", m_work.cs()}};
+  if (m_model == HEIGHT)
+    j.update({{"segments", m_height.getSegments()},
+              {"skip", m_height.getSkipCost()},
+              {"starts", m_height.getCandidateStarts()}});
+  return j.dump();
 }
 
 std::string vpMorphShapeDistance::name() const

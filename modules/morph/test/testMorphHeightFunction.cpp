@@ -120,6 +120,13 @@ TEST_CASE("vpMorphHeightFunction: the HEIGHT model of vpMorphShapeDistance, and 
   vpMorphMatcher m = d.matcher();
   d.distance(d.prepare(lShape()), d.prepare(lShape().mirrored()), m, -1.0, &mirrored);
   CHECK_FALSE(mirrored);
+  // The settings a database file and a benchmark summary record: the height model's own only for it.
+  const std::string settings = d.settingsJson();
+  CHECK(settings.find("\"model\":\"height\"") != std::string::npos);
+  CHECK(settings.find("\"points\":120") != std::string::npos);
+  CHECK(settings.find("\"segments\":20") != std::string::npos);
+  CHECK(settings.find("\"mirrors\":false") != std::string::npos);
+  CHECK(vpMorphShapeDistance::fromName("multiscale").settingsJson().find("segments") == std::string::npos);
 
   vpMorphHeightFunction bad;
   CHECK_THROWS_AS(bad.setPoints(4, 2), vpMorphException);

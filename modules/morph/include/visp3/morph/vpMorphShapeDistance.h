@@ -95,6 +95,9 @@ public:
   static vpMorphShapeDistance fromName(const std::string &name);
   //! Name of the model, as accepted by fromName().
   std::string name() const;
+  //! The settings as a JSON object: model, points, mirrors, scales, the work model's ks, kb, cs, and the height
+  //! model's segments, skip and starts (what a database file and a benchmark summary record).
+  std::string settingsJson() const;
 
   //! The model.
   Model model() const { return m_model; }
