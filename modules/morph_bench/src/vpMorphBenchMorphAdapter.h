@@ -30,6 +30,10 @@ protected:
   //! Another template replaces the current one only when the current one costs this much more work.
   static constexpr double kSwitchRatio = 1.2; // vpMorphServoGuard::getMismatchRatio()
 
+  //! The share of its displacement a VISPMorph law executes a period: lambda dt, the exponential rate of the stock
+  //! laws' constant gain.
+  double lawShare() const { return std::min(1.0, m_ctx.lambda * m_ctx.samplingTime); }
+
   /*!
     The silhouette of image \e I. On the first one, the database tells which region is the object
     (vpMorphTagPoseEstimator::silhouetteCandidates(), vpMorphDatabase::recognize() on the list); afterwards the

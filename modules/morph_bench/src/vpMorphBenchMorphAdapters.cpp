@@ -132,7 +132,7 @@ private:
     m_servo->set_eMc(m_ctx.eMc);
     m_servo->getPlanner().setSubGoalCount(10);
     m_servo->setSamplingTime(m_ctx.samplingTime);
-    m_servo->setGain(std::min(1.0, m_ctx.lambda * m_ctx.samplingTime)); // same exponential rate as lambda
+    m_servo->setGain(lawShare());
     // Extracted contours are digitised: the final residual settles at a few tenths of a pixel.
     // The tilt's own final threshold stays the estimator's default, the same 0.002 rad.
     m_servo->setFinalThresholds(0.002, 0.2);
@@ -187,7 +187,6 @@ public:
         const vpMorphContour goal = m_template->viewFor(c);
         m_sd.buildFrom(goal, m_ctx.cam, Zd);
         m_areaD = goal.area();
-        m_goalN = goal.toNormalized(m_ctx.cam);
         m_tilt.reset();
         m_tilt.setPixelSize(1.0 / std::max(m_ctx.cam.get_px(), m_ctx.cam.get_py()));
       }
@@ -211,11 +210,11 @@ public:
       const vpColVector e = m_task->getError();
       if (errorJumped(e))
         return stopCommand("feature-jump");
-      // The tilt: levelled at the planar law's rate (its share of the error a period).
-      const double gain = std::min(1.0, m_ctx.lambda * m_ctx.samplingTime);
+      // The tilt, between the features' own normalised contours: levelled at the planar law's rate.
+      const double gain = lawShare();
       vpHomogeneousMatrix cMct;
       double Zp = 0.0;
-      if (m_tilt.estimate(c.toNormalized(m_ctx.cam), m_goalN, Zd, al.transform, al.model == vpMorphViewAlignment::RIGID,
+      if (m_tilt.estimate(m_s.contour(), m_sd.contour(), Zd, al.transform, al.model == vpMorphViewAlignment::RIGID,
                           true, gain, cMct, Zp))
         vc += gain * vpExponentialMap::inverse(cMct, m_ctx.samplingTime);
       cmd.v = vpVelocityTwistMatrix(m_ctx.eMc) * vc;
@@ -277,7 +276,6 @@ private:
     m_tilt.reset();
   }
   vpFeatureMorph m_s, m_sd;
-  vpMorphContour m_goalN; // the goal, normalised: the tilt's target
   vpMorphTiltEstimator m_tilt;
   std::unique_ptr<vpServo> m_task;
   double m_areaD = 0;
