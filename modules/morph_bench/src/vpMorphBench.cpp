@@ -224,6 +224,9 @@ vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const s
   ctx.samplingTime = m_settings.samplingTime;
   ctx.jointMin = robot.getJointMin();
   ctx.jointMax = robot.getJointMax();
+  if (m_settings.robot != vpMorphSimRobot::FREE_CAMERA)
+    ctx.robotModel = {[&robot](const vpColVector &q) { return robot.get_fMe(q); },
+                      [&robot](const vpColVector &q) { return robot.get_eJe(q); }};
   for (const vpMorphBenchEvent &e : sc.events)
     if (e.kind == vpMorphBenchEvent::WRONG_TEMPLATE)
       ctx.forcedTemplate = e.wrongTemplate;

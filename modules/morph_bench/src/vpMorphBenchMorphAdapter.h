@@ -129,9 +129,9 @@ protected:
     return false;
   }
   /*!
-    \e cmd with its end-effector twist sent as joint velocities from the Jacobian at the middle of the period
-    (vpMorphJointVelocity), the conversion's time counted in the law's: held for the period from the Jacobian at its
-    start, a long turn tilts the camera, which a planar law does not take back.
+    \e cmd with its end-effector twist sent as the joint velocities that, held for the period, move the end-effector
+    by it (vpMorphJointVelocity on the arm's kinematic model), the conversion's time counted in the law's: held from
+    the Jacobian at the period's start, a long turn tilts the camera, which a planar law does not take back.
   */
   Command toJoints(Command cmd, const vpMatrix &eJe, const vpColVector &q)
   {
@@ -145,6 +145,7 @@ protected:
   {
     m_joints.setSamplingTime(m_ctx.samplingTime);
     m_joints.reset();
+    m_joints.setKinematicModel(m_ctx.robotModel);
     m_template = nullptr;
     m_object.clear();
     m_rejected.clear();

@@ -25,9 +25,9 @@ namespace
   written (vpServoMorph::PAPER: elongation-vector rectification over the morph's correspondence, image-space rigid
   frames and deformation frames, the per-axis thresholds; no tilt, no turn: "morph-paper"). All give the servo the
   robot's joints (vpServoMorph::setJointState()), so that a half turn is planned the way that keeps them clear of their
-  limits, and send joint velocities from the Jacobian at the middle of each period (vpMorphJointVelocity): held for the
-  period from the Jacobian at its start, a turn about the optical axis tilts the Afma6's camera, a tilt the planar law
-  does not take back.
+  limits, and send the joint velocities that move the end-effector by the commanded twist over the period, solved on
+  the arm's kinematic model (vpMorphJointVelocity): held for the period from the Jacobian at its start, a turn about
+  the optical axis tilts the camera, a tilt the planar law does not take back.
 */
 class MorphController : public vpMorphBenchMorphAdapter
 {

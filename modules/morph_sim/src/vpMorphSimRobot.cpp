@@ -343,38 +343,49 @@ vpMorphSimRobot::Status vpMorphSimRobot::setVelocity(vpRobot::vpControlFrameType
 
 vpMatrix vpMorphSimRobot::get_eJe() const
 {
-  vpMatrix eJe;
-  switch (m_kind) {
-  case VIPER850:
-    m_model->viper.get_eJe(m_model->q, eJe);
-    break;
-  case AFMA6:
-    m_model->afma.get_eJe(m_model->q, eJe);
-    break;
-  default:
+  if (m_kind == FREE_CAMERA) {
+    vpMatrix eJe;
     eJe.eye(6);
-    break;
+    return eJe;
   }
-  return eJe;
+  return get_eJe(m_model->q);
 }
 
 vpVelocityTwistMatrix vpMorphSimRobot::get_cVe() const { return vpVelocityTwistMatrix(m_eMcTrue.inverse()); }
 
 vpHomogeneousMatrix vpMorphSimRobot::get_fMe() const
 {
+  return m_kind == FREE_CAMERA ? m_model->flyer.getPosition() : get_fMe(m_model->q);
+}
+
+vpMatrix vpMorphSimRobot::get_eJe(const vpColVector &q) const
+{
+  checkModelJoints(q, "get_eJe");
+  vpMatrix eJe;
+  if (m_kind == VIPER850)
+    m_model->viper.get_eJe(q, eJe);
+  else
+    m_model->afma.get_eJe(q, eJe);
+  return eJe;
+}
+
+vpHomogeneousMatrix vpMorphSimRobot::get_fMe(const vpColVector &q) const
+{
+  checkModelJoints(q, "get_fMe");
   vpHomogeneousMatrix fMe;
-  switch (m_kind) {
-  case VIPER850:
-    m_model->viper.get_fMe(m_model->q, fMe);
-    break;
-  case AFMA6:
-    m_model->afma.get_fMe(m_model->q, fMe);
-    break;
-  default:
-    fMe = m_model->flyer.getPosition();
-    break;
-  }
+  if (m_kind == VIPER850)
+    m_model->viper.get_fMe(q, fMe);
+  else
+    m_model->afma.get_fMe(q, fMe);
   return fMe;
+}
+
+void vpMorphSimRobot::checkModelJoints(const vpColVector &q, const char *what) const
+{
+  if (m_kind == FREE_CAMERA)
+    badParameter(std::string("vpMorphSimRobot::") + what + ": the free camera has no kinematic model");
+  if (q.size() != 6 || !finiteVector(q))
+    badParameter(std::string("vpMorphSimRobot::") + what + ": 6 finite joint positions needed");
 }
 
 vpHomogeneousMatrix vpMorphSimRobot::get_fMc() const { return get_fMe() * m_eMcTrue; }

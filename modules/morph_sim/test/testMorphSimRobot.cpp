@@ -279,6 +279,33 @@ TEST_CASE("joint velocities held over each period tilt the Afma6's camera on a t
   CHECK(tilt[1] < 0.02);
 }
 
+TEST_CASE("the arms' kinematic model is evaluated at any joints, the free camera has none", "[morph_sim][robot]")
+{
+  for (const vpMorphSimRobot::Kind kind : {vpMorphSimRobot::AFMA6, vpMorphSimRobot::VIPER850}) {
+    vpMorphSimRobot robot(kind);
+    robot.setDesiredPose(cdMo);
+    REQUIRE(robot.initialiseCameraRelativeToObject(startOf(0.02, 0.01, 30)));
+    const vpColVector q0 = robot.getJointPositions();
+    vpColVector qdot(6, 0.0);
+    qdot[0] = 0.05;
+    qdot[3] = -0.1;
+    qdot[5] = 0.2;
+    robot.setVelocity(vpRobot::JOINT_STATE, qdot);
+    const vpColVector q1 = robot.getJointPositions();
+    CHECK((q1 - q0 - qdot * robot.samplingTime()).frobeniusNorm() < 1e-12); // joints move at the held velocity
+    CHECK((robot.get_fMe(q1).inverse() * robot.get_fMe()).getTranslationVector().frobeniusNorm() < 1e-12);
+    CHECK((robot.get_eJe(q1) - robot.get_eJe()).frobeniusNorm() < 1e-12);
+    CHECK((robot.get_fMe(q0).getTranslationVector() - robot.get_fMe().getTranslationVector()).frobeniusNorm() > 1e-4);
+    CHECK_THROWS_AS(robot.get_eJe(vpColVector(5, 0.0)), vpMorphException);
+    vpColVector bad = q1;
+    bad[2] = std::nan("");
+    CHECK_THROWS_AS(robot.get_fMe(bad), vpMorphException);
+  }
+  vpMorphSimRobot camera(vpMorphSimRobot::FREE_CAMERA);
+  CHECK_THROWS_AS(camera.get_fMe(vpColVector(6, 0.0)), vpMorphException);
+  CHECK_THROWS_AS(camera.get_eJe(vpColVector(6, 0.0)), vpMorphException);
+}
+
 TEST_CASE("the Viper850 reaches the benchmark's 6-dof starts from its reference configuration", "[morph_sim][robot]")
 {
   unsigned int ok = 0, n = 0;

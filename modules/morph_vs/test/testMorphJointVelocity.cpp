@@ -1,5 +1,6 @@
 // Tests of vpMorphJointVelocity: on ViSP's Afma6 and Viper850 models, joint velocities held over each period follow
-// a long turn about the optical axis far closer than the plain conversion; history and bad input.
+// a long turn about the optical axis far closer than the plain conversion, exactly when solved on the model, from the
+// first period on; history and bad input.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -26,21 +27,40 @@ void poseError(const vpHomogeneousMatrix &fMa, const vpHomogeneousMatrix &fMb, d
   shift = (fMa.getTranslationVector() - fMb.getTranslationVector()).frobeniusNorm();
 }
 
-// Turns the camera by 60 deg about its optical axis in 80 periods, each period's joint velocity held (q += qdot dt),
-// from the plain conversion (predicted = false) or vpMorphJointVelocity; returns the tilt and shift against the turn.
+enum Conversion { PLAIN, EXTRAPOLATED, MODEL };
+
+template <class Robot> vpMorphJointVelocity::KinematicModel modelOf(const Robot &robot)
+{
+  return {[&robot](const vpColVector &q) {
+            vpHomogeneousMatrix fMe;
+            robot.get_fMe(q, fMe);
+            return fMe;
+          },
+          [&robot](const vpColVector &q) {
+            vpMatrix eJe;
+            robot.get_eJe(q, eJe);
+            return eJe;
+          }};
+}
+
+// Turns the camera by 60 deg about its optical axis in \e periods periods, each period's joint velocity held
+// (q += qdot dt), converted as \e how; returns the tilt and shift against the turn.
 template <class Robot>
-void turn(Robot &robot, const vpHomogeneousMatrix &eMc, vpColVector q, bool predicted, double &tiltDeg, double &shift)
+void turn(Robot &robot, const vpHomogeneousMatrix &eMc, vpColVector q, Conversion how, double &tiltDeg, double &shift,
+          int periods = 80)
 {
   vpHomogeneousMatrix fMc0;
   robot.get_fMc(q, fMc0);
   vpColVector vc(6, 0.0);
-  vc[5] = vpMath::rad(60.0) / (80 * kDt);
+  vc[5] = vpMath::rad(60.0) / (periods * kDt);
   const vpColVector ve = vpVelocityTwistMatrix(eMc) * vc;
   vpMorphJointVelocity conv(kDt);
-  for (int k = 0; k < 80; ++k) {
+  if (how == MODEL)
+    conv.setKinematicModel(modelOf(robot));
+  for (int k = 0; k < periods; ++k) {
     vpMatrix eJe;
     robot.get_eJe(q, eJe);
-    q += (predicted ? conv.compute(eJe, q, ve) : eJe.pseudoInverse(1e-6) * ve) * kDt;
+    q += (how == PLAIN ? eJe.pseudoInverse(1e-6) * ve : conv.compute(eJe, q, ve)) * kDt;
   }
   vpHomogeneousMatrix fMc;
   robot.get_fMc(q, fMc);
@@ -57,8 +77,8 @@ TEST_CASE("vpMorphJointVelocity: a long turn about the optical axis held period 
   qa[1] = -0.04;
   qa[4] = vpMath::rad(45); // the benchmark's reference configuration
   double plainTilt, plainShift, tilt, shift;
-  turn(afma, afma.get_eMc(), qa, false, plainTilt, plainShift);
-  turn(afma, afma.get_eMc(), qa, true, tilt, shift);
+  turn(afma, afma.get_eMc(), qa, PLAIN, plainTilt, plainShift);
+  turn(afma, afma.get_eMc(), qa, EXTRAPOLATED, tilt, shift);
   INFO("Afma6: plain " << plainTilt << " deg, " << 1000 * plainShift << " mm; predicted " << tilt << " deg, "
                        << 1000 * shift << " mm");
   CHECK(plainTilt > 0.3); // the drift the class is for (0.39 deg measured)
@@ -72,12 +92,56 @@ TEST_CASE("vpMorphJointVelocity: a long turn about the optical axis held period 
   qv[4] = vpMath::rad(-45);
   vpHomogeneousMatrix eMcViper;
   viper.get_eMc(eMcViper);
-  turn(viper, eMcViper, qv, false, plainTilt, plainShift);
-  turn(viper, eMcViper, qv, true, tilt, shift);
+  turn(viper, eMcViper, qv, PLAIN, plainTilt, plainShift);
+  turn(viper, eMcViper, qv, EXTRAPOLATED, tilt, shift);
   INFO("Viper850: plain " << plainTilt << " deg, " << 1000 * plainShift << " mm; predicted " << tilt << " deg, "
                           << 1000 * shift << " mm");
   CHECK(tilt <= plainTilt);
   CHECK(shift <= plainShift);
+}
+
+TEST_CASE("vpMorphJointVelocity: solved on the robot's model, a turn is a turn from its first period",
+          "[joint_velocity]")
+{
+  vpAfma6 afma;
+  vpColVector qa(6, 0.0);
+  qa[0] = 0.05;
+  qa[1] = -0.04;
+  qa[4] = vpMath::rad(45);
+  vpViper850 viper;
+  vpColVector qv(6, 0.0);
+  qv[1] = vpMath::rad(-120);
+  qv[2] = vpMath::rad(220);
+  qv[4] = vpMath::rad(-45);
+  vpHomogeneousMatrix eMcViper;
+  viper.get_eMc(eMcViper);
+  // 60 deg in 80 periods, and in 2 (a half turn's first periods at the bench's top rate are 16 deg each).
+  for (int periods : {80, 2}) {
+    double plainTilt, plainShift, tilt, shift;
+    turn(afma, afma.get_eMc(), qa, PLAIN, plainTilt, plainShift, periods);
+    turn(afma, afma.get_eMc(), qa, MODEL, tilt, shift, periods);
+    INFO(periods << " periods, Afma6: plain " << plainTilt << " deg, " << 1000 * plainShift << " mm; on the model "
+                 << tilt << " deg, " << 1000 * shift << " mm");
+    CHECK(plainTilt > 0.3);
+    CHECK(tilt < 1e-3); // kPoseTolerance a period: micro-radians
+    CHECK(shift < 1e-5);
+    turn(viper, eMcViper, qv, PLAIN, plainTilt, plainShift, periods);
+    turn(viper, eMcViper, qv, MODEL, tilt, shift, periods);
+    INFO(periods << " periods, Viper850: plain " << plainTilt << " deg, " << 1000 * plainShift << " mm; on the model "
+                 << tilt << " deg, " << 1000 * shift << " mm");
+    CHECK(tilt < 1e-3);
+    CHECK(shift < 1e-5);
+  }
+
+  vpMorphJointVelocity conv(kDt);
+  vpMorphJointVelocity::KinematicModel half = modelOf(afma);
+  half.eJe = nullptr;
+  CHECK_THROWS_AS(conv.setKinematicModel(half), vpMorphException);
+  CHECK_FALSE(conv.getKinematicModel().isSet());
+  conv.setKinematicModel(modelOf(afma));
+  CHECK(conv.getKinematicModel().isSet());
+  conv.setKinematicModel({});
+  CHECK_FALSE(conv.getKinematicModel().isSet());
 }
 
 TEST_CASE("vpMorphJointVelocity: the plain conversion without a usable last step, and bad input", "[joint_velocity]")

@@ -18,6 +18,7 @@
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpPoint.h>
 #include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/morph_vs/vpMorphJointVelocity.h>
 #include <visp3/robot/vpRobot.h>
 
 class vpFeatureMorph;
@@ -86,6 +87,9 @@ public:
     vpColVector jointMin;
     //! The robot's upper joint limits.
     vpColVector jointMax;
+    //! The arm's kinematic model (valid during the run), which a joint-level driver's step is solved on; empty for
+    //! the free camera, whose "joints" are its pose.
+    vpMorphJointVelocity::KinematicModel robotModel;
   };
   //! One command.
   struct Command

@@ -153,10 +153,18 @@ public:
 
   //! Robot Jacobian in the end-effector frame at the current joints.
   vpMatrix get_eJe() const;
+  /*!
+    The arm's Jacobian in the end-effector frame at the joint positions \e q (its kinematic model).
+    \throw vpMorphException::badParameterError for the free camera (its joints are its pose, not a kinematic
+    chain) or unless \e q holds 6 finite values.
+  */
+  vpMatrix get_eJe(const vpColVector &q) const;
   //! Twist transform from the end-effector to the TRUE camera (what a perfectly calibrated controller would use).
   vpVelocityTwistMatrix get_cVe() const;
   //! Pose of the end-effector in the fixed frame.
   vpHomogeneousMatrix get_fMe() const;
+  //! The arm's end-effector pose at the joint positions \e q; throws as get_eJe(const vpColVector &).
+  vpHomogeneousMatrix get_fMe(const vpColVector &q) const;
   //! Pose of the true camera in the fixed frame.
   vpHomogeneousMatrix get_fMc() const;
   //! True object pose in the camera frame (the simulator's ground truth).
@@ -186,6 +194,7 @@ public:
 private:
   struct Model;
   void checkPose(const vpHomogeneousMatrix &M, const char *what) const;
+  void checkModelJoints(const vpColVector &q, const char *what) const;
   bool placeCamera(const vpHomogeneousMatrix &fMc, const vpColVector &qSeed);
 
   Kind m_kind;
