@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include <visp3/core/vpExponentialMap.h>
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphHomography.h>
 #include <visp3/morph_vs/vpMorphJointVelocity.h>
 
 #include "vpMorphBenchAdapter.h"
@@ -136,10 +138,42 @@ protected:
   Command toJoints(Command cmd, const vpMatrix &eJe, const vpColVector &q)
   {
     const Clock::time_point t0 = Clock::now();
+    predictPrevious(cmd.v);
     cmd.v = m_joints.compute(eJe, q, cmd.v);
     cmd.controlMs += msSince(t0);
     cmd.frame = vpRobot::JOINT_STATE;
     return cmd;
+  }
+  //! The hand-eye transform the adapter's law converts with (its controller's estimate where it has one).
+  virtual vpHomogeneousMatrix handEye() const { return m_ctx.eMc; }
+  /*!
+    Moves the last silhouette, which the next image's must overlap (vpMorphContourExtractor::extractJoined()), by the
+    camera motion the end-effector twist \e ve commands over the period (through handEye(); the plane
+    fronto-parallel at the depth the silhouette's size gives against the template's): in a half turn's period a
+    piece an occluder cut off moves farther than its own size, and, not overlapping where it was, would be dropped.
+  */
+  void predictPrevious(const vpColVector &ve)
+  {
+    if (m_previous.empty() || !m_template || !finite(ve))
+      return;
+    const double a = m_previous.area(), ad = m_template->contour().area();
+    if (!(a > 0.0) || !(ad > 0.0))
+      return;
+    const double Z = m_template->cdMo()[2][3] * std::sqrt(ad / a);
+    const vpColVector vc = vpVelocityTwistMatrix(handEye().inverse()) * ve;
+    // The plane z = Z of this camera, in the next one: x' ~ (R + t n^T / Z) x with n = (0, 0, 1).
+    const vpHomogeneousMatrix cnMc = vpExponentialMap::direct(vc, m_ctx.samplingTime).inverse();
+    vpMatrix G(3, 3);
+    for (unsigned int r = 0; r < 3; ++r) {
+      for (unsigned int k = 0; k < 3; ++k)
+        G[r][k] = cnMc[r][k];
+      G[r][2] += cnMc[r][3] / Z;
+    }
+    try {
+      m_previous = vpMorphHomography(G).apply(m_previous.toNormalized(m_ctx.cam)).toPixels(m_ctx.cam);
+    } catch (const vpException &) {
+      // A vertex mapped to infinity (the plane seen edge-on): the silhouette as it was.
+    }
   }
   void reset() override
   {

@@ -85,6 +85,7 @@ public:
   const vpServoMorph *servo() const override { return m_servo.get(); }
 
 private:
+  vpHomogeneousMatrix handEye() const override { return m_servo ? m_servo->get_eMc() : m_ctx.eMc; }
   void setTarget()
   {
     m_servo->setTarget(*m_template);
