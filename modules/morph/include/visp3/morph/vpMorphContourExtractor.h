@@ -86,9 +86,11 @@ public:
     larger (a distractor, the floor beyond the plane's edge): extractJoined() restricted to the regions that overlap
     \e previous (the largest of them joined with the others near it). Why: between two images the object moves less
     than the gap that separates it from other regions, so where it was tells it from them without a rule on size,
-    and an occluder's cut pieces, which lie where the object was, are joined back. An empty \e previous gives
-    extractJoined(I). \throw vpMorphException::badImageError as extract(), and when no region overlaps \e previous
-    (the object left the view or is lost); badParameterError when \e previous is not in PIXEL units.
+    and an occluder's cut pieces, which lie where the object was, are joined back. A fast motion moves a small piece
+    farther than its own size: a caller that knows the camera's motion since passes \e previous moved by it. An empty
+    \e previous gives extractJoined(I). \throw vpMorphException::badImageError as extract(), and when no region
+    overlaps \e previous (the object left the view or is lost); badParameterError when \e previous is not in PIXEL
+    units.
   */
   vpMorphContour extractJoined(const vpImage<unsigned char> &I, const vpMorphContour &previous) const;
   //! Same on a colour image.
