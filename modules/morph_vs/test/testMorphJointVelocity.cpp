@@ -66,16 +66,31 @@ void turn(Robot &robot, const vpHomogeneousMatrix &eMc, vpColVector q, Conversio
   robot.get_fMc(q, fMc);
   poseError(fMc, fMc0 * vpHomogeneousMatrix(0, 0, 0, 0, 0, vpMath::rad(60.0)), tiltDeg, shift);
 }
+
+// The benchmark's reference configurations of the two arms.
+vpColVector afmaReference()
+{
+  vpColVector q(6, 0.0);
+  q[0] = 0.05;
+  q[1] = -0.04;
+  q[4] = vpMath::rad(45);
+  return q;
+}
+vpColVector viperReference()
+{
+  vpColVector q(6, 0.0);
+  q[1] = vpMath::rad(-120);
+  q[2] = vpMath::rad(220);
+  q[4] = vpMath::rad(-45);
+  return q;
+}
 } // namespace
 
 TEST_CASE("vpMorphJointVelocity: a long turn about the optical axis held period by period stays a turn",
           "[joint_velocity]")
 {
   vpAfma6 afma;
-  vpColVector qa(6, 0.0);
-  qa[0] = 0.05;
-  qa[1] = -0.04;
-  qa[4] = vpMath::rad(45); // the benchmark's reference configuration
+  const vpColVector qa = afmaReference();
   double plainTilt, plainShift, tilt, shift;
   turn(afma, afma.get_eMc(), qa, PLAIN, plainTilt, plainShift);
   turn(afma, afma.get_eMc(), qa, EXTRAPOLATED, tilt, shift);
@@ -86,10 +101,7 @@ TEST_CASE("vpMorphJointVelocity: a long turn about the optical axis held period 
   CHECK(shift < 0.1 * plainShift);
 
   vpViper850 viper;
-  vpColVector qv(6, 0.0);
-  qv[1] = vpMath::rad(-120);
-  qv[2] = vpMath::rad(220);
-  qv[4] = vpMath::rad(-45);
+  const vpColVector qv = viperReference();
   vpHomogeneousMatrix eMcViper;
   viper.get_eMc(eMcViper);
   turn(viper, eMcViper, qv, PLAIN, plainTilt, plainShift);
@@ -104,15 +116,9 @@ TEST_CASE("vpMorphJointVelocity: solved on the robot's model, a turn is a turn f
           "[joint_velocity]")
 {
   vpAfma6 afma;
-  vpColVector qa(6, 0.0);
-  qa[0] = 0.05;
-  qa[1] = -0.04;
-  qa[4] = vpMath::rad(45);
+  const vpColVector qa = afmaReference();
   vpViper850 viper;
-  vpColVector qv(6, 0.0);
-  qv[1] = vpMath::rad(-120);
-  qv[2] = vpMath::rad(220);
-  qv[4] = vpMath::rad(-45);
+  const vpColVector qv = viperReference();
   vpHomogeneousMatrix eMcViper;
   viper.get_eMc(eMcViper);
   // 60 deg in 80 periods, and in 2 (a half turn's first periods at the bench's top rate are 16 deg each).
