@@ -148,6 +148,18 @@ TEST_CASE("vpMorphJointVelocity: solved on the robot's model, a turn is a turn f
   CHECK(conv.getKinematicModel().isSet());
   conv.setKinematicModel({});
   CHECK_FALSE(conv.getKinematicModel().isSet());
+
+  // A model that does not fit the robot: a clear error, not a wrong velocity.
+  vpMorphJointVelocity::KinematicModel wrong = modelOf(afma);
+  wrong.eJe = [](const vpColVector &) { return vpMatrix(5, 6, 0.0); };
+  conv.setKinematicModel(wrong);
+  vpMatrix J;
+  afma.get_eJe(qa, J);
+  vpColVector ve(6, 0.0);
+  ve[0] = 0.05;
+  ve[3] = 1.0;
+  ve[5] = 1.0;
+  CHECK_THROWS_AS(conv.compute(J, qa, ve), vpMorphException);
 }
 
 TEST_CASE("vpMorphJointVelocity: the plain conversion without a usable last step, and bad input", "[joint_velocity]")
