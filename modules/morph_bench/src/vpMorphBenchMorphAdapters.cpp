@@ -155,13 +155,13 @@ private:
   vpFeatureMorph in a stock vpServo, to the final goal (no sub-goals): EYEINHAND_CAMERA with the tilt rotations
   disabled (setCameraDoF: the feature has 4 components for a planar task), current L. The two rotations the feature
   cannot see are vpMorphTiltEstimator's, as in vpServoMorph's final approach: its levelling twist, at the share of the
-  displacement the planar law executes a period, is added to the task's camera velocity (joint velocities held for a
-  period tilt an arm's camera as it turns about its optical axis). The camera velocity is mapped to the end-effector
-  with the estimated eMc and sent as joint velocities from the Jacobian at the middle of the period, as "morph" sends
-  its own. The depth comes from the area ratio to the template. The target check runs on the first image and every
-  kCheckPeriod measured iterations. Convergence: the adapter's stop rule on the error norm, the tilt levelled and
-  verified (vpMorphTiltEstimator::isVerified() at vpMorphServoGuard's sigmas); settled with the tilt not verified is a
-  safe stop ("unverified"), never a convergence.
+  displacement the planar law executes a period, is added to the task's camera velocity. The camera velocity is mapped
+  to the end-effector with the estimated eMc and sent as joint velocities solved on the arm's model, as "morph" sends
+  its own. The depth: the desired one times the scale the feature's last alignment measured (the area ratio to the
+  template before the first). The target check runs on the first image and every kCheckPeriod measured iterations.
+  Convergence: the adapter's stop rule on the error norm, the tilt levelled and verified
+  (vpMorphTiltEstimator::isVerified() at vpMorphServoGuard's sigmas); settled with the tilt not verified is a safe stop
+  ("unverified"), never a convergence.
 */
 class MorphVpServoController : public vpMorphBenchMorphAdapter
 {
