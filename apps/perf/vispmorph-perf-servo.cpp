@@ -13,6 +13,8 @@
     again (vpMorphContourExtractor::extractJoined(), as the benchmark's controllers extract every view);
   - BM_extractCutFollow: the same view followed from its own joined outline (extractJoined(I, previous), as the
     benchmark's controllers extract every view after the first): the cost of finding the object where it was;
+  - BM_outlineBlur: that view's outline laid at a 1.5 px blur (vpMorphOutlineBlur, as the view aligner does once per
+    goal and blur, and every period for a view sharper than its goal);
   - BM_approximate: its polygonal approximation alone (vpMorphPolygonApproximation on that image's boundary chain),
     the part of the extraction that grows with the boundary's length;
   - BM_morphIteration: vpServoMorph::computeControlLaw() over the recorded run (tracked correspondence, fit,
@@ -57,6 +59,7 @@
 #include <visp3/morph/vpMorphArticulation.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphMatcher.h>
+#include <visp3/morph/vpMorphOutlineBlur.h>
 #include <visp3/morph/vpMorphPolygonApproximation.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
@@ -194,6 +197,15 @@ void BM_extractNoisy(benchmark::State &state)
   vpMorphContourExtractor extractor;
   for (auto _ : state)
     benchmark::DoNotOptimize(extractor.extract(I).size());
+}
+
+// The recording's first view's outline laid at a blur of 1.5 px (vpMorphOutlineBlur::blurred()): what the view aligner
+// pays once per goal and tenth of a pixel of blur, and every period for a view sharper than its goal.
+void BM_outlineBlur(benchmark::State &state)
+{
+  const vpMorphContour c = vpMorphContourExtractor().extract(maskedFirstImage(recording()));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(vpMorphOutlineBlur::blurred(c, 1.5).outline().size());
 }
 
 // The recording's first view with a card hiding 15 % of the pliers across their middle, the tag masked.
@@ -448,6 +460,7 @@ BENCHMARK(BM_extract)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_extractNoisy)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_extractCut)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_extractCutFollow)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_outlineBlur)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_approximate)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIteration)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIterationTilt)->Unit(benchmark::kMicrosecond);

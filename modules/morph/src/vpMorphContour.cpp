@@ -272,14 +272,18 @@ void vpMorphContour::regionMoments(double &mu20, double &mu11, double &mu02) con
   mu02 = m_regionMu02;
 }
 
-void vpMorphContour::setOutline(const vpMorphContour &outline)
+void vpMorphContour::setOutline(const vpMorphContour &outline, double blur)
 {
   if (outline.empty() || outline.size() < 4 || outline.units() != m_units)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphContour::setOutline: the outline must be a contour of at least 4 vertices in the "
                            "polygon's units");
+  if (!(blur >= 0.0) || !std::isfinite(blur))
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphContour::setOutline: the blur must be finite and >= 0");
   vpMorphContour o(outline.m_x, outline.m_y, outline.m_units); // without region or outline of its own
   m_outline = std::make_shared<const vpMorphContour>(std::move(o));
+  m_outlineBlur = blur;
 }
 
 void vpMorphContour::mapRegion(double a11, double a12, double a21, double a22, double b1, double b2)
@@ -292,6 +296,7 @@ void vpMorphContour::mapRegion(double a11, double a12, double a21, double a22, d
       o.m_y[k] = a21 * x + a22 * y + b2;
     }
     m_outline = std::make_shared<const vpMorphContour>(std::move(o));
+    m_outlineBlur *= std::sqrt(std::fabs(a11 * a22 - a12 * a21));
   }
   if (!hasRegion())
     return;
@@ -409,6 +414,7 @@ vpMorphContour vpMorphContour::resampled(std::size_t n) const
   if (hasRegion())
     out.setRegion(m_regionArea, m_regionCx, m_regionCy, m_regionMu20, m_regionMu11, m_regionMu02); // same region
   out.m_outline = m_outline; // same edge
+  out.m_outlineBlur = m_outlineBlur;
   return out;
 }
 
@@ -426,8 +432,10 @@ vpMorphContour vpMorphContour::toNormalized(const vpCameraParameters &cam) const
   out.mapRegion(1.0 / cam.get_px(), 0.0, 0.0, 1.0 / cam.get_py(), -cam.get_u0() / cam.get_px(),
                 -cam.get_v0() / cam.get_py());
   out.m_units = NORMALIZED;
-  if (m_outline) // mapped once, its units changed with it
+  if (m_outline) { // mapped once, its units changed with it
     out.m_outline = std::make_shared<const vpMorphContour>(m_outline->toNormalized(cam));
+    out.m_outlineBlur = m_outlineBlur / std::sqrt(cam.get_px() * cam.get_py());
+  }
   return out;
 }
 
@@ -444,7 +452,9 @@ vpMorphContour vpMorphContour::toPixels(const vpCameraParameters &cam) const
   }
   out.mapRegion(cam.get_px(), 0.0, 0.0, cam.get_py(), cam.get_u0(), cam.get_v0());
   out.m_units = PIXEL;
-  if (m_outline) // mapped once, its units changed with it
+  if (m_outline) { // mapped once, its units changed with it
     out.m_outline = std::make_shared<const vpMorphContour>(m_outline->toPixels(cam));
+    out.m_outlineBlur = m_outlineBlur * std::sqrt(cam.get_px() * cam.get_py());
+  }
   return out;
 }

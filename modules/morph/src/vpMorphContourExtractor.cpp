@@ -165,7 +165,7 @@ vpMorphContour polygon(const Region &r)
       y.push_back(p.y);
     }
     try {
-      c.setOutline(vpMorphContour(x, y));
+      c.setOutline(vpMorphContour(x, y), r.edgeBlur);
     } catch (const vpMorphException &) {
       // Not a valid outline (a sliver): the contour goes without.
     }

@@ -85,8 +85,11 @@ void contourToJson(const vpMorphContour &c, json &o)
     c.regionMoments(mu20, mu11, mu02);
     o["region"] = {{"area", c.regionArea()}, {"cx", cx}, {"cy", cy}, {"mu20", mu20}, {"mu11", mu11}, {"mu02", mu02}};
   }
-  if (c.hasOutline()) // the measured edge, for the out-of-plane estimate of vpServoMorph
+  if (c.hasOutline()) { // the measured edge, for the out-of-plane estimate of vpServoMorph, and its blur
     o["outline"] = {{"x", c.outline().xs()}, {"y", c.outline().ys()}};
+    if (c.outlineBlur() > 0.0)
+      o["outline"]["blur"] = c.outlineBlur();
+  }
 }
 
 //! Runs \e f, the errors of what it builds reported as a malformed file at \e where.
@@ -128,11 +131,12 @@ vpMorphContour contourFromJson(const json &o, const std::string &where)
   if (o.contains("outline")) { // optional: the edge measured on the template image
     const json &e = o["outline"];
     if (!e.is_object())
-      throw ioError("vpMorphDatabase: " + where + ": \"outline\" must be an object {x, y}");
+      throw ioError("vpMorphDatabase: " + where + ": \"outline\" must be an object {x, y[, blur]}");
     const std::string w = where + " \"outline\"";
     asFileError(w, [&] {
       c.setOutline(
-          vpMorphContour(field<std::vector<double>>(e, "x", w), field<std::vector<double>>(e, "y", w), c.units()));
+          vpMorphContour(field<std::vector<double>>(e, "x", w), field<std::vector<double>>(e, "y", w), c.units()),
+          e.contains("blur") ? field<double>(e, "blur", w) : 0.0);
     });
   }
   return c;

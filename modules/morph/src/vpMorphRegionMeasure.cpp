@@ -338,19 +338,21 @@ bool edgeProfile(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy, const c
   The edge near each chain pixel, in image coordinates (chain pixel + box corner), one point per pixel.
   - Where the step is whole (fg to bg, not clipped): along the pixel's row, or its column when the edge is closer to
     horizontal, the edge is where the object's share of the 7 pixels about it ends, their weights (g - bg) /
-    (fg - bg) (the levels at each pixel) summed from the object's end. Why: a pixel's grey level is the share of its area the object covers
-    (then blurred, which keeps areas), so over a row the weights add up to the object's extent, averaged over the
-    pixel's height: for a straight edge, exactly the edge at the row's centre, whatever its angle and blur. The
-    level crossing of an interpolated profile is off by a pixel-phase-dependent tenth of a pixel on slanted edges.
+    (fg - bg) (the levels at each pixel) summed from the object's end. Why: a pixel's grey level is the share of its
+    area the object covers (then blurred, which keeps areas), so over a row the weights add up to the object's
+    extent, averaged over the pixel's height: for a straight edge, exactly the edge at the row's centre, whatever its
+    angle and blur. The level crossing of an interpolated profile is off by a pixel-phase-dependent tenth of a pixel
+    on slanted edges.
   - Elsewhere (clipped levels, another edge within 3 px, the image border): along the gradient direction (3x3
     Sobel), the crossing nearest the pixel within 2 px of the level halfway between fg and bg there (\e clippedLevel
     when the step is not \e whole), the profile sampled bilinearly every quarter
     pixel and interpolated linearly.
   Pixels without a clear gradient (under the local contrast / 16 per pixel) or without a crossing are skipped.
+  \e blur, when given, receives the edge's blur from the whole steps' profiles (left unchanged without any).
 */
 std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy,
                                      const std::vector<cv::Point> &chain, const cv::Point &tl, const Level &fg,
-                                     const Level &bg, bool whole, double clippedLevel)
+                                     const Level &bg, bool whole, double clippedLevel, double *blur)
 {
   // The object's share of pixel (c, r) of the box, from the levels there.
   auto weight = [&](int c, int r) {
@@ -359,14 +361,16 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
   };
   // The object's extent along a row (alongRow) or column through pixel p: false where the 7 pixels do not hold one
   // whole step from object to background.
-  auto integral = [&](const cv::Point &p, bool alongRow, double &pos) {
+  auto integral = [&](const cv::Point &p, bool alongRow, double &pos, double &spread) {
     const int W = 3, i0 = alongRow ? p.x : p.y, n = alongRow ? g.cols : g.rows;
     if (i0 - W < 0 || i0 + W >= n)
       return false;
     double w[2 * W + 1], sum = 0.0;
+    spread = 0.0;
     for (int k = -W; k <= W; ++k) {
       w[k + W] = alongRow ? weight(i0 + k, p.y) : weight(p.x, i0 + k);
       sum += w[k + W];
+      spread += w[k + W] * (1.0 - w[k + W]);
     }
     const double lo = w[0], hi = w[2 * W];
     if (lo > 0.75 && hi < 0.25)
@@ -392,6 +396,7 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
   };
   const int steps = 8;
   const double h = 0.25;
+  std::vector<double> spreads; // each row's (or column's) edge spread, along the edge's normal
   for (const cv::Point &p0 : chain) {
     const cv::Point p = p0 - tl;
     if (p.x < 0 || p.y < 0 || p.x >= g.cols || p.y >= g.rows)
@@ -402,9 +407,10 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
     if (!(m > std::fabs(fgp - bgp) / 16.0))
       continue;
     const bool alongRow = std::fabs(ex) >= std::fabs(ey);
-    double pos;
-    if (whole && integral(p, alongRow, pos)) {
+    double pos, spread;
+    if (whole && integral(p, alongRow, pos, spread)) {
       add(alongRow ? cv::Point2d(pos + tl.x, p0.y) : cv::Point2d(p0.x, pos + tl.y));
+      spreads.push_back(std::sqrt(M_PI) * spread * (alongRow ? std::fabs(ex) : std::fabs(ey)) / m);
       continue;
     }
     const double nx = ex / m, ny = ey / m;
@@ -425,6 +431,13 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
   }
   while (out.size() > 1 && same(out.front(), out.back()))
     out.pop_back();
+  // The blur: the median spread. A Gaussian step of std s, integrated over pixels, has weights whose w (1 - w) sum to
+  // sqrt(s^2 + 1/12) / sqrt(pi) along the normal (1 / cos of the row's angle to it along a row), and zero-mean noise
+  // lowers the sum by only the weights' variance.
+  if (blur != nullptr && !spreads.empty()) {
+    std::nth_element(spreads.begin(), spreads.begin() + long(spreads.size() / 2), spreads.end());
+    *blur = std::max(0.0, spreads[spreads.size() / 2]);
+  }
   return out;
 }
 
@@ -536,7 +549,7 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
   if (!(m00 > 0.0))
     return; // left unmeasured: the contour falls back to its polygon
   if (grades)
-    reg.outline = edgeOutline(g, gx, gy, reg.chain, box.tl(), fg, bg, !clipped, edgeLevel);
+    reg.outline = edgeOutline(g, gx, gy, reg.chain, box.tl(), fg, bg, !clipped, edgeLevel, &reg.edgeBlur);
   const double xc = m10 / m00, yc = m01 / m00;
   reg.subArea = m00;
   reg.cx = box.x + xc;

@@ -30,6 +30,9 @@ struct Region
   double subArea = 0.0, cx = 0.0, cy = 0.0, mu20 = 0.0, mu11 = 0.0, mu02 = 0.0;
   // The measured edge, one point per chain pixel (image coordinates), when the levels were measured.
   std::vector<cv::Point2d> outline{};
+  // The edge's blur (px): the std of the Gaussian that spreads a sharp step as the image does, the pixel's own area
+  // included; 0 when not measured (no clear step, or a level clipped by the sensor).
+  double edgeBlur = 0.0;
   Level fg{}, bg{}; // the object's and background's grey levels, when measured
 };
 
@@ -40,7 +43,7 @@ struct Region
   count or the boundary polygon, this moves continuously with the object and is unbiased by zero-mean noise (the weights
   are not clipped). The band is 3 px wide on each side, enough for the edge blur of a camera; other regions' pixels (\e
   bin, the object mask) are left out of it. The second-order moments come with it (the region's orientation, steadier
-  than a fit over polygon vertices), and the edge outline. Falls back to the binary region when the object and
+  than a fit over polygon vertices), the edge outline and its blur. Falls back to the binary region when the object and
   background levels cannot be told apart. \e levelsFrom, when given and measured, supplies both levels instead (a region
   that is not all object: a joined silhouette). With \e levelsOnly, only the levels are read (reg.fg, reg.bg): the
   largest piece of a joined silhouette lends its own.

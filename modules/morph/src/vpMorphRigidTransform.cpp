@@ -205,7 +205,7 @@ vpMorphContour vpMorphRigidTransform::apply(const vpMorphContour &contour) const
       out.setRegion(contour.regionArea(), cx, cy, mu20, mu11, mu02);
     }
     if (contour.hasOutline())
-      out.setOutline(contour.outline());
+      out.setOutline(contour.outline(), contour.outlineBlur());
     const double a = m_scale * std::cos(m_theta), b = m_scale * std::sin(m_theta);
     out.mapRegion(a, -b, b, a, m_cx + m_tx - a * m_cx + b * m_cy, m_cy + m_ty - b * m_cx - a * m_cy);
   }

@@ -22,11 +22,13 @@
 #include <visp3/morph/vpMorphPolygonApproximation.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 
+#include "testMorphImages.h"
+
 namespace
 {
-struct Poly {
-  std::vector<double> x, y;
-};
+using vpMorphTest::blurred;
+using vpMorphTest::Poly;
+using vpMorphTest::render;
 
 // A ten-vertex, non-convex polygon (about 300 x 220 px) with acute and obtuse corners.
 Poly testPolygon(double cx = 320, double cy = 240, double theta = 0.0)
@@ -39,43 +41,6 @@ Poly testPolygon(double cx = 320, double cy = 240, double theta = 0.0)
     p.y.push_back(cy + std::sin(theta) * px[k] + std::cos(theta) * py[k]);
   }
   return p;
-}
-
-// Renders the polygons with area anti-aliasing (8x supersampling): grey level = coverage, object = obj,
-// background = bg, then adds Gaussian noise of std sigma (seeded).
-vpImage<unsigned char> render(const std::vector<Poly> &polys, unsigned char obj, unsigned char bg, double sigma = 0.0,
-                              unsigned int seed = 0, int w = 640, int h = 480)
-{
-  const int S = 8;
-  cv::Mat big(h * S, w * S, CV_8UC1, cv::Scalar(255));
-  std::vector<std::vector<cv::Point> > pts;
-  for (const Poly &p : polys) {
-    pts.emplace_back();
-    for (std::size_t k = 0; k < p.x.size(); ++k)
-      pts.back().emplace_back(cvRound((p.x[k] + 0.5) * S - 0.5), cvRound((p.y[k] + 0.5) * S - 0.5));
-  }
-  cv::fillPoly(big, pts, cv::Scalar(0));
-  cv::Mat cover;
-  cv::resize(big, cover, cv::Size(w, h), 0, 0, cv::INTER_AREA); // 255 = background, 0 = object
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> g(0.0, sigma);
-  vpImage<unsigned char> I(static_cast<unsigned int>(h), static_cast<unsigned int>(w));
-  for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c) {
-      const double a = cover.at<unsigned char>(r, c) / 255.0;
-      const double v = a * bg + (1.0 - a) * obj + (sigma > 0 ? g(rng) : 0.0);
-      I[r][c] = cv::saturate_cast<unsigned char>(v);
-    }
-  return I;
-}
-
-// \e I blurred by a Gaussian of std \e sigma px (a camera's edge), as an OpenCV image of its own.
-cv::Mat blurred(const vpImage<unsigned char> &I, double sigma)
-{
-  const cv::Mat m(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1, I.bitmap);
-  cv::Mat b;
-  cv::GaussianBlur(m, b, cv::Size(0, 0), sigma);
-  return b;
 }
 
 double segDist(double ax, double ay, double bx, double by, double px, double py)
@@ -962,4 +927,42 @@ TEST_CASE("extractor: the edge outline lies on the object's edge to a few hundre
   CHECK(worstMean[2] < 0.1);
   CHECK(worstSpread[2] < 0.05);
   CHECK(fewest > 800); // about a point per boundary pixel (the polygon's perimeter is about 1100 px)
+}
+
+TEST_CASE("extractor: the edge outline's blur is the image's, unknown where a level is clipped", "[extract][outline]")
+{
+  // Blurs add in variance: the measured blur of an image blurred by s is sqrt(s^2 + b0^2), b0 the sharp render's own
+  // (its pixels' area, 1/12 px^2, and the anti-aliasing), with noise too. Beyond 1.5 px the 7 pixels across the edge
+  // lose the profile's tails: the blur is read low, never high.
+  const Poly p = testPolygon(300, 250, 0.4);
+  const double b0 = vpMorphContourExtractor().extract(render({p}, 40, 210)).outlineBlur();
+  INFO("sharp render's blur " << b0 << " px");
+  CHECK(b0 > 0.25);
+  CHECK(b0 < 0.4);
+  for (double noise : {0.0, 4.0})
+    for (double s : {0.8, 1.2, 1.5, 2.5}) {
+      vpImage<unsigned char> I = render({p}, 40, 210, 0.0, 5);
+      const cv::Mat b = blurred(I, s);
+      std::mt19937 rng(7);
+      std::normal_distribution<double> n(0.0, noise > 0.0 ? noise : 1.0);
+      for (unsigned int k = 0; k < I.getSize(); ++k)
+        I.bitmap[k] = cv::saturate_cast<unsigned char>(b.data[k] + (noise > 0.0 ? n(rng) : 0.0));
+      const vpMorphContour c = vpMorphContourExtractor().extract(I);
+      REQUIRE(c.hasOutline());
+      INFO("blur " << s << ", noise " << noise << ": measured " << c.outlineBlur() << " px");
+      if (s <= 1.5) {
+        CHECK(c.outlineBlur() == Approx(std::hypot(s, b0)).margin(0.1));
+      } else {
+        CHECK(c.outlineBlur() < std::hypot(s, b0));
+        CHECK(c.outlineBlur() > 0.75 * std::hypot(s, b0));
+      }
+    }
+  // A background lifted beyond the sensor's limit: the step's contrast is not seen, its blur unknown.
+  vpImage<unsigned char> I = render({p}, 40, 210);
+  const cv::Mat b = blurred(I, 1.2);
+  for (unsigned int k = 0; k < I.getSize(); ++k)
+    I.bitmap[k] = cv::saturate_cast<unsigned char>(1.3 * b.data[k] + 13.0);
+  const vpMorphContour clipped = vpMorphContourExtractor().extract(I);
+  REQUIRE(clipped.hasOutline());
+  CHECK(clipped.outlineBlur() == 0.0);
 }

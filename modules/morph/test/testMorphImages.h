@@ -1,16 +1,63 @@
-// Images shared by the morph unit tests: the largest object's boundary and the benchmark scene's square occluder.
+// Images shared by the morph unit tests: polygons rendered anti-aliased and blurred, the largest object's boundary and
+// the benchmark scene's square occluder.
 // Include after catch.hpp.
 #ifndef VP_MORPH_TEST_IMAGES_H
 #define VP_MORPH_TEST_IMAGES_H
 
 #include <algorithm>
 #include <cstdlib>
+#include <random>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
 
+#include <visp3/core/vpImage.h>
+
 namespace vpMorphTest
 {
+//! A polygon's vertices, pixels.
+struct Poly
+{
+  std::vector<double> x, y;
+};
+
+// Renders the polygons with area anti-aliasing (8x supersampling): grey level = coverage, object = obj,
+// background = bg, then adds Gaussian noise of std sigma (seeded).
+inline vpImage<unsigned char> render(const std::vector<Poly> &polys, unsigned char obj, unsigned char bg,
+                                     double sigma = 0.0, unsigned int seed = 0, int w = 640, int h = 480)
+{
+  const int S = 8;
+  cv::Mat big(h * S, w * S, CV_8UC1, cv::Scalar(255));
+  std::vector<std::vector<cv::Point>> pts;
+  for (const Poly &p : polys) {
+    pts.emplace_back();
+    for (std::size_t k = 0; k < p.x.size(); ++k)
+      pts.back().emplace_back(cvRound((p.x[k] + 0.5) * S - 0.5), cvRound((p.y[k] + 0.5) * S - 0.5));
+  }
+  cv::fillPoly(big, pts, cv::Scalar(0));
+  cv::Mat cover;
+  cv::resize(big, cover, cv::Size(w, h), 0, 0, cv::INTER_AREA); // 255 = background, 0 = object
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0.0, sigma);
+  vpImage<unsigned char> I(static_cast<unsigned int>(h), static_cast<unsigned int>(w));
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const double a = cover.at<unsigned char>(r, c) / 255.0;
+      const double v = a * bg + (1.0 - a) * obj + (sigma > 0 ? g(rng) : 0.0);
+      I[r][c] = cv::saturate_cast<unsigned char>(v);
+    }
+  return I;
+}
+
+// \e I blurred by a Gaussian of std \e sigma px (a camera's edge), as an OpenCV image of its own.
+inline cv::Mat blurred(const vpImage<unsigned char> &I, double sigma)
+{
+  const cv::Mat m(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1, I.bitmap);
+  cv::Mat b;
+  cv::GaussianBlur(m, b, cv::Size(0, 0), sigma);
+  return b;
+}
+
 //! The pixel boundary of the largest dark object.
 inline std::vector<cv::Point> largestBoundary(const cv::Mat &src)
 {

@@ -127,11 +127,20 @@ public:
   const vpMorphContour &outline() const { return m_outline ? *m_outline : *this; }
   /*!
     Sets the measured edge outline: a valid contour (at least 4 vertices) in this contour's units; its own outline
-    and region, if any, are dropped. Throws vpMorphException otherwise.
+    and region, if any, are dropped. \e blur: the edge's blur where it was measured, in the same units (the std of
+    the Gaussian that spreads a sharp step as the image did, the pixel's area included; 0: unknown). Throws
+    vpMorphException otherwise (and on a negative or non-finite blur).
   */
-  void setOutline(const vpMorphContour &outline);
+  void setOutline(const vpMorphContour &outline, double blur = 0.0);
   /*!
-    Moves the measured region and edge outline (if any) by the affine map x' = A x + b, A = [a11 a12; a21 a22]:
+    The measured outline's blur (this contour's units; 0: unknown or no outline). Why: a blurred image rounds every
+    detail of an edge finer than its blur, so two outlines of one object compare only at one blur
+    (vpMorphOutlineBlur).
+  */
+  double outlineBlur() const { return m_outlineBlur; }
+  /*!
+    Moves the measured region and edge outline (if any) by the affine map x' = A x + b, A = [a11 a12; a21 a22] (the
+    outline's blur scaled by sqrt |det A|):
     for geometric operations on the vertices defined outside this class (vpMorphRigidTransform::apply), so that
     they follow their polygon.
   */
@@ -178,6 +187,7 @@ private:
   double m_regionArea = 0.0, m_regionCx = 0.0, m_regionCy = 0.0; // area 0: not measured
   double m_regionMu20 = 0.0, m_regionMu11 = 0.0, m_regionMu02 = 0.0;
   std::shared_ptr<const vpMorphContour> m_outline; // shared: contours are copied often, the outline is not changed
+  double m_outlineBlur = 0.0;
 };
 
 #endif

@@ -1,0 +1,157 @@
+// Tests of vpMorphOutlineBlur: a sharp outline laid at a blur is the outline of the blurred image, the blur carried by
+// the contour through its operations and files.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphOutlineBlur.h>
+#include <visp3/morph/vpMorphRigidTransform.h>
+
+#include "testMorphImages.h"
+
+namespace
+{
+// A six-lobed star (about 180 px across) whose edge is a saw of 150 teeth 1.6 px deep: a detail finer than a blur.
+vpMorphTest::Poly serratedStar(double cx, double cy)
+{
+  vpMorphTest::Poly p;
+  const int teeth = 150;
+  for (int k = 0; k < 2 * teeth; ++k) {
+    const double t = 2.0 * M_PI * k / (2 * teeth);
+    const double r = 75.0 * (1.0 + 0.25 * std::cos(6.0 * t)) + (k % 2 == 0 ? 1.6 : 0.0);
+    p.x.push_back(cx + r * std::cos(t));
+    p.y.push_back(cy + r * std::sin(t));
+  }
+  return p;
+}
+
+// A ten-sided polygon with acute and obtuse corners, about 200 x 160 px.
+vpMorphTest::Poly testShape()
+{
+  vpMorphTest::Poly p;
+  p.x = {320.3, 400.3, 420.3, 380.3, 426.3, 346.3, 266.3, 280.3, 226.3, 253.3};
+  p.y = {160.6, 166.6, 213.6, 233.6, 280.6, 306.6, 293.6, 246.6, 226.6, 173.6};
+  return p;
+}
+
+// Root mean square distance of \e a's outline points to \e b's outline (its segments).
+double rmsDistance(const vpMorphContour &a, const vpMorphContour &b)
+{
+  std::vector<cv::Point2f> poly;
+  for (std::size_t k = 0; k < b.outline().size(); ++k)
+    poly.emplace_back(float(b.outline().x(k)), float(b.outline().y(k)));
+  double s2 = 0.0;
+  const vpMorphContour &o = a.outline();
+  for (std::size_t k = 0; k < o.size(); ++k) {
+    const double d = cv::pointPolygonTest(poly, cv::Point2f(float(o.x(k)), float(o.y(k))), true);
+    s2 += d * d;
+  }
+  return std::sqrt(s2 / double(o.size()));
+}
+
+// The image of \e p blurred by \e s px (none for 0), its object extracted.
+vpMorphContour seen(const vpMorphTest::Poly &p, double s)
+{
+  vpImage<unsigned char> I = vpMorphTest::render({p}, 40, 210);
+  if (s > 0.0) {
+    const cv::Mat b = vpMorphTest::blurred(I, s);
+    std::copy(b.data, b.data + I.getSize(), I.bitmap);
+  }
+  return vpMorphContourExtractor().extract(I);
+}
+} // namespace
+
+TEST_CASE("vpMorphOutlineBlur: a sharp outline laid at an image's blur is that image's outline", "[outline_blur]")
+{
+  const vpMorphTest::Poly star = serratedStar(320.3, 240.6);
+  const vpMorphContour sharp = seen(star, 0.0);
+  REQUIRE(sharp.hasOutline());
+  for (double s : {1.0, 1.5, 2.0}) {
+    const vpMorphContour view = seen(star, s);
+    REQUIRE(view.hasOutline());
+    const double extra2 = view.outlineBlur() * view.outlineBlur() - sharp.outlineBlur() * sharp.outlineBlur() -
+                          vpMorphOutlineBlur::pixelVariance();
+    REQUIRE(extra2 > 0.0);
+    const vpMorphContour laid = vpMorphOutlineBlur::blurred(sharp, std::sqrt(extra2));
+    const double before = rmsDistance(view, sharp), after = rmsDistance(view, laid);
+    INFO("image blur " << s << " px: measured " << view.outlineBlur() << " px, the sharp outline's "
+                       << sharp.outlineBlur() << " px, laid at " << laid.outlineBlur() << " px; view to sharp outline "
+                       << before << " px rms, to the laid one " << after << " px rms");
+    CHECK(before > 0.15);
+    CHECK(after < (s <= 1.5 ? 0.05 : 0.1)); // a tenth of a pixel: the outline fit's floor
+    if (s <= 1.5) // where the extractor reads blurs to 0.1 px (beyond, low: the laid blur lower still)
+      CHECK(laid.outlineBlur() == Approx(view.outlineBlur()).margin(0.1));
+    // The polygon and region are the contour's own.
+    CHECK(laid.xs() == sharp.xs());
+    CHECK(laid.regionArea() == sharp.regionArea());
+  }
+}
+
+TEST_CASE("vpMorphOutlineBlur: a polygon's sides and corners are laid where the blurred image has them",
+          "[outline_blur]")
+{
+  // Straight sides do not move under a blur, corners are rounded: both as on the blurred image, whatever the blur.
+  const vpMorphTest::Poly p = testShape();
+  const vpMorphContour sharp = seen(p, 0.0);
+  for (double s : {1.0, 1.5, 2.0}) {
+    const vpMorphContour view = seen(p, s);
+    const double extra2 = view.outlineBlur() * view.outlineBlur() - sharp.outlineBlur() * sharp.outlineBlur() -
+                          vpMorphOutlineBlur::pixelVariance();
+    REQUIRE(extra2 > 0.0);
+    const vpMorphContour laid = vpMorphOutlineBlur::blurred(sharp, std::sqrt(extra2));
+    const double before = rmsDistance(view, sharp), after = rmsDistance(view, laid);
+    INFO("image blur " << s << " px: view to the sharp outline " << before << " px rms, to the laid one " << after);
+    CHECK(after < (s <= 1.5 ? 0.05 : 0.1));
+    CHECK(after < before);
+  }
+}
+
+TEST_CASE("vpMorphOutlineBlur: the blur follows the contour through its units, similarities and files",
+          "[outline_blur]")
+{
+  const vpMorphContour c = seen(serratedStar(320, 240), 1.2);
+  REQUIRE(c.outlineBlur() > 1.0);
+  const vpCameraParameters cam(800, 800, 320, 240);
+  const vpMorphContour n = c.toNormalized(cam);
+  CHECK(n.outlineBlur() == Approx(c.outlineBlur() / 800.0));
+  CHECK(n.toPixels(cam).outlineBlur() == Approx(c.outlineBlur()));
+  CHECK(vpMorphRigidTransform(0.3, 5.0, -2.0, 2.0).apply(c).outlineBlur() == Approx(2.0 * c.outlineBlur()));
+  CHECK(c.transformed(0.3, 1.0, 1.0, 0.5).outlineBlur() == Approx(0.5 * c.outlineBlur()));
+  CHECK(c.resampled(64).outlineBlur() == c.outlineBlur());
+  vpMorphDatabase db;
+  db.add(vpMorphTemplate("star", c));
+  const std::string file = "outline-blur-db.json";
+  db.save(file);
+  const vpMorphDatabase back = vpMorphDatabase::load(file, false);
+  std::filesystem::remove(file);
+  CHECK(back["star"].contour().outlineBlur() == Approx(c.outlineBlur()));
+  vpMorphContour bad(c);
+  CHECK_THROWS_AS(bad.setOutline(c.outline(), -1.0), vpMorphException);
+  CHECK_THROWS_AS(bad.setOutline(c.outline(), NAN), vpMorphException);
+}
+
+TEST_CASE("vpMorphOutlineBlur: bad input is a clear error", "[outline_blur][bad]")
+{
+  const vpMorphContour c = seen(serratedStar(320, 240), 0.0);
+  CHECK_THROWS_AS(vpMorphOutlineBlur::blurred(c, -1.0), vpMorphException);
+  CHECK_THROWS_AS(vpMorphOutlineBlur::blurred(c, INFINITY), vpMorphException);
+  CHECK_THROWS_AS(vpMorphOutlineBlur::blurred(c.toNormalized(vpCameraParameters(800, 800, 320, 240)), 1.0),
+                  vpMorphException);
+  CHECK_THROWS_AS(vpMorphOutlineBlur::blurred(vpMorphContour(c.xs(), c.ys()), 1.0), vpMorphException); // no outline
+  // A speck under a blur seven times its size: a uniform image (under a grey level of contrast), nothing to measure.
+  vpMorphTest::Poly speck;
+  speck.x = {300, 306, 306, 300};
+  speck.y = {200, 200, 206, 206};
+  const vpMorphContour small = seen(speck, 0.0);
+  REQUIRE(small.hasOutline());
+  CHECK_THROWS_AS(vpMorphOutlineBlur::blurred(small, 40.0), vpMorphException);
+}
