@@ -8,6 +8,7 @@
 #include <visp3/core/vpException.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphHomography.h>
+#include <visp3/morph/vpMorphOutlineBlur.h>
 
 namespace
 {
@@ -50,7 +51,8 @@ void vpMorphViewAligner::setGoal(const vpMorphContour &goal)
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphViewAligner::setGoal: empty goal");
   m_goalPx = goal.units() == vpMorphContour::PIXEL ? goal : goal.toPixels(m_cam);
   m_goalN = goal.units() == vpMorphContour::PIXEL ? goal.toNormalized(m_cam) : goal;
-  m_fit.emplace(m_goalN);
+  m_goals.clear();
+  m_goals.emplace(0, m_goalN);
   const vpMorphContour &o = m_goalN.outline();
   m_goalRegion = o.size() > kRegionPoints ? o.resampled(kRegionPoints) : o;
   m_tracker.reset();
@@ -95,6 +97,46 @@ double vpMorphViewAligner::overlapShare(const vpMorphRigidTransform &T, const vp
   const vpMorphContour laid = T.apply(o.size() > kRegionPoints ? o.resampled(kRegionPoints) : o);
   const double a = laid.area();
   return a > 0.0 && std::isfinite(a) ? laid.overlapArea(m_goalRegion) / a : 0.0;
+}
+
+vpMorphViewAligner::BlurredGoal &vpMorphViewAligner::atOneBlur(vpMorphContour &currentN)
+{
+  BlurredGoal &plain = m_goals.at(0);
+  const double pixel = std::sqrt(m_cam.get_px() * m_cam.get_py());
+  const double goalBlur = m_goalN.outlineBlur() * pixel, viewBlur = currentN.outlineBlur() * pixel; // pixels
+  if (!(goalBlur > 0.0) || !(viewBlur > 0.0))
+    return plain; // a blur unknown: compared as measured
+  // The view's size on the goal's: the start's scale, else the regions'.
+  const double s = m_haveStart ? m_start.scale() : std::sqrt(m_goalN.regionArea() / currentN.regionArea());
+  if (!(s > 0.0) || !std::isfinite(s))
+    return plain;
+  // Blurs add in variance; laying an outline at a blur integrates its pixels once more (pixelVariance()).
+  const double goalExtra2 = s * s * viewBlur * viewBlur - goalBlur * goalBlur - vpMorphOutlineBlur::pixelVariance();
+  const double viewExtra2 = goalBlur * goalBlur / (s * s) - viewBlur * viewBlur - vpMorphOutlineBlur::pixelVariance();
+  // A blur b moves an edge of curvature k by k b^2 / 2: under the outlines' floor for the finest edge the pixel grid
+  // draws (k = 1/px) while b^2 < 2 floor, and the two are compared as measured.
+  const double smallest2 = 2.0 * outlineSigmaFloorPx();
+  // Where a blur leaves no outline (a part thinner than it everywhere), the two are compared as measured too.
+  if (goalExtra2 > smallest2) {
+    const long step = std::lround(std::sqrt(goalExtra2) / blurStepPx());
+    auto it = m_goals.find(step);
+    if (it == m_goals.end()) {
+      vpMorphContour laid = m_goalN;
+      try {
+        laid = vpMorphOutlineBlur::blurred(m_goalPx, double(step) * blurStepPx()).toNormalized(m_cam);
+      } catch (const vpException &) {
+      }
+      it = m_goals.emplace(step, laid).first;
+    }
+    return it->second;
+  }
+  if (viewExtra2 > smallest2) {
+    try {
+      currentN = vpMorphOutlineBlur::blurred(currentN.toPixels(m_cam), std::sqrt(viewExtra2)).toNormalized(m_cam);
+    } catch (const vpException &) {
+    }
+  }
+  return plain;
 }
 
 vpMorphViewAlignment vpMorphViewAligner::fromFit(const vpMorphRigidTransform &T, const vpMorphOutlineFit &fit,
@@ -161,12 +203,13 @@ vpMorphRigidTransform procrustes(const std::vector<double> &x, const std::vector
 }
 } // namespace
 
-bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphViewAlignment &a, bool warmOnly)
+bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, const vpMorphContour &goalN,
+                                     vpMorphViewAlignment &a, bool warmOnly)
 {
   // A view that no similarity explains may be the goal seen tilted: a homography (refined on the outlines, from the
   // similarity, else from the correspondence's polygon fit) that lays the larger part of it on the goal within the
   // edges' noise says so. The similarity is then the homography's own, over the view's outline.
-  const bool measured = currentN.hasOutline() && m_goalN.hasOutline();
+  const bool measured = currentN.hasOutline() && goalN.hasOutline();
   const double limit = normalisedPixels(measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx());
   const double floor = normalisedPixels(measured ? outlineSigmaFloorPx() : polygonSigmaFloorPx());
   auto explains = [&](const vpMorphHomography &G) { return G.inlierShare() >= kBreakdown && G.residual() <= limit; };
@@ -176,9 +219,8 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
   for (int start = m_haveHomography ? 0 : 1; start < (warmOnly ? 1 : 2) && !ok; ++start) {
     try {
       const vpMorphHomography G0 = start == 0 ? m_homography : vpMorphHomography(a.transform.toMatrix());
-      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G0, floor,
-                                    vpMorphHomography::kDefaultSamples, vpMorphHomography::kDefaultIterations,
-                                    measured);
+      G = vpMorphHomography::refine(currentN.outline(), goalN.outline(), G0, floor, vpMorphHomography::kDefaultSamples,
+                                    vpMorphHomography::kDefaultIterations, measured);
       ok = explains(G);
     } catch (const vpException &) {
     }
@@ -187,7 +229,7 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
     try {
       const vpMorphCorrespondence &corr = m_tracker.update(currentN, m_goalN);
       G = vpMorphHomography::fit(currentN, m_goalN, corr, floor);
-      G = vpMorphHomography::refine(currentN.outline(), m_goalN.outline(), G, floor, vpMorphHomography::kDefaultSamples,
+      G = vpMorphHomography::refine(currentN.outline(), goalN.outline(), G, floor, vpMorphHomography::kDefaultSamples,
                                     vpMorphHomography::kDefaultIterations, measured);
       ok = explains(G);
     } catch (const vpException &) {
@@ -204,7 +246,7 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, vpMorphView
   double outside = 0.0, inside = 0.0; // shares of the laid view in runs of outliers off and on the goal
   try {
     const vpMorphContour laid = G.apply(currentN.outline());
-    vpMorphOutlineFit check(m_goalN);
+    vpMorphOutlineFit check(goalN);
     check.setMinimumSigma(floor);
     check.setMaxIterations(1);
     check.fit(laid, vpMorphRigidTransform());
@@ -252,10 +294,14 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
   vpMorphViewAlignment result;
   for (unsigned int i = 0; i < 4; ++i)
     result.covariance[i][i] = std::numeric_limits<double>::infinity();
+  vpMorphContour currentN;
+  const vpMorphContour *goalN = &m_goalN; // the goal at the view's blur
   try {
     if (current.empty())
       throw vpMorphException(vpMorphException::badContourError, "empty view");
-    const vpMorphContour currentN = current.units() == vpMorphContour::PIXEL ? current.toNormalized(m_cam) : current;
+    currentN = current.units() == vpMorphContour::PIXEL ? current.toNormalized(m_cam) : current;
+    BlurredGoal &goal = m_method == PAPER ? m_goals.at(0) : atOneBlur(currentN);
+    goalN = &goal.goalN;
     if (m_method == PAPER) {
       vpMorphViewAlignment a;
       a.transform = correspondenceStart(currentN, a);
@@ -265,11 +311,11 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
       for (unsigned int i = 0; i < 4; ++i)
         a.covariance[i][i] = std::numeric_limits<double>::infinity();
       result = a;
-    } else if (m_haveHomography && perspective(currentN, result = m_last, true)) {
+    } else if (m_haveHomography && perspective(currentN, *goalN, result = m_last, true)) {
       // Seen tilted at the last period: the homography followed from there explains it again.
     } else {
-      vpMorphOutlineFit &fit = *m_fit;
-      const bool measured = currentN.hasOutline() && m_goalN.hasOutline();
+      vpMorphOutlineFit &fit = goal.fit;
+      const bool measured = currentN.hasOutline() && goalN->hasOutline();
       fit.setMinimumSigma(normalisedPixels(measured ? outlineSigmaFloorPx() : polygonSigmaFloorPx()));
       // Residuals beyond the noise's limit are not the goal's edges seen again: the fit settles on the part that is.
       fit.setMaximumSigma(normalisedPixels(measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx()));
@@ -302,8 +348,8 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
       result.covariance[i][i] = std::numeric_limits<double>::infinity();
   }
   // A view the similarity leaves parts of off the goal may be the goal seen tilted rather than a part hidden or bent.
-  if (result.model != vpMorphViewAlignment::RIGID && m_method == OUTLINE && !current.empty())
-    perspective(current.units() == vpMorphContour::PIXEL ? current.toNormalized(m_cam) : current, result);
+  if (result.model != vpMorphViewAlignment::RIGID && m_method == OUTLINE && !currentN.empty())
+    perspective(currentN, *goalN, result);
   if (!result.perspective)
     m_haveHomography = false;
   if (result.explained()) {

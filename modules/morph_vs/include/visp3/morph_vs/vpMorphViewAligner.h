@@ -6,7 +6,7 @@
 #define VP_MORPH_VIEW_ALIGNER_H
 
 #include <algorithm>
-#include <optional>
+#include <map>
 
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/morph/vpMorphContour.h>
@@ -35,7 +35,10 @@
   whole, is the goal seen tilted: RIGID, its similarity the homography's own over the view
   (vpMorphViewAlignment::perspective). A view that no similarity explains at all is read under the homography with
   the same model test (a tilted view whose narrow gap the foreshortening closed: a part bent). Measured outlines
-  (vpMorphContourExtractor) are fitted as they are; polygons without them are fitted edge to edge, their robust scale
+  (vpMorphContourExtractor) are compared at one blur: the sharper of the two, view or goal, is laid at the other's
+  blur (vpMorphOutlineBlur; their blurs from vpMorphContour::outlineBlur(), the view's seen at the goal's scale) where
+  the difference can move the finest edge the pixel grid draws by more than the outlines' floor, as a blur rounds
+  every detail of an edge finer than itself; polygons without them are fitted edge to edge, their robust scale
   floored at half a pixel (vertices on the pixel grid).
 
   <b>Method (PAPER).</b> The paper's rectification: the rotation and translation between the elongation vectors of the
@@ -129,14 +132,29 @@ public:
   static double polygonSigmaLimitPx() { return 1.5; }
   //! The camera until setCameraParameters(): 800 px focal length, a 640 x 480 image (a 44 deg field of view).
   static vpCameraParameters getDefaultCameraParameters() { return vpCameraParameters(800, 800, 320, 240); }
+  /*!
+    Step of the blurs the goal is laid at (pixels, 0.1): half a step of blur moves an edge of curvature up to 1/px by
+    at most 0.1 px (the outlines' floor) up to a blur of 2 px (a curvature flow: sigma dsigma kappa).
+  */
+  static double blurStepPx() { return 0.1; }
 
 private:
+  //! The goal laid at one blur: its contour (normalised) and the outline fit on it.
+  struct BlurredGoal
+  {
+    explicit BlurredGoal(const vpMorphContour &n) : goalN(n), fit(n) {}
+    vpMorphContour goalN;
+    vpMorphOutlineFit fit;
+  };
+  //! The goal at \e currentN's blur; \e currentN laid at the goal's when it is the sharper.
+  BlurredGoal &atOneBlur(vpMorphContour &currentN);
   double normalisedPixels(double px) const { return px / std::max(m_cam.get_px(), m_cam.get_py()); }
   vpMorphViewAlignment fromFit(const vpMorphRigidTransform &T, const vpMorphOutlineFit &fit,
                                const vpMorphContour &currentN, bool cold, bool measured) const;
-  //! A view no similarity explains, tried as the goal seen tilted (a homography): true, \e a updated, when it is;
-  //! \e warmOnly: from the last period's homography alone.
-  bool perspective(const vpMorphContour &currentN, vpMorphViewAlignment &a, bool warmOnly = false);
+  //! A view no similarity explains, tried as \e goalN (the goal at the view's blur) seen tilted (a homography): true,
+  //! \e a updated, when it is; \e warmOnly: from the last period's homography alone.
+  bool perspective(const vpMorphContour &currentN, const vpMorphContour &goalN, vpMorphViewAlignment &a,
+                   bool warmOnly = false);
   //! Share of the view's region (normalised) that lies in the goal's once laid by T.
   double overlapShare(const vpMorphRigidTransform &T, const vpMorphContour &currentN) const;
   vpMorphRigidTransform correspondenceStart(const vpMorphContour &currentN, vpMorphViewAlignment &a);
@@ -144,7 +162,7 @@ private:
   vpCameraParameters m_cam;
   Method m_method = OUTLINE;
   vpMorphContour m_goalPx, m_goalN, m_goalRegion;
-  std::optional<vpMorphOutlineFit> m_fit; // on the goal's normalised outline
+  std::map<long, BlurredGoal> m_goals; // by the blur added to the goal, in blurStepPx(); 0: the goal as given
   vpMorphCorrespondenceTracker m_tracker;
   bool m_haveStart = false;
   vpMorphRigidTransform m_start;
