@@ -1,5 +1,6 @@
-// vpMorphViewAligner on rendered views blurred more than the taught one: an edge's detail finer than the blur is
-// rounded off in the view, not in the template, and the two are compared at one blur.
+// vpMorphViewAligner on rendered views of a serrated, nearly six-fold star: blurred more than the taught one (an edge's
+// detail finer than the blur is rounded off in the view, not in the template, and the two are compared at one blur),
+// and aligned without a start from any turn (the correspondence may start a lobe off).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -89,4 +90,25 @@ TEST_CASE("A view blurred more than the taught one is explained, its size and tu
     CHECK(worstScale < 0.001); // 0.5 mm of depth at 0.5 m
     CHECK(worstTurn < vpMath::rad(0.1));
   }
+}
+
+TEST_CASE("A nearly six-fold star is aligned without a start from any turn", "[rendered][aligner][search]")
+{
+  const std::string image = serratedStar();
+  const vpHomogeneousMatrix cdMo(0.01, -0.005, 0.55, 0, 0, vpMath::rad(25));
+  const vpMorphPlanarScene scene(image);
+  const vpMorphContour taught = view(scene, cdMo, 0);
+  double worstTurn = 0.0;
+  for (int deg = 15; deg < 360; deg += 30) {
+    const vpMorphContour c = view(scene, cdMo, deg);
+    vpMorphViewAligner aligner;
+    aligner.setCameraParameters(scene.camera());
+    aligner.setGoal(taught);
+    const vpMorphViewAlignment a = aligner.align(c);
+    INFO("at " << deg << " deg: sigma " << a.sigmaPx << " px, turn " << vpMath::deg(a.transform.theta()) << " deg");
+    REQUIRE(a.explained());
+    worstTurn = std::max(worstTurn, std::fabs(std::remainder(a.transform.theta() - vpMath::rad(deg), 2.0 * M_PI)));
+  }
+  INFO("worst turn error " << vpMath::deg(worstTurn) << " deg");
+  CHECK(worstTurn < vpMath::rad(0.1));
 }

@@ -25,6 +25,10 @@ namespace
 // Points of the outlines whose regions' overlap compares the hypotheses of search() (a few pixels apart).
 const std::size_t kOverlapPoints = 128;
 
+// Turns of search()'s start tried: every twelfth of a turn, each lobe of a part nearly symmetric of order 2, 3, 4 or 6
+// started exactly (the correspondence may start a lobe off), a fifth within its basin.
+const int kSearchTurns = 12;
+
 // A normal distribution's standard deviation over its median absolute deviation: the robust scale's factor.
 constexpr double kMadToSigma = 1.4826;
 
@@ -453,8 +457,8 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
   const Eigen::Vector4d x0 = linearParameters(initial, cx, cy, m_goal, spread);
   const double floor = std::max(1e-9 * std::max(spread, 1e-300), m_minSigma);
   const std::size_t n = P.size();
-  // Hypotheses at the start's scale (a bend or a hidden part leaves the scale): the start and its quarter turns about
-  // the input's centroid fitted on the whole input, and each of 12 windows (a sixth of the input, half overlapping)
+  // Hypotheses at the start's scale (a bend or a hidden part leaves the scale): the start and its turns by twelfths
+  // about the input's centroid fitted on the whole input, and each of 12 windows (a sixth of the input, half overlapping)
   // fitted alone from the start, each with its own residuals' scale.
   struct Hypothesis
   {
@@ -462,9 +466,9 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
     double sigma;
   };
   std::vector<Hypothesis> hypotheses;
-  for (int q = 0; q < 4; ++q) {
+  for (int q = 0; q < kSearchTurns; ++q) {
     Eigen::Vector4d x = x0;
-    x.head<2>() = Eigen::Rotation2Dd(0.5 * M_PI * q) * x0.head<2>(); // the input turned about its centroid first
+    x.head<2>() = Eigen::Rotation2Dd(2.0 * M_PI * q / kSearchTurns) * x0.head<2>(); // turned about its centroid first
     double delta = 0.0, sigma = 0.0;
     if (Solver::irls(*m_goalData, P, nullptr, x, delta, sigma, false, false, m_maxIterations, floor, spread))
       hypotheses.push_back({x, sigma});

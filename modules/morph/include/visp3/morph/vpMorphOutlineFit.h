@@ -105,7 +105,8 @@ public:
                             double initialSigma = 0.0);
   /*!
     fit() from the best of several hypotheses, for a start that may lie in another basin (the first fit of a view):
-    \e initial and its quarter turns about the input's centroid fitted on the whole input, and each of 12 windows
+    \e initial and its turns by twelfths about the input's centroid (a nearly symmetric part's correspondence may
+    start a lobe off) fitted on the whole input, and each of 12 windows
     (a sixth of the input, half overlapping) fitted alone, all at \e initial's scale; kept is the one under which the
     input's region overlaps the goal's most (the largest part of the object by area that lies on the goal: what an
     occluder leaves, the part a bend did not move), refined by fit() at that hypothesis' own residual scale.
