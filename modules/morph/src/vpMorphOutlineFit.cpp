@@ -458,8 +458,8 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
   const double floor = std::max(1e-9 * std::max(spread, 1e-300), m_minSigma);
   const std::size_t n = P.size();
   // Hypotheses at the start's scale (a bend or a hidden part leaves the scale): the start and its turns by twelfths
-  // about the input's centroid fitted on the whole input, and each of 12 windows (a sixth of the input, half overlapping)
-  // fitted alone from the start, each with its own residuals' scale.
+  // about the input's centroid fitted on the whole input, and each of 12 windows (a sixth of the input, half
+  // overlapping) fitted alone from the start, each with its own residuals' scale.
   struct Hypothesis
   {
     Eigen::Vector4d x;
