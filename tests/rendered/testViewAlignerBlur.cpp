@@ -14,8 +14,12 @@
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 #include <visp3/morph_vs/vpMorphViewAligner.h>
 
+#include "testRenderedView.h"
+
 namespace
 {
+using vpMorphRenderedTest::view;
+
 // A six-lobed star, its lobes of unequal sizes (no symmetry), whose edge is a saw of 240 teeth (5 % of its radius deep,
 // about 2 px in the views): a silhouette drawn at 512 x 512, dark on white, anti-aliased (4 x 4 samples a pixel).
 std::string serratedStar()
@@ -42,14 +46,6 @@ std::string serratedStar()
   return path;
 }
 
-// The object seen from the desired camera turned by deg about its optical axis, its silhouette extracted.
-vpMorphContour view(const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cdMo, int deg)
-{
-  const vpHomogeneousMatrix cMo = vpHomogeneousMatrix(0, 0, 0, 0, 0, vpMath::rad(deg)).inverse() * cdMo;
-  vpImage<unsigned char> I;
-  scene.render(cMo, I, static_cast<unsigned int>(deg + 360));
-  return vpMorphTagPoseEstimator::silhouette(I, scene.projectedTagCorners(cMo));
-}
 } // namespace
 
 TEST_CASE("A view blurred more than the taught one is explained, its size and turn unbiased",
@@ -100,11 +96,7 @@ TEST_CASE("A nearly six-fold star is aligned without a start from any turn", "[r
   const vpMorphContour taught = view(scene, cdMo, 0);
   double worstTurn = 0.0;
   for (int deg = 15; deg < 360; deg += 30) {
-    const vpMorphContour c = view(scene, cdMo, deg);
-    vpMorphViewAligner aligner;
-    aligner.setCameraParameters(scene.camera());
-    aligner.setGoal(taught);
-    const vpMorphViewAlignment a = aligner.align(c);
+    const vpMorphViewAlignment a = vpMorphRenderedTest::alignCold(scene, taught, view(scene, cdMo, deg));
     INFO("at " << deg << " deg: sigma " << a.sigmaPx << " px, turn " << vpMath::deg(a.transform.theta()) << " deg");
     REQUIRE(a.explained());
     worstTurn = std::max(worstTurn, std::fabs(std::remainder(a.transform.theta() - vpMath::rad(deg), 2.0 * M_PI)));

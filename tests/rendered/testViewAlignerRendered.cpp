@@ -14,8 +14,12 @@
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 #include <visp3/morph_vs/vpMorphViewAligner.h>
 
+#include "testRenderedView.h"
+
 namespace
 {
+using vpMorphRenderedTest::view;
+
 // The object image with rough edges, as a silhouette drawn from a source at a quarter of the resolution: each 4 x 4
 // block takes the level of its top-left pixel.
 std::string roughTexture(const std::string &name)
@@ -38,14 +42,6 @@ struct Look
   double gradient = 0.0; // the light's fall-off across the image (vpMorphPlanarScene::Faults::gradient), at 30 deg
 };
 
-// The object seen from the desired camera turned by deg about its optical axis, its silhouette extracted.
-vpMorphContour view(const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cdMo, int deg)
-{
-  const vpHomogeneousMatrix cMo = vpHomogeneousMatrix(0, 0, 0, 0, 0, vpMath::rad(deg)).inverse() * cdMo;
-  vpImage<unsigned char> I;
-  scene.render(cMo, I, static_cast<unsigned int>(deg + 360));
-  return vpMorphTagPoseEstimator::silhouette(I, scene.projectedTagCorners(cMo));
-}
 } // namespace
 
 TEST_CASE("The measured size of an object agrees within 0.4 % between views at one depth, at any in-plane rotation, "
