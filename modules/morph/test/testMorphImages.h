@@ -1,10 +1,11 @@
-// Images shared by the morph unit tests: polygons rendered anti-aliased and blurred, the largest object's boundary and
-// the benchmark scene's square occluder.
+// Images shared by the morph unit tests: a test polygon rendered anti-aliased and blurred, distances to an outline, the
+// largest object's boundary and the benchmark scene's square occluder.
 // Include after catch.hpp.
 #ifndef VP_MORPH_TEST_IMAGES_H
 #define VP_MORPH_TEST_IMAGES_H
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <random>
 #include <vector>
@@ -20,6 +21,39 @@ struct Poly
 {
   std::vector<double> x, y;
 };
+
+// A ten-vertex, non-convex polygon (about 300 x 220 px) with acute and obtuse corners.
+inline Poly testPolygon(double cx = 320, double cy = 240, double theta = 0.0)
+{
+  const double px[] = {0, 120, 150, 90, 160, 40, -80, -60, -140, -100};
+  const double py[] = {-100, -90, -20, 10, 80, 120, 100, 30, 0, -80};
+  Poly p;
+  for (int k = 0; k < 10; ++k) {
+    p.x.push_back(cx + std::cos(theta) * px[k] - std::sin(theta) * py[k]);
+    p.y.push_back(cy + std::sin(theta) * px[k] + std::cos(theta) * py[k]);
+  }
+  return p;
+}
+
+// Distance from (px, py) to the segment (ax, ay)-(bx, by).
+inline double segDist(double ax, double ay, double bx, double by, double px, double py)
+{
+  const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+  double t = l2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / l2 : 0.0;
+  t = std::max(0.0, std::min(1.0, t));
+  return std::hypot(px - ax - t * dx, py - ay - t * dy);
+}
+
+// Distance from (px, py) to the closed outline (X, Y).
+inline double distToOutline(const std::vector<double> &X, const std::vector<double> &Y, double px, double py)
+{
+  double m = 1e300;
+  for (std::size_t k = 0; k < X.size(); ++k) {
+    const std::size_t k1 = (k + 1) % X.size();
+    m = std::min(m, segDist(X[k], Y[k], X[k1], Y[k1], px, py));
+  }
+  return m;
+}
 
 // Renders the polygons with area anti-aliasing (8x supersampling): grey level = coverage, object = obj,
 // background = bg, then adds Gaussian noise of std sigma (seeded).

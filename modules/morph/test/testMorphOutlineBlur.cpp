@@ -34,25 +34,13 @@ vpMorphTest::Poly serratedStar(double cx, double cy)
   return p;
 }
 
-// A ten-sided polygon with acute and obtuse corners, about 200 x 160 px.
-vpMorphTest::Poly testShape()
-{
-  vpMorphTest::Poly p;
-  p.x = {320.3, 400.3, 420.3, 380.3, 426.3, 346.3, 266.3, 280.3, 226.3, 253.3};
-  p.y = {160.6, 166.6, 213.6, 233.6, 280.6, 306.6, 293.6, 246.6, 226.6, 173.6};
-  return p;
-}
-
 // Root mean square distance of \e a's outline points to \e b's outline (its segments).
 double rmsDistance(const vpMorphContour &a, const vpMorphContour &b)
 {
-  std::vector<cv::Point2f> poly;
-  for (std::size_t k = 0; k < b.outline().size(); ++k)
-    poly.emplace_back(float(b.outline().x(k)), float(b.outline().y(k)));
   double s2 = 0.0;
   const vpMorphContour &o = a.outline();
   for (std::size_t k = 0; k < o.size(); ++k) {
-    const double d = cv::pointPolygonTest(poly, cv::Point2f(float(o.x(k)), float(o.y(k))), true);
+    const double d = vpMorphTest::distToOutline(b.outline().xs(), b.outline().ys(), o.x(k), o.y(k));
     s2 += d * d;
   }
   return std::sqrt(s2 / double(o.size()));
@@ -68,6 +56,15 @@ vpMorphContour seen(const vpMorphTest::Poly &p, double s)
   }
   return vpMorphContourExtractor().extract(I);
 }
+
+// \e sharp's outline laid at \e view's blur: the variance the view's blur adds, less the pixel's the laying adds.
+vpMorphContour laidAtBlurOf(const vpMorphContour &sharp, const vpMorphContour &view)
+{
+  const double extra2 = view.outlineBlur() * view.outlineBlur() - sharp.outlineBlur() * sharp.outlineBlur() -
+                        vpMorphOutlineBlur::pixelVariance();
+  REQUIRE(extra2 > 0.0);
+  return vpMorphOutlineBlur::blurred(sharp, std::sqrt(extra2));
+}
 } // namespace
 
 TEST_CASE("vpMorphOutlineBlur: a sharp outline laid at an image's blur is that image's outline", "[outline_blur]")
@@ -78,10 +75,7 @@ TEST_CASE("vpMorphOutlineBlur: a sharp outline laid at an image's blur is that i
   for (double s : {1.0, 1.5, 2.0}) {
     const vpMorphContour view = seen(star, s);
     REQUIRE(view.hasOutline());
-    const double extra2 = view.outlineBlur() * view.outlineBlur() - sharp.outlineBlur() * sharp.outlineBlur() -
-                          vpMorphOutlineBlur::pixelVariance();
-    REQUIRE(extra2 > 0.0);
-    const vpMorphContour laid = vpMorphOutlineBlur::blurred(sharp, std::sqrt(extra2));
+    const vpMorphContour laid = laidAtBlurOf(sharp, view);
     const double before = rmsDistance(view, sharp), after = rmsDistance(view, laid);
     INFO("image blur " << s << " px: measured " << view.outlineBlur() << " px, the sharp outline's "
                        << sharp.outlineBlur() << " px, laid at " << laid.outlineBlur() << " px; view to sharp outline "
@@ -100,14 +94,11 @@ TEST_CASE("vpMorphOutlineBlur: a polygon's sides and corners are laid where the 
           "[outline_blur]")
 {
   // Straight sides do not move under a blur, corners are rounded: both as on the blurred image, whatever the blur.
-  const vpMorphTest::Poly p = testShape();
+  const vpMorphTest::Poly p = vpMorphTest::testPolygon(320.3, 240.6, 0.4);
   const vpMorphContour sharp = seen(p, 0.0);
   for (double s : {1.0, 1.5, 2.0}) {
     const vpMorphContour view = seen(p, s);
-    const double extra2 = view.outlineBlur() * view.outlineBlur() - sharp.outlineBlur() * sharp.outlineBlur() -
-                          vpMorphOutlineBlur::pixelVariance();
-    REQUIRE(extra2 > 0.0);
-    const vpMorphContour laid = vpMorphOutlineBlur::blurred(sharp, std::sqrt(extra2));
+    const vpMorphContour laid = laidAtBlurOf(sharp, view);
     const double before = rmsDistance(view, sharp), after = rmsDistance(view, laid);
     INFO("image blur " << s << " px: view to the sharp outline " << before << " px rms, to the laid one " << after);
     CHECK(after < (s <= 1.5 ? 0.05 : 0.1));
