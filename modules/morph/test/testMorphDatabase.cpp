@@ -205,6 +205,12 @@ TEST_CASE("database: bad files give clear errors", "[database]")
     writeText(p, s);
     return errorOf([&] { vpMorphDatabase::load(p.string()); });
   };
+  // The good file with the first \e what replaced by \e with.
+  auto edited = [&](const std::string &what, const std::string &with) {
+    std::string t = text;
+    t.replace(t.find(what), what.size(), with);
+    return t;
+  };
   auto expectIo = [](const std::pair<int, std::string> &e, const std::string &words) {
     CAPTURE(e.second);
     CHECK(e.first == vpMorphException::ioError);
@@ -214,41 +220,29 @@ TEST_CASE("database: bad files give clear errors", "[database]")
   expectIo(loadText("{ not json"), "malformed");
   expectIo(loadText("[1, 2]"), "not a JSON object");
   expectIo(loadText("{\"format\": \"something-else\", \"version\": 1}"), "not a template database");
-  std::string v2 = text;
-  v2.replace(v2.find("\"version\": 1"), 12, "\"version\": 2");
-  expectIo(loadText(v2), "unsupported version 2");
-  std::string noTemplates = text;
-  noTemplates.replace(noTemplates.find("\"templates\""), 11, "\"templatez\"");
-  expectIo(loadText(noTemplates), "templates");
-  std::string badX = text;
-  badX.replace(badX.find("\"x\": ["), 6, "\"x\": [\"a\",");
-  expectIo(loadText(badX), "wrong type");
+  expectIo(loadText(edited("\"version\": 1", "\"version\": 2")), "unsupported version 2");
+  expectIo(loadText(edited("\"templates\"", "\"templatez\"")), "templates");
+  expectIo(loadText(edited("\"x\": [", "\"x\": [\"a\",")), "wrong type");
   REQUIRE(text.find("\"region\": {") != std::string::npos);
-  std::string badRegion = text;
-  badRegion.replace(badRegion.find("\"region\": {"), 11, "\"region\": 3, \"was\": {");
-  expectIo(loadText(badRegion), "\"region\" must be an object");
+  expectIo(loadText(edited("\"region\": {", "\"region\": 3, \"was\": {")), "\"region\" must be an object");
   REQUIRE(text.find("\"outline\": {") != std::string::npos);
-  std::string badOutline = text;
-  badOutline.replace(badOutline.find("\"outline\": {"), 12, "\"outline\": [], \"was\": {");
-  expectIo(loadText(badOutline), "\"outline\" must be an object");
+  expectIo(loadText(edited("\"outline\": {", "\"outline\": [], \"was\": {")), "\"outline\" must be an object");
   std::string shortOutline = text;
   const std::size_t ox = shortOutline.find("\"x\": [", shortOutline.find("\"outline\": {"));
   shortOutline.replace(ox, 6, "\"x\": [1, 2], \"z\": [");
   expectIo(loadText(shortOutline), "\"outline\"");
-  std::string negArea = text;
-  negArea.replace(negArea.find("\"area\": "), 8, "\"area\": -");
-  expectIo(loadText(negArea), "finite positive area");
+  expectIo(loadText(edited("\"outline\": {", "\"outline\": {\"blur\": -0.5, ")), "the blur must be finite and >= 0");
+  expectIo(loadText(edited("\"outline\": {", "\"outline\": {\"blur\": \"sharp\", ")), "wrong type");
+  expectIo(loadText(edited("\"area\": ", "\"area\": -")), "finite positive area");
   REQUIRE(text.find("\"support\": 0.75") != std::string::npos);
   for (const char *bad : {"1.5", "0", "\"high\""}) {
-    std::string badSupport = text;
-    badSupport.replace(badSupport.find("\"support\": 0.75"), 15, std::string("\"support\": ") + bad);
-    expectIo(loadText(badSupport), "support must be a number in (0, 1] or null");
+    expectIo(loadText(edited("\"support\": 0.75", std::string("\"support\": ") + bad)),
+             "support must be a number in (0, 1] or null");
   }
   REQUIRE(text.find("\"support_floor\": 0.5") != std::string::npos);
   for (const char *bad : {"1.5", "-0.1", "null", "\"low\""}) {
-    std::string badFloor = text;
-    badFloor.replace(badFloor.find("\"support_floor\": 0.5"), 20, std::string("\"support_floor\": ") + bad);
-    expectIo(loadText(badFloor), "support_floor must be a number in [0, 1]");
+    expectIo(loadText(edited("\"support_floor\": 0.5", std::string("\"support_floor\": ") + bad)),
+             "support_floor must be a number in [0, 1]");
   }
   // The height model's settings: missing, or points its segments do not divide.
   {
