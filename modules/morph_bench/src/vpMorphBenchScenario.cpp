@@ -7,6 +7,8 @@
 #include <random>
 #include <sstream>
 
+#include <opencv2/imgproc.hpp>
+
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpMeterPixelConversion.h>
 #include <visp3/morph/vpMorphException.h>
@@ -84,6 +86,30 @@ double rectangleDistance(double x, double y, double cx, double cy, double hl, do
   const double c = std::cos(angle), s = std::sin(angle);
   const double u = c * (x - cx) + s * (y - cy), v = -s * (x - cx) + c * (y - cy);
   return std::hypot(std::max(0.0, std::fabs(u) - hl), std::max(0.0, std::fabs(v) - hw));
+}
+
+//! Image points (px) of the plane points \e P seen from cMo.
+std::vector<cv::Point2f> project(const std::vector<vpPoint> &P, const vpHomogeneousMatrix &cMo,
+                                 const vpCameraParameters &cam)
+{
+  std::vector<cv::Point2f> uv;
+  for (vpPoint p : P) {
+    p.track(cMo);
+    double u = 0.0, v = 0.0;
+    vpMeterPixelConversion::convertPoint(cam, p.get_x(), p.get_y(), u, v);
+    uv.emplace_back(static_cast<float>(u), static_cast<float>(v));
+  }
+  return uv;
+}
+
+//! Area (px^2) of the part of the convex plane polygon \e P (in front of the camera) inside the w x h image at cMo.
+double convexAreaInView(const std::vector<vpPoint> &P, const vpHomogeneousMatrix &cMo, const vpCameraParameters &cam,
+                        unsigned int w, unsigned int h)
+{
+  const float W = static_cast<float>(w), H = static_cast<float>(h);
+  const std::vector<cv::Point2f> image = {{0.f, 0.f}, {W, 0.f}, {W, H}, {0.f, H}};
+  std::vector<cv::Point2f> inside;
+  return cv::intersectConvexConvex(project(P, cMo, cam), image, inside, true);
 }
 
 bool insidePolygon(const std::vector<vpPoint> &P, double x, double y)
@@ -488,28 +514,45 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
       if (!found)
         sc.setup = "plane-edge-not-in-view";
     } else if (set == "large-distractor") {
-      const double area = draw(1.2, 1.6) * scene.objectArea(), aspect = draw(1.0, 2.0), angle = draw(-M_PI, M_PI);
-      const double hl = 0.5 * std::sqrt(area * aspect), hw = 0.5 * area / (2 * hl);
+      // Its part in view is larger than the object in view; the rectangle may run past the image's border, as a
+      // tray or a table's edge does, so that a compact object leaves room for it: its centre is drawn over the image
+      // widened by half its size on every side.
       const std::vector<vpPoint> outline = scene.objectContour3D(), tag = scene.tagTextureCorners3D();
       const auto outlineSamples = boundary(outline, 0.002), tagSamples = boundary(tag, 0.002);
+      const double objectPx = cv::contourArea(project(outline, cMo, cam)); // wholly in view
+      const double maxArea = vpMorphPlanarScene::maxDistractorArea();
       bool found = false;
-      for (int attempt = 0; attempt < 300 && !found; ++attempt) {
+      for (int attempt = 0; attempt < 3000 && !found; ++attempt) { // the search's budget, not a tolerance
+        const double share = draw(1.2, 1.6), aspect = draw(1.0, 2.0), angle = draw(-M_PI, M_PI);
         double cx = 0, cy = 0;
-        if (!vpMorphBenchPlane::onPlane(cMo, cam, draw(0, width - 1.0), draw(0, height - 1.0), cx, cy))
+        const double u = draw(-0.5 * width, 1.5 * width), v = draw(-0.5 * height, 1.5 * height);
+        if (!vpMorphBenchPlane::onPlane(cMo, cam, u, v, cx, cy))
           continue;
-        const double c = std::cos(angle), s = std::sin(angle);
-        std::vector<vpPoint> corners(4);
-        const double du[4] = {-hl, hl, hl, -hl}, dv[4] = {-hw, -hw, hw, hw};
-        for (int q = 0; q < 4; ++q)
-          corners[q].setWorldCoordinates(cx + c * du[q] - s * dv[q], cy + s * du[q] + c * dv[q], 0.0);
-        if (!inView(corners, cMo, cam, width, height, margin))
+        auto corners = [&](double area) {
+          const double hl = 0.5 * std::sqrt(area * aspect), hw = 0.5 * area / (2 * hl);
+          const double c = std::cos(angle), s = std::sin(angle);
+          const double du[4] = {-hl, hl, hl, -hl}, dv[4] = {-hw, -hw, hw, hw};
+          std::vector<vpPoint> P(4);
+          for (int q = 0; q < 4; ++q)
+            P[q].setWorldCoordinates(cx + c * du[q] - s * dv[q], cy + s * du[q] + c * dv[q], 0.0);
+          return P;
+        };
+        // The rectangles about one centre are nested, so the area in view grows with the area: bisect it.
+        const double targetPx = share * objectPx;
+        if (convexAreaInView(corners(maxArea), cMo, cam, width, height) < targetPx)
           continue;
+        double lo = 0.0, hi = maxArea;
+        for (int it = 0; it < 50; ++it) { // to about the double's precision
+          const double mid = 0.5 * (lo + hi);
+          (convexAreaInView(corners(mid), cMo, cam, width, height) < targetPx ? lo : hi) = mid;
+        }
+        const double area = hi, hl = 0.5 * std::sqrt(area * aspect), hw = 0.5 * area / (2 * hl);
         bool clear = true;
         for (const auto &p : outlineSamples)
           clear = clear && rectangleDistance(p.first, p.second, cx, cy, hl, hw, angle) > kClearance;
         for (const auto &p : tagSamples)
           clear = clear && rectangleDistance(p.first, p.second, cx, cy, hl, hw, angle) > kClearance;
-        for (const auto &p : boundary(corners, 0.002))
+        for (const auto &p : boundary(corners(area), 0.002))
           clear = clear && !insidePolygon(outline, p.first, p.second) && !insidePolygon(tag, p.first, p.second);
         if (clear) {
           found = true;

@@ -8,8 +8,10 @@
 #include <set>
 
 #include <visp3/core/vpMath.h>
+#include <visp3/core/vpMeterPixelConversion.h>
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/io/vpImageIo.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_bench/vpMorphBench.h>
 #include <visp3/morph_bench/vpMorphBenchScenario.h>
@@ -206,6 +208,62 @@ TEST_CASE("the scene looks and the resolutions are the planar starts rendered ot
         // The same start seen at another resolution: object and tag in view, the tag placed alike.
         CHECK(look[i].tagX == Approx(planar[i].tagX).margin(1e-9));
       }
+    }
+  }
+}
+
+TEST_CASE("the large distractor is larger in view than the object, beside a compact object too", "[bench]")
+{
+  // A 15 cm disc leaves no room in view for a rectangle larger than itself beside it and the tag: the rectangle runs
+  // past the image's border, its part in view 1.2-1.6 times the disc's region.
+  vpImage<unsigned char> disc(300, 300, 255);
+  for (unsigned int i = 0; i < 300; ++i)
+    for (unsigned int j = 0; j < 300; ++j)
+      if (std::hypot(i - 149.5, j - 149.5) < 140)
+        disc[i][j] = 0;
+  vpImageIo::write(disc, "bench-distractor-disc.png");
+  const vpMorphBenchObjectSet discs =
+      vpMorphBenchObjectSet::images({{"bench-distractor-disc.png", "disc"}}, "bench-distractor", 100);
+  REQUIRE(discs.size() == 1);
+  for (const vpMorphBenchObjectSet *objects : {&discs, &tools()}) {
+    for (const vpMorphBenchScenario &s : vpMorphBenchScenario::generate("large-distractor", 6, 107, *objects)) {
+      INFO(s.describe());
+      REQUIRE(s.setup.empty());
+      const vpMorphPlanarScene scene = s.scene();
+      const vpHomogeneousMatrix cMo = s.cdMc.inverse() * s.cdMo;
+      vpImage<unsigned char> I;
+      scene.render(cMo, I);
+      // The object's and the tag's regions are the ones about their centres; the distractor is the largest other.
+      auto centre = [&](const std::vector<vpPoint> &P) {
+        vpImagePoint c;
+        for (vpPoint p : P) {
+          p.track(cMo);
+          double u = 0, v = 0;
+          vpMeterPixelConversion::convertPoint(scene.camera(), p.get_x(), p.get_y(), u, v);
+          c += vpImagePoint(v, u) * (1.0 / P.size());
+        }
+        return c;
+      };
+      const vpImagePoint objectCentre = centre({vpPoint(0, 0, 0)}), tagCentre = centre(scene.tagTextureCorners3D());
+      std::vector<vpMorphContour> regions = vpMorphContourExtractor().extractAll(I);
+      auto nearest = [&regions](const vpImagePoint &c) {
+        return std::min_element(regions.begin(), regions.end(), [&c](const auto &a, const auto &b) {
+          double ax = 0, ay = 0, bx = 0, by = 0;
+          a.centroid(ax, ay);
+          b.centroid(bx, by);
+          return std::hypot(ax - c.get_u(), ay - c.get_v()) < std::hypot(bx - c.get_u(), by - c.get_v());
+        });
+      };
+      regions.erase(nearest(objectCentre));
+      regions.erase(nearest(tagCentre));
+      REQUIRE_FALSE(regions.empty());
+      // The looks start fronto-parallel: the object's outline in view is its area on the plane times (px / Z)^2.
+      const double objectPx = scene.objectArea() * std::pow(scene.camera().get_px() / cMo[2][3], 2);
+      const double share = regions.front().regionArea() / objectPx; // regions by decreasing area
+      INFO("distractor over object in view " << share);
+      // The region loses up to half a pixel along the image's border: 1 % of the area at most here.
+      CHECK(share >= 1.2 * 0.99);
+      CHECK(share <= 1.6 * 1.01);
     }
   }
 }

@@ -151,10 +151,12 @@ void vpMorphPlanarScene::setFaults(const Faults &f)
     os << "the gradient must be in [0, 0.9] with a finite angle, got " << f.gradient;
   else if (!isFinite(f.planeEdgeX) || !isFinite(f.planeEdgeY) || !isFinite(f.planeEdgeAngle))
     os << "the plane's edge must be finite";
-  else if (!isFinite(f.largeDistractorArea) || f.largeDistractorArea < 0.0 || f.largeDistractorArea > 0.1 ||
-           !isFinite(f.largeDistractorAspect) || f.largeDistractorAspect < 1.0 || f.largeDistractorAspect > 10.0 ||
-           !isFinite(f.largeDistractorX) || !isFinite(f.largeDistractorY) || !isFinite(f.largeDistractorAngle))
-    os << "the large distractor needs an area in [0, 0.1] m^2, an aspect in [1, 10] and a finite placement";
+  else if (!isFinite(f.largeDistractorArea) || f.largeDistractorArea < 0.0 ||
+           f.largeDistractorArea > maxDistractorArea() || !isFinite(f.largeDistractorAspect) ||
+           f.largeDistractorAspect < 1.0 || f.largeDistractorAspect > 10.0 || !isFinite(f.largeDistractorX) ||
+           !isFinite(f.largeDistractorY) || !isFinite(f.largeDistractorAngle))
+    os << "the large distractor needs an area in [0, " << maxDistractorArea()
+       << "] m^2, an aspect in [1, 10] and a finite placement";
   if (!os.str().empty())
     badParameter("vpMorphPlanarScene::setFaults: " + os.str());
   m_faults = f;

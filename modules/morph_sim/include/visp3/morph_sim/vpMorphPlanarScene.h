@@ -253,6 +253,8 @@ public:
   std::vector<std::vector<vpPoint>> distractorCorners3D() const;
   //! Area of the object's outline on the plane, m^2.
   double objectArea() const;
+  //! Largest Faults::largeDistractorArea, m^2: about all the default camera sees of the plane at 0.5 m.
+  static double maxDistractorArea() { return 0.1; }
 
 private:
   struct Patch
