@@ -12,9 +12,10 @@
   The pool's classes (data/pools/split.json) are shuffled by the seed: the first --classes make the database (every
   image of each, byte-identical ones kept once), the next --absent give the queries of shapes absent from it. Each
   shape is drawn on the bench's plane (vpMorphPlanarScene: dark object, 12 cm long, on a light plane; the tag out of
-  view) and its template is the view from 0.5 m, optical axis normal to the plane. A query is a view with a uniform
-  turn in [-180, 180) deg, a shift of up to 30 mm either way (drawn again until the object is 5 px inside the image),
-  a depth of 0.5 m x (1 + u), u uniform in [-0.2, 0.2], and per condition:
+  view; its texture laid out 240 px long, vpMorphSilhouetteLayout) and its template is the view from 0.5 m, optical axis
+  normal to the plane. A query is a view with a uniform turn in [-180, 180) deg, a shift of up to 30 mm either way
+  (drawn again until the object is 5 px inside the image), a depth of 0.5 m x (1 + u), u uniform in [-0.2, 0.2], and per
+  condition:
   - pose: nothing else;
   - noise: Gaussian noise of sigma uniform in [2, 8] grey levels (object 40, plane 210);
   - blur: Gaussian blur of sigma uniform in [0.5, 1.5] px;
@@ -62,6 +63,7 @@
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphRigidCheck.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
+#include <visp3/morph_sim/vpMorphSilhouetteLayout.h>
 #include <visp3/morph_sim/vpMorphThreadCpuClock.h>
 
 #include "vispmorph-source-commit.h"
@@ -304,34 +306,23 @@ std::vector<std::vector<Shape>> poolClasses(const json &split, const std::string
   return out;
 }
 
+constexpr double kObjectSize = 0.12; // longest side, metres: 192 px at the template's 0.5 m, 240 px at 0.4 m
+constexpr double kDepth = 0.5;
+//! The object's longest side in its texture: the nearest view's (0.4 m), so that every view samples the texture at
+//! 1 to 1.5 texels a pixel, which its bilinear rendering integrates as a camera's pixels do instead of aliasing it.
+constexpr unsigned int kTexturePixels = 240;
+
 /*
-  The image as the scene's texture: a dark object on a light ground (MPEG-7 draws white on black), 8 px of ground
-  around it so that the bilinear texture does not meet the edge of its rectangle. Written once into \e dir.
+  The image as the scene's texture (vpMorphSilhouetteLayout: a dark object on a light ground, kTexturePixels across,
+  anti-aliased). Written once into \e dir.
 */
 fs::path texture(const Shape &s, const fs::path &dir)
 {
   std::string name = s.id;
   std::replace(name.begin(), name.end(), ':', '-');
   const fs::path path = dir / (name + ".png");
-  vpImage<unsigned char> I;
-  try {
-    vpImageIo::read(I, s.image.string());
-  } catch (const vpException &e) {
-    throw vpMorphException(vpMorphException::ioError,
-                           "cannot read image '" + s.image.string() + "': " + e.getStringMessage());
-  }
-  double border = 0.0;
-  const unsigned int H = I.getHeight(), W = I.getWidth();
-  for (unsigned int u = 0; u < W; ++u)
-    border += I[0][u] + I[H - 1][u];
-  for (unsigned int v = 0; v < H; ++v)
-    border += I[v][0] + I[v][W - 1];
-  const bool invert = border / (2.0 * (W + H)) < 128.0;
-  const unsigned int m = 8;
-  vpImage<unsigned char> T(H + 2 * m, W + 2 * m, 255);
-  for (unsigned int v = 0; v < H; ++v)
-    for (unsigned int u = 0; u < W; ++u)
-      T[v + m][u + m] = invert ? static_cast<unsigned char>(255 - I[v][u]) : I[v][u];
+  const vpImage<unsigned char> T =
+      vpMorphSilhouetteLayout(vpMorphSilhouetteLayout::read(s.image.string()), kTexturePixels).image();
   // Through a file of its own renamed in place: a failed run leaves no half-written texture.
   const fs::path tmp = dir / (name + ".tmp.png");
   std::error_code ec;
@@ -346,9 +337,6 @@ fs::path texture(const Shape &s, const fs::path &dir)
     throw vpMorphException(vpMorphException::ioError, "cannot write texture '" + path.string() + "': " + ec.message());
   return path;
 }
-
-constexpr double kObjectSize = 0.12; // longest side, metres: 192 px at the template's 0.5 m, 240 px at 0.4 m
-constexpr double kDepth = 0.5;
 
 //! The shape on the bench's plane, the tag out of view (the extraction takes the largest object).
 vpMorphPlanarScene sceneOf(const fs::path &tex)
