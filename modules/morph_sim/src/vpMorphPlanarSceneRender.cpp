@@ -9,6 +9,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <visp3/core/vpMeterPixelConversion.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_sim/vpMorphTagTexture.h>
 #include <visp3/robot/vpImageSimulator.h>
@@ -166,6 +167,33 @@ std::vector<vpMorphPlanarScene::Patch> vpMorphPlanarScene::patches() const
   return out;
 }
 
+unsigned int vpMorphPlanarScene::supersampling(const vpHomogeneousMatrix &cMo) const
+{
+  if (!finitePose(cMo))
+    badParameter("vpMorphPlanarScene::supersampling: cMo is not a valid homogeneous matrix (NaN?)");
+  if (m_faults.objectHidden)
+    return 1;
+  // Texels a pixel, the most over the texture's corners and centre in front of the camera: the inverse of the
+  // shortest image step of one texel along either texture axis.
+  const double W = m_texture.getWidth() - 1.0, H = m_texture.getHeight() - 1.0;
+  const double at[5][2] = {{0, 0}, {W, 0}, {W, H}, {0, H}, {W / 2, H / 2}};
+  double texels = 0.0;
+  for (const auto &t : at) {
+    vpPoint p[3] = {texelOnPlane(t[0], t[1]), texelOnPlane(t[0] + 1, t[1]), texelOnPlane(t[0], t[1] + 1)};
+    double u[3], v[3];
+    bool front = true;
+    for (int k = 0; k < 3; ++k) {
+      p[k].track(cMo);
+      front = front && p[k].get_Z() > 0.0;
+      vpMeterPixelConversion::convertPoint(m_cam, p[k].get_x(), p[k].get_y(), u[k], v[k]);
+    }
+    if (front)
+      texels =
+          std::max(texels, 1.0 / std::min(std::hypot(u[1] - u[0], v[1] - v[0]), std::hypot(u[2] - u[0], v[2] - v[0])));
+  }
+  return static_cast<unsigned int>(std::min<double>(maxSupersampling(), std::max(1.0, std::ceil(texels / 2.0))));
+}
+
 template <typename T>
 void vpMorphPlanarScene::renderT(const vpHomogeneousMatrix &cMo, vpImage<T> &I, unsigned int frame) const
 {
@@ -173,6 +201,17 @@ void vpMorphPlanarScene::renderT(const vpHomogeneousMatrix &cMo, vpImage<T> &I, 
     badParameter("vpMorphPlanarScene::render: cMo is not a valid homogeneous matrix (NaN?)");
   const T background = level<T>(kBackground, kBackgroundRGB);
   I.resize(m_height, m_width, background);
+  // K x K sub-pixels a pixel: sub-pixel s of pixel u is centred at u - 1/2 + (s + 1/2) / K, the K-times finer
+  // camera's pixel K u + s, so its principal point is K u0 + (K - 1) / 2.
+  const unsigned int K = supersampling(cMo);
+  vpImage<T> fine;
+  if (K > 1)
+    fine.resize(m_height * K, m_width * K, background);
+  vpImage<T> &canvas = K > 1 ? fine : I;
+  const vpCameraParameters cam =
+      K > 1 ? vpCameraParameters(K * m_cam.get_px(), K * m_cam.get_py(), K * m_cam.get_u0() + (K - 1) / 2.0,
+                                 K * m_cam.get_v0() + (K - 1) / 2.0)
+            : m_cam;
   const vpImage<T> object = recolour<T>(m_texture), tag = recolour<T>(m_tag);
   vpImage<T> dark(2, 2, level<T>(kObject, kObjectRGB)), occluder(2, 2, level<T>(kOccluder, kOccluderRGB)),
       floor(2, 2, level<T>(kFloor, kFloorRGB));
@@ -188,7 +227,14 @@ void vpMorphPlanarScene::renderT(const vpHomogeneousMatrix &cMo, vpImage<T> &I, 
                                               : dark;
     sim.init(tex, patch.corners);
     sim.setCameraPosition(cMo);
-    sim.getImage(I, m_cam); // paints only where the patch is seen, over what is already there (coplanar: in order)
+    sim.getImage(canvas, cam); // paints only where the patch is seen, over what is already there (coplanar: in order)
+  }
+  if (K > 1) {
+    const int type = std::is_same<T, unsigned char>::value ? CV_8UC1 : CV_8UC4;
+    const cv::Mat from(static_cast<int>(fine.getHeight()), static_cast<int>(fine.getWidth()), type,
+                       static_cast<void *>(fine.bitmap));
+    cv::Mat to(static_cast<int>(m_height), static_cast<int>(m_width), type, static_cast<void *>(I.bitmap));
+    cv::resize(from, to, to.size(), 0, 0, cv::INTER_AREA); // the mean of each K x K block
   }
   applyFaults(I, m_faults, frame);
 }

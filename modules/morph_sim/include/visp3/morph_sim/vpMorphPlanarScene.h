@@ -40,7 +40,10 @@
   a square card lying on the plane over a chosen share of the contour; distractors are small dark rectangles
   away from the object and the tag, the large distractor one dark rectangle; beyond the plane's edge, a dark floor
   (70). Gain, offset and the illumination gradient act before the noise, and clip at 0 and 255 as a sensor does.
-  Colour renders use a blue object on a beige plane (same geometry).
+  Colour renders use a blue object on a beige plane (same geometry). Each pixel integrates the light over its area,
+  as a camera's does: vpImageSimulator's bilinear sampling averages about two texels, so where a pixel spans more
+  than two of the object texture's texels (a large texture, a far or low-resolution view) the view is drawn as K x K
+  sub-pixels and averaged, K = ceil(texels a pixel / 2) (supersampling(), at most 4).
 
   <b>Determinism:</b> no clock and no global state: the same scene, faults, pose and frame index give the
   same image bit for bit. The noise generator is seeded with (seed, frame) so a sequence gets fresh noise.
@@ -190,6 +193,13 @@ public:
   //! The benchmark camera: px = py = 800, u0 = 320, v0 = 240, no distortion.
   static vpCameraParameters defaultCamera() { return vpCameraParameters(800.0, 800.0, 320.0, 240.0); }
 
+  /*!
+    Sub-pixels a side render() draws each pixel with from cMo (see the description): 1 unless a pixel spans more than
+    two texels of the object's texture somewhere on it.
+  */
+  unsigned int supersampling(const vpHomogeneousMatrix &cMo) const;
+  //! Largest supersampling(): 16 draws a pixel bound a render's cost (beyond 8 texels a pixel, some aliasing stays).
+  static unsigned int maxSupersampling() { return 4; }
   //! Renders the view from cMo (grey levels), with the faults; \e frame selects the noise realisation.
   void render(const vpHomogeneousMatrix &cMo, vpImage<unsigned char> &I, unsigned int frame = 0) const;
   //! Same in colour.
