@@ -28,6 +28,17 @@ const vpMorphBenchObjectSet &tools()
   return t;
 }
 
+//! A black disc on white, 280 of its 300 px across, written to \e path: a compact object (15 cm in a scene).
+void writeDisc(const std::string &path)
+{
+  vpImage<unsigned char> disc(300, 300, 255);
+  for (unsigned int i = 0; i < 300; ++i)
+    for (unsigned int j = 0; j < 300; ++j)
+      if (std::hypot(i - 149.5, j - 149.5) < 140)
+        disc[i][j] = 0;
+  vpImageIo::write(disc, path);
+}
+
 bool samePose(const vpHomogeneousMatrix &a, const vpHomogeneousMatrix &b)
 {
   for (unsigned int i = 0; i < 3; ++i)
@@ -114,12 +125,7 @@ TEST_CASE("bench: an object that leaves the tag no room is a set-up failure, not
 {
   // A 15 cm disc seen from 0.3 m fills the image but for 4.5 cm on either side: no tag of 4 cm or more (5 cm with its
   // quiet zone, 1 cm from the object) fits there.
-  vpImage<unsigned char> disc(300, 300, 255);
-  for (unsigned int i = 0; i < 300; ++i)
-    for (unsigned int j = 0; j < 300; ++j)
-      if (std::hypot(i - 149.5, j - 149.5) < 140)
-        disc[i][j] = 0;
-  vpImageIo::write(disc, "bench-disc.png");
+  writeDisc("bench-disc.png");
   vpMorphPlanarScene scene("bench-disc.png");
   const vpHomogeneousMatrix near(0, 0, 0.3, 0, 0, 0);
   CHECK(vpMorphBenchScenario::stage(scene, near) == "tag-fits-nowhere");
@@ -216,12 +222,7 @@ TEST_CASE("the large distractor is larger in view than the object, beside a comp
 {
   // A 15 cm disc leaves no room in view for a rectangle larger than itself beside it and the tag: the rectangle runs
   // past the image's border, its part in view 1.2-1.6 times the disc's region.
-  vpImage<unsigned char> disc(300, 300, 255);
-  for (unsigned int i = 0; i < 300; ++i)
-    for (unsigned int j = 0; j < 300; ++j)
-      if (std::hypot(i - 149.5, j - 149.5) < 140)
-        disc[i][j] = 0;
-  vpImageIo::write(disc, "bench-distractor-disc.png");
+  writeDisc("bench-distractor-disc.png");
   const vpMorphBenchObjectSet discs =
       vpMorphBenchObjectSet::images({{"bench-distractor-disc.png", "disc"}}, "bench-distractor", 100);
   REQUIRE(discs.size() == 1);
