@@ -6,6 +6,7 @@
 #include <memory>
 #include <random>
 #include <sstream>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
@@ -528,8 +529,12 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
         const double u = draw(-0.5 * width, 1.5 * width), v = draw(-0.5 * height, 1.5 * height);
         if (!vpMorphBenchPlane::onPlane(cMo, cam, u, v, cx, cy))
           continue;
+        auto halfSides = [aspect](double area) { // of the rectangle of \e area at the drawn aspect
+          const double hl = 0.5 * std::sqrt(area * aspect);
+          return std::make_pair(hl, 0.5 * area / (2 * hl));
+        };
         auto corners = [&](double area) {
-          const double hl = 0.5 * std::sqrt(area * aspect), hw = 0.5 * area / (2 * hl);
+          const auto [hl, hw] = halfSides(area);
           const double c = std::cos(angle), s = std::sin(angle);
           const double du[4] = {-hl, hl, hl, -hl}, dv[4] = {-hw, -hw, hw, hw};
           std::vector<vpPoint> P(4);
@@ -546,7 +551,8 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
           const double mid = 0.5 * (lo + hi);
           (convexAreaInView(corners(mid), cMo, cam, width, height) < targetPx ? lo : hi) = mid;
         }
-        const double area = hi, hl = 0.5 * std::sqrt(area * aspect), hw = 0.5 * area / (2 * hl);
+        const double area = hi;
+        const auto [hl, hw] = halfSides(area);
         bool clear = true;
         for (const auto &p : outlineSamples)
           clear = clear && rectangleDistance(p.first, p.second, cx, cy, hl, hw, angle) > kClearance;
