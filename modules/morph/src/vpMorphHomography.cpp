@@ -364,9 +364,12 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     offsetFree = true;
     return false;
   };
-  const unsigned int huberIterations = std::min(4u, std::max(1u, maxIterations / 2));
+  const unsigned int huberIterations = std::min(4u, std::max(1u, maxIterations / 2)); // at most
   Mat9 Minv = Mat9::Zero(); // inverse of the last normal matrix, for the covariance
   double sigma = 0.0;       // the last iteration's robust scale
+  // Huber weights until the fit is within the noise, Tukey's after: they tell the inliers from the rest only when
+  // the residuals are the noise's. Within the noise means an update that moved no sample by the robust scale.
+  bool tukey = false, tukeyMoved = false; // the Tukey phase, and whether the last update was one of its
   for (it = 0; it < maxIterations && !converged; ++it) {
     const Mat3 Gi = G.inverse();
     double moved = 0.0; // the largest move of a mapped sample since the last iteration
@@ -382,10 +385,12 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     // Settled once an update (of the Tukey rounds) moves no sample by a hundredth of the edges' noise: what is left
     // is far below the estimate's own deviation. The nearest edges are then not searched again. The offset is held at
     // 0 until an update moves no sample by the noise: the misfit G has yet to remove is then below it.
-    if (it > huberIterations && moved < 0.01 * sigma && done())
+    if (tukeyMoved && moved < 0.01 * sigma && done())
       break;
-    if (edgeOffset && it > huberIterations && moved < sigma)
+    if (edgeOffset && tukeyMoved && moved < sigma)
       offsetFree = true;
+    if (it >= huberIterations || (it > 0 && moved < sigma))
+      tukey = true;
     for (std::size_t k = 0; k < N; ++k) {
       const bool fwd = k < SI.size();
       const Vec3 &u = U[k];
@@ -414,7 +419,7 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     std::vector<double> ar(N);
     for (std::size_t k = 0; k < N; ++k)
       ar[k] = std::fabs(r[k]);
-    const bool tukey = it >= huberIterations;
+    tukeyMoved = tukey;
     sigma = std::max({minSigma, 1.4826 * median(ar), 1e-13 * scale});
     Eigen::VectorXd wr(N);
     for (std::size_t k = 0; k < N; ++k) {

@@ -227,6 +227,44 @@ TEST_CASE("vpMorphHomography takes an outline grown all round for an edge offset
   }
 }
 
+TEST_CASE("vpMorphHomography::refine from a start within the noise goes straight to its Tukey rounds",
+          "[homography][refine]")
+{
+  // The servo's case at every period of its final approach: the last period's homography, already within the edges'
+  // noise, refined again on dense noisy outlines. The Huber rounds only bring a far start within the noise, where
+  // Tukey's weights can tell the inliers: from there one Huber update, one Tukey update, and the check that settles.
+  const double px = 800, noisePx = 0.25;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, noisePx / px);
+  auto noisy = [&](const vpMorphContour &c) {
+    std::vector<double> x = c.xs(), y = c.ys();
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      x[k] += noise(rng);
+      y[k] += noise(rng);
+    }
+    return vpMorphContour(x, y, vpMorphContour::NORMALIZED);
+  };
+  const vpMorphContour target = noisy(project(cdMo, object(40)));
+  for (const bool offset : {false, true}) {
+    const vpHomogeneousMatrix cMo = start(2.0, 60, 0.05, 30, 0.01, -0.005);
+    const vpMorphContour current = noisy(project(cMo, object(40)));
+    const vpMorphContour coarse = project(cMo, object()), coarseTarget = project(cdMo, object());
+    const vpMorphHomography G0 =
+        vpMorphHomography::fit(coarse, coarseTarget, vpMorphMatcher().match(coarse, coarseTarget));
+    const vpMorphHomography far = vpMorphHomography::refine(current, target, G0, 0.1 / px, 400, 20, offset);
+    const vpMorphHomography again = vpMorphHomography::refine(current, target, far, 0.1 / px, 400, 20, offset);
+    double t, r;
+    poseDiff(far.inputMtarget(Zd), again.inputMtarget(Zd), t, r);
+    std::printf(
+        "[homography] refined again from its own result (offset %d): %u iterations (from the polygons' fit %u), "
+        "moved %.2g mm %.2g deg\n",
+        int(offset), again.iterations(), far.iterations(), 1000 * t, r);
+    CHECK(again.iterations() <= 3);
+    CHECK(t < 0.05e-3);
+    CHECK(r < 0.01);
+  }
+}
+
 TEST_CASE("vpMorphHomography rejects degenerate input", "[homography][safety]")
 {
   const vpMorphContour target = project(cdMo, object());

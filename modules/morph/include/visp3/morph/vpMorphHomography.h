@@ -25,8 +25,9 @@
   place their vertices at the same points): a normalised DLT (Hartley), robust by iteratively reweighted least
   squares, on samples taken along the corresponded segments; then Gauss-Newton on point-to-segment distances both
   ways (input samples mapped by G onto the target polygon, target samples by G^-1 onto the input), nearest points
-  recomputed at each iteration as in ICP, Huber then Tukey weights with a robust scale 1.4826 MAD floored at
-  \e minSigma (half a pixel in these units for contours from images): an occluded or deformed part stops pulling.
+  recomputed at each iteration as in ICP, Huber weights until an update moves no sample by the robust scale (1.4826
+  MAD floored at \e minSigma, half a pixel in these units for contours from images), Tukey's after: an occluded or
+  deformed part stops pulling.
   Exact projections of one polygon give the true homography to numerical precision.
 
   <b>Edge offset</b> (refine() on measured edges). An outline measured at a biased edge level (a clipping light, a
