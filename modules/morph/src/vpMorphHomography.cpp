@@ -102,12 +102,38 @@ double median(std::vector<double> v)
   return v[m];
 }
 
-// Robust weight of a residual in units of sigma: Huber (c = 1.345) or Tukey biweight (c = 4.685).
+// Tukey's biweight constant (95 % efficiency under Gaussian noise): a residual of kTukey robust scales weighs nothing.
+constexpr double kTukey = 4.685;
+
+/*
+  The robust scale of the residuals \e r, 1.4826 MAD floored at \e minSigma and at rounding (1e-13 \e scale), where
+  those beyond \e reach were not searched (+inf). That is the exhaustive scale when the median and Tukey's cut-off lie
+  within reach (every residual beyond is then beyond both); otherwise \e requery(k) sets r[k] exactly for each of
+  them, and the scale is taken again.
+*/
+template <typename F> double robustScale(std::vector<double> &r, double reach, double minSigma, double scale, F requery)
+{
+  auto scaleOf = [&]() {
+    std::vector<double> a(r.size());
+    for (std::size_t k = 0; k < r.size(); ++k)
+      a[k] = std::fabs(r[k]);
+    return std::max({minSigma, 1.4826 * median(a), 1e-13 * scale});
+  };
+  const double sigma = scaleOf();
+  if (!(kTukey * sigma > reach))
+    return sigma;
+  for (std::size_t k = 0; k < r.size(); ++k)
+    if (std::isinf(r[k]))
+      requery(k);
+  return scaleOf();
+}
+
+// Robust weight of a residual in units of sigma: Huber (c = 1.345) or Tukey biweight (c = kTukey).
 double robustWeight(double r, double sigma, bool tukey)
 {
   const double u = std::fabs(r) / sigma;
   if (tukey) {
-    const double c = 4.685;
+    const double c = kTukey;
     if (u >= c)
       return 0.0;
     const double a = 1.0 - (u / c) * (u / c);
@@ -172,10 +198,13 @@ bool dlt(const std::vector<Point> &A, const std::vector<Point> &B, const std::ve
   makes them. \e side is -d(distance)/d(delta): +1 where the point lies on the side the normals point to, -1 opposite.
 */
 double offsetDistance(const vpMorphNearestEdge &nearest, double x, double y, double delta, double &mx, double &my,
-                      double &side)
+                      double &side, double reach = std::numeric_limits<double>::infinity())
 {
-  double along;
-  const double r = nearest(x, y, mx, my, along);
+  double along = 0.0;
+  // The level delta lies within |delta| of the edges: beyond reach + |delta| of them, it is beyond reach.
+  const double r = nearest.within(x, y, reach + std::fabs(delta), mx, my, &along);
+  if (std::isinf(r))
+    return r;
   side = along > 0.0 ? 1.0 : (along < 0.0 ? -1.0 : 0.0);
   return r - side * delta;
 }
@@ -391,12 +420,14 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
       offsetFree = true;
     if (it >= huberIterations || (it > 0 && moved < sigma))
       tukey = true;
-    for (std::size_t k = 0; k < N; ++k) {
+    // Sample k's residual and Jacobian row; a residual beyond reach is +inf (its row is then never used).
+    auto row = [&](std::size_t k, double reach) {
       const bool fwd = k < SI.size();
       const Vec3 &u = U[k];
       const double x = X[k], y = Y[k];
-      double mx, my, side = 0.0;
-      r[k] = fwd ? offsetDistance(nearestTarget, x, y, delta, mx, my, side) : nearestInput(x, y, mx, my);
+      double mx = 0.0, my = 0.0, side = 0.0;
+      r[k] = fwd ? offsetDistance(nearestTarget, x, y, delta, mx, my, side, reach)
+                 : nearestInput.within(x, y, reach, mx, my);
       // d(residual) = m^T dpi, dpi = (1/u3) [1 0 -x; 0 1 -y] du; forward du = G D p, backward du = -D u, and the
       // target's edges moved by d(delta) n: forward -side d(delta), backward du = G^-1 n d(delta).
       Eigen::Matrix<double, 1, 3> g;
@@ -415,12 +446,15 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
       }
       J.row(k) << g[0] * q[0], g[0] * q[1], g[0] * q[2], g[1] * q[0], g[1] * q[1], g[1] * q[2], g[2] * q[0],
           g[2] * q[1], dDelta;
-    }
-    std::vector<double> ar(N);
+    };
+    // Tukey's weights need no residual beyond their cut-off: the nearest edges are searched within twice the last
+    // round's (a sample off a hidden or bent part would spread the search over the whole outline).
+    const double reach = tukey && sigma > 0.0 ? 2.0 * kTukey * sigma : std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < N; ++k)
-      ar[k] = std::fabs(r[k]);
+      row(k, reach);
+    sigma =
+        robustScale(r, reach, minSigma, scale, [&](std::size_t k) { row(k, std::numeric_limits<double>::infinity()); });
     tukeyMoved = tukey;
-    sigma = std::max({minSigma, 1.4826 * median(ar), 1e-13 * scale});
     Eigen::VectorXd wr(N);
     for (std::size_t k = 0; k < N; ++k) {
       rw[k] = robustWeight(r[k], sigma, tukey);
@@ -468,15 +502,18 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
   // Final residuals and inliers at the returned homography.
   {
     const Mat3 Gi = G.inverse();
-    std::vector<double> ar;
-    ar.reserve(N);
-    for (std::size_t k = 0; k < N; ++k) {
+    // As in the rounds: within twice the last round's cut-off, the samples beyond it weigh nothing.
+    const double reach = sigma > 0.0 ? 2.0 * kTukey * sigma : std::numeric_limits<double>::infinity();
+    auto residual = [&](std::size_t k, double within) {
       double x, y, mx, my, side;
       map(G, Gi, k, x, y);
-      r[k] = k < SI.size() ? offsetDistance(nearestTarget, x, y, delta, mx, my, side) : nearestInput(x, y, mx, my);
-      ar.push_back(std::fabs(r[k]));
-    }
-    const double sigma = std::max({minSigma, 1.4826 * median(ar), 1e-13 * scale});
+      r[k] = k < SI.size() ? offsetDistance(nearestTarget, x, y, delta, mx, my, side, within)
+                           : nearestInput.within(x, y, within, mx, my);
+    };
+    for (std::size_t k = 0; k < N; ++k)
+      residual(k, reach);
+    const double sigma = robustScale(r, reach, minSigma, scale,
+                                     [&](std::size_t k) { residual(k, std::numeric_limits<double>::infinity()); });
     double s2 = 0, ws2 = 0, sw = 0;
     std::size_t n = 0;
     for (std::size_t k = 0; k < N; ++k) {
