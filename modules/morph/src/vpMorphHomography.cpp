@@ -380,6 +380,16 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     y = u[1] / u[2];
     return u;
   };
+  // Residual of sample k mapped at (x, y), +inf beyond reach; m and side as offsetDistance() gives them.
+  auto residual = [&](std::size_t k, double x, double y, double reach, double &mx, double &my, double &side) {
+    return k < SI.size() ? offsetDistance(nearestTarget, x, y, delta, mx, my, side, reach)
+                         : nearestInput.within(x, y, reach, mx, my);
+  };
+  // Tukey's weights need no residual beyond their cut-off: the nearest edges are searched within twice the last
+  // round's (a sample off a hidden or bent part would spread the search over the whole outline).
+  auto reachAt = [](double sigma) {
+    return sigma > 0.0 ? 2.0 * kTukey * sigma : std::numeric_limits<double>::infinity();
+  };
   vpMorphHomography out;
   unsigned int it = 0;
   bool converged = false;
@@ -426,8 +436,7 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
       const Vec3 &u = U[k];
       const double x = X[k], y = Y[k];
       double mx = 0.0, my = 0.0, side = 0.0;
-      r[k] = fwd ? offsetDistance(nearestTarget, x, y, delta, mx, my, side, reach)
-                 : nearestInput.within(x, y, reach, mx, my);
+      r[k] = residual(k, x, y, reach, mx, my, side);
       // d(residual) = m^T dpi, dpi = (1/u3) [1 0 -x; 0 1 -y] du; forward du = G D p, backward du = -D u, and the
       // target's edges moved by d(delta) n: forward -side d(delta), backward du = G^-1 n d(delta).
       Eigen::Matrix<double, 1, 3> g;
@@ -447,9 +456,7 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
       J.row(k) << g[0] * q[0], g[0] * q[1], g[0] * q[2], g[1] * q[0], g[1] * q[1], g[1] * q[2], g[2] * q[0],
           g[2] * q[1], dDelta;
     };
-    // Tukey's weights need no residual beyond their cut-off: the nearest edges are searched within twice the last
-    // round's (a sample off a hidden or bent part would spread the search over the whole outline).
-    const double reach = tukey && sigma > 0.0 ? 2.0 * kTukey * sigma : std::numeric_limits<double>::infinity();
+    const double reach = tukey ? reachAt(sigma) : std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < N; ++k)
       row(k, reach);
     sigma =
@@ -503,17 +510,16 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
   {
     const Mat3 Gi = G.inverse();
     // As in the rounds: within twice the last round's cut-off, the samples beyond it weigh nothing.
-    const double reach = sigma > 0.0 ? 2.0 * kTukey * sigma : std::numeric_limits<double>::infinity();
-    auto residual = [&](std::size_t k, double within) {
+    const double reach = reachAt(sigma);
+    auto at = [&](std::size_t k, double within) {
       double x, y, mx, my, side;
       map(G, Gi, k, x, y);
-      r[k] = k < SI.size() ? offsetDistance(nearestTarget, x, y, delta, mx, my, side, within)
-                           : nearestInput.within(x, y, within, mx, my);
+      r[k] = residual(k, x, y, within, mx, my, side);
     };
     for (std::size_t k = 0; k < N; ++k)
-      residual(k, reach);
-    const double sigma = robustScale(r, reach, minSigma, scale,
-                                     [&](std::size_t k) { residual(k, std::numeric_limits<double>::infinity()); });
+      at(k, reach);
+    const double sigma =
+        robustScale(r, reach, minSigma, scale, [&](std::size_t k) { at(k, std::numeric_limits<double>::infinity()); });
     double s2 = 0, ws2 = 0, sw = 0;
     std::size_t n = 0;
     for (std::size_t k = 0; k < N; ++k) {

@@ -72,17 +72,6 @@ void poseDiff(const vpHomogeneousMatrix &a, const vpHomogeneousMatrix &b, double
   rDeg = vpMath::deg(vpThetaUVector(d.getRotationMatrix()).getTheta());
 }
 
-// \e c with \e noise drawn on every vertex coordinate (the contour's units).
-vpMorphContour withNoise(const vpMorphContour &c, std::mt19937 &rng, std::normal_distribution<double> &noise)
-{
-  std::vector<double> x = c.xs(), y = c.ys();
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    x[k] += noise(rng);
-    y[k] += noise(rng);
-  }
-  return vpMorphContour(x, y, vpMorphContour::NORMALIZED);
-}
-
 // Angle between the optical axis and the plane normal, in the frame of a camera with pose cMo (deg).
 double tiltOf(const vpHomogeneousMatrix &cMo) { return vpMath::deg(std::acos(std::min(1.0, cMo[2][2]))); }
 
@@ -150,7 +139,14 @@ TEST_CASE("vpMorphHomography recovers tilt and depth from noisy outlines and a h
   const double px = 800, noisePx = 0.25, halfPixel = 0.5 / px;
   std::mt19937 rng(3);
   std::normal_distribution<double> noise(0.0, noisePx / px);
-  auto noisy = [&](const vpMorphContour &c) { return withNoise(c, rng, noise); };
+  auto noisy = [&](const vpMorphContour &c) {
+    std::vector<double> x = c.xs(), y = c.ys();
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      x[k] += noise(rng);
+      y[k] += noise(rng);
+    }
+    return vpMorphContour(x, y, vpMorphContour::NORMALIZED);
+  };
   const vpMorphContour target = noisy(project(cdMo, object(4)));
   double worstT = 0, worstR = 0, worstTilt = 0;
   for (const auto &s : starts) {
@@ -239,12 +235,10 @@ TEST_CASE("vpMorphHomography::refine from a start within the noise goes straight
   // Tukey's weights can tell the inliers: from there one Huber update, one Tukey update, and the check that settles.
   const double px = 800, noisePx = 0.25;
   std::mt19937 rng(11);
-  std::normal_distribution<double> noise(0.0, noisePx / px);
-  auto noisy = [&](const vpMorphContour &c) { return withNoise(c, rng, noise); };
-  const vpMorphContour target = noisy(project(cdMo, object(40)));
+  const vpMorphContour target = vpMorphTest::noisy(project(cdMo, object(40)), rng, noisePx / px);
   for (const bool offset : {false, true}) {
     const vpHomogeneousMatrix cMo = start(2.0, 60, 0.05, 30, 0.01, -0.005);
-    const vpMorphContour current = noisy(project(cMo, object(40)));
+    const vpMorphContour current = vpMorphTest::noisy(project(cMo, object(40)), rng, noisePx / px);
     const vpMorphContour coarse = project(cMo, object()), coarseTarget = project(cdMo, object());
     const vpMorphHomography G0 =
         vpMorphHomography::fit(coarse, coarseTarget, vpMorphMatcher().match(coarse, coarseTarget));
