@@ -32,6 +32,24 @@ const int kSearchTurns = 12;
 // A normal distribution's standard deviation over its median absolute deviation: the robust scale's factor.
 constexpr double kMadToSigma = 1.4826;
 
+/*
+  The noise of residuals taken in order along an outline, whatever the pose they were measured at: 1.4826 MAD of
+  their second differences over sqrt(3/2) (the second difference of white noise of deviation s has deviation
+  s sqrt(3/2)), floored. A pose error or a bend moves neighbouring samples alike and cancels there; a corner of the
+  goal, where the nearest edge changes, is one of the MAD's outliers.
+*/
+double differenceScale(const std::vector<double> &r, double floor)
+{
+  std::vector<double> d;
+  for (std::size_t k = 1; k + 1 < r.size(); ++k)
+    if (std::isfinite(r[k - 1]) && std::isfinite(r[k]) && std::isfinite(r[k + 1]))
+      d.push_back(std::fabs(r[k] - 0.5 * (r[k - 1] + r[k + 1])));
+  if (d.empty())
+    return floor;
+  std::nth_element(d.begin(), d.begin() + std::ptrdiff_t(d.size() / 2), d.end());
+  return std::max(kMadToSigma * d[d.size() / 2] / std::sqrt(1.5), floor);
+}
+
 // Tukey's loss at cut-off c, normalised to [0, 1]: 1 - (1 - u^2)^3 inside, 1 beyond.
 double tukeyLoss(double r, double c)
 {
@@ -457,6 +475,14 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
   const Eigen::Vector4d x0 = linearParameters(initial, cx, cy, m_goal, spread);
   const double floor = std::max(1e-9 * std::max(spread, 1e-300), m_minSigma);
   const std::size_t n = P.size();
+  // The scales at which the input's area laid on the goal is within a factor 2 of the goal's: beyond, the larger part
+  // of one cannot lie on the other (a hypothesis shrunk onto an edge, or spread over the goal's surroundings).
+  const double areaRatio = std::fabs(m_goal.area()) / std::fabs(input.outline().area());
+  const bool areaKnown = std::isfinite(areaRatio) && areaRatio > 0.0;
+  auto admissible = [&](const Eigen::Vector4d &x) {
+    const double s2 = x.head<2>().squaredNorm();
+    return !areaKnown || (s2 >= 0.5 * areaRatio && s2 <= 2.0 * areaRatio);
+  };
   // Hypotheses at the start's scale (a bend or a hidden part leaves the scale): the start and its turns by twelfths
   // about the input's centroid fitted on the whole input, and each of 12 windows (a sixth of the input, half
   // overlapping) fitted alone from the start, each with its own residuals' scale.
@@ -475,6 +501,7 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
   }
   const std::size_t w = std::max<std::size_t>(4, n / 6);
   std::vector<double> windowSigmas;
+  Solver::Rows rows;
   for (std::size_t k = 0; k < 12 && n >= 12; ++k) {
     std::vector<Eigen::Vector2d> window(w);
     for (std::size_t j = 0; j < w; ++j)
@@ -483,7 +510,8 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
     double delta = 0.0, sigma = 0.0;
     if (Solver::irls(*m_goalData, window, nullptr, x, delta, sigma, false, false, m_maxIterations, floor, spread)) {
       hypotheses.push_back({x, sigma});
-      windowSigmas.push_back(sigma);
+      Solver::measureRows(*m_goalData, window, nullptr, x, delta, floor, 0.0, rows);
+      windowSigmas.push_back(differenceScale(rows.r, floor));
       // And with its scale free: a curved window finds the scale that a hidden part biased the start's by (a
       // straight one slides or shrinks, and its consensus below says so).
       double ds = 0.0, ss = 0.0;
@@ -491,14 +519,14 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
         hypotheses.push_back({x, ss});
     }
   }
-  // Each hypothesis refined locally, its scale free, at the edges' noise (the median of the windows' own scales: a
-  // window lies on one part of the object, most do not span a bend or a cut), then scored by the consensus there:
-  // kept, the one that lays the most of the input on the goal's edges, the largest rigid part of the view (what an
-  // occluder leaves, the part a bend did not move). Then refined to the end.
+  // Each hypothesis refined locally, its scale free, at the edges' noise (the median over the windows of their
+  // residuals' difference scale: a window that spans a bend or a cut, or slid along a smooth arc, leaves residuals
+  // that vary smoothly, not a larger noise), then scored by the consensus there: kept, among the admissible scales,
+  // the one that lays the most of the input on the goal's edges, the largest rigid part of the view (what an occluder
+  // leaves, the part a bend did not move). Then refined to the end.
   const double noise = windowSigmas.empty() ? 0.0 : median(windowSigmas);
   Eigen::Vector4d x = x0;
   double delta = 0.0, sigma = noise, bestCost = std::numeric_limits<double>::infinity();
-  Solver::Rows rows;
   // Each from two scales: the edges' noise (it stays on the part it lies on) and the spread of all its residuals (a
   // scale the hypotheses' fixed one left off by percents, as a hidden part biases the correspondence's, is found
   // again).
@@ -508,7 +536,8 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
       // below rules out a view shrunk onto an edge.
       Eigen::Vector4d xh = h.x;
       double dh = 0.0, sh = start;
-      if (!Solver::irls(*m_goalData, P, nullptr, xh, dh, sh, m_withScale, m_withOffset, 8, floor, spread))
+      if (!Solver::irls(*m_goalData, P, nullptr, xh, dh, sh, m_withScale, m_withOffset, 8, floor, spread) ||
+          !admissible(xh))
         continue;
       // Both ways: a fit shrunk onto one edge of the goal lays the view on it but leaves the goal bare.
       // (A residual beyond the cost's cut-off costs 1 whatever its size.)

@@ -107,6 +107,10 @@ vpMorphServoGuard::Status vpMorphServoGuard::verify(const vpMorphViewAlignment &
 {
   if (!a.explained() || !tiltVerified)
     return UNVERIFIED;
+  // A view explained only in part may be another shape with more than half of the target's outline: only the target
+  // check can say it is the target.
+  if (a.model != vpMorphViewAlignment::RIGID && !hasTargetCheck())
+    return UNVERIFIED;
   const double k = getVerificationSigmas();
   const bool pinned = k * a.rotationDeviation() <= rotationRad &&
                       k * a.translationDeviation() * pixelsPerUnit <= translationPx &&

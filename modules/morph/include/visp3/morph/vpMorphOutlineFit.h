@@ -107,9 +107,10 @@ public:
     fit() from the best of several hypotheses, for a start that may lie in another basin (the first fit of a view):
     \e initial and its turns by twelfths about the input's centroid (a nearly symmetric part's correspondence may
     start a lobe off) fitted on the whole input, and each of 12 windows
-    (a sixth of the input, half overlapping) fitted alone, all at \e initial's scale; kept is the one under which the
-    input's region overlaps the goal's most (the largest part of the object by area that lies on the goal: what an
-    occluder leaves, the part a bend did not move), refined by fit() at that hypothesis' own residual scale.
+    (a sixth of the input, half overlapping) fitted alone, all at \e initial's scale; each refined with its scale
+    free, and kept is the one of least cost() both ways at the edges' noise (the windows' residuals' own spread from
+    sample to sample) among those that lay the input's area within a factor 2 of the goal's (the largest rigid part
+    of the view: what an occluder leaves, the part a bend did not move), refined by fit() at its own residual scale.
     \throw vpMorphException as fit().
   */
   vpMorphRigidTransform search(const vpMorphContour &input, const vpMorphRigidTransform &initial);

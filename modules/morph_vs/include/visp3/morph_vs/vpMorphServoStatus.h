@@ -18,8 +18,9 @@
   - <b>Stops</b> (every later period returns the same until vpServoMorph::restart() or a new target):
     CONVERGED (aligned, and the aligned view explains the target within its noise), UNVERIFIED (aligned by the
     measurement, but the view does not pin the pose within the final thresholds at its noise: a part hidden that
-    leaves the pose free, a tilt the outline does not show; the servo cannot vouch for the pose), LOST_TOO_LONG (too
-    many holds in a row), TOO_MANY_REPLANS, TARGET_MISMATCH (the view is not the target's shape).
+    leaves the pose free, a tilt the outline does not show, a view explained only in part with no target check; the
+    servo cannot vouch for the pose), LOST_TOO_LONG (too many holds in a row), TOO_MANY_REPLANS, TARGET_MISMATCH (the
+    view is not the target's shape).
 
   \code
   vpColVector ve = servo.computeControlLaw(c);
