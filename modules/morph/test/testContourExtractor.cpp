@@ -223,6 +223,28 @@ TEST_CASE("extractor: extractJoined joins the pieces an occluder cut, not distan
   CHECK_THROWS_AS(ex.extractJoined(vpImage<unsigned char>(50, 50, 128)), vpMorphException);
 }
 
+TEST_CASE("extractor: the floor beyond the plane's edge, cut by the image's border, leaves a small object a candidate",
+          "[extract]")
+{
+  // A dark floor from the left border (about 75000 px) and a bar of 120 x 24 px, under 4 % of it, seen whole.
+  Poly floor, bar;
+  floor.x = {-1, 360, -1};
+  floor.y = {60, 481, 481};
+  bar.x = {420, 540, 540, 420};
+  bar.y = {150, 150, 174, 174};
+  const vpMorphContourExtractor ex;
+  const vpMorphContour alone = ex.extract(render({bar}, 0, 255));
+  const vpImage<unsigned char> I = render({floor, bar}, 0, 255);
+  REQUIRE(ex.extract(I).area() > 20.0 * alone.area()); // the largest region is the floor
+  const std::vector<vpMorphContour> cands = ex.extractCandidates(I);
+  REQUIRE(cands.size() >= 2);
+  CHECK(cands.front().area() == Approx(ex.extractJoined(I).area()).epsilon(1e-12));
+  int bars = 0;
+  for (const vpMorphContour &k : cands) // on the bar, its area within a pixel's band of its outline
+    bars += maxDistTo(k, bar.x, bar.y) <= 2.0 && std::fabs(k.area() - alone.area()) <= alone.perimeter() ? 1 : 0;
+  CHECK(bars == 1);
+}
+
 TEST_CASE("extractor: a larger region elsewhere is not the object: candidates first, then where the object was",
           "[extract]")
 {
