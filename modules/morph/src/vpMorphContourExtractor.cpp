@@ -249,21 +249,25 @@ std::vector<vpMorphContour> vpMorphContourExtractor::extractCandidates(const vpI
   cv::Mat bin;
   std::vector<Region> regs = regions(I, 0, &bin);
   const cv::Mat grey = greyOf(I);
-  // The size that tells candidates from specks: the largest region seen whole. One the image's border cuts (the
-  // floor beyond the plane's edge) shows an unknown part of itself, and its area is no object's.
+  std::vector<vpMorphContour> out;
+  auto add = [&](std::size_t k) {
+    bool joined = false;
+    out.push_back(silhouette(grey, bin, regs[k], piecesOf(regs, k, true), &joined));
+    if (joined)
+      out.push_back(silhouette(grey, bin, regs[k], {}));
+  };
+  std::size_t k = 0;
+  for (; k < regs.size() && regs[k].area >= joinedMinShare() * regs.front().area; ++k)
+    add(k);
+  // The largest region seen whole too, whatever its size: the largest may be one the image's border cuts (the floor
+  // beyond the plane's edge), whose area says nothing of the object's.
   const cv::Rect image(0, 0, bin.cols, bin.rows);
   const auto whole = std::find_if(regs.begin(), regs.end(), [&image](const Region &r) {
     const cv::Rect box = cv::boundingRect(r.chain);
     return box.x > image.x && box.y > image.y && box.br().x < image.br().x && box.br().y < image.br().y;
   });
-  const double reference = whole == regs.end() ? regs.front().area : whole->area;
-  std::vector<vpMorphContour> out;
-  for (std::size_t k = 0; k < regs.size() && regs[k].area >= joinedMinShare() * reference; ++k) {
-    bool joined = false;
-    out.push_back(silhouette(grey, bin, regs[k], piecesOf(regs, k, true), &joined));
-    if (joined)
-      out.push_back(silhouette(grey, bin, regs[k], {}));
-  }
+  if (whole != regs.end() && static_cast<std::size_t>(whole - regs.begin()) >= k)
+    add(static_cast<std::size_t>(whole - regs.begin()));
   return out;
 }
 

@@ -223,7 +223,8 @@ TEST_CASE("extractor: extractJoined joins the pieces an occluder cut, not distan
   CHECK_THROWS_AS(ex.extractJoined(vpImage<unsigned char>(50, 50, 128)), vpMorphException);
 }
 
-TEST_CASE("extractor: the floor beyond the plane's edge, cut by the image's border, leaves a small object a candidate",
+TEST_CASE("extractor: beside a region the image's border cuts (the floor beyond the plane's edge), the largest region "
+          "seen whole is a candidate",
           "[extract]")
 {
   // A dark floor from the left border (about 75000 px) and a bar of 120 x 24 px, under 4 % of it, seen whole.
@@ -243,6 +244,18 @@ TEST_CASE("extractor: the floor beyond the plane's edge, cut by the image's bord
   for (const vpMorphContour &k : cands) // on the bar, its area within a pixel's band of its outline
     bars += maxDistTo(k, bar.x, bar.y) <= 2.0 && std::fabs(k.area() - alone.area()) <= alone.perimeter() ? 1 : 0;
   CHECK(bars == 1);
+
+  // The region the border cuts may be the object itself: the specks beside it (twenty 4 x 4 px dots) are not all
+  // candidates, only the largest region seen whole (with the pieces near it, then alone).
+  std::vector<Poly> dotted{floor};
+  for (int k = 0; k < 20; ++k) {
+    Poly dot;
+    const double u = 380 + 12 * k;
+    dot.x = {u, u + 4, u + 4, u};
+    dot.y = {400, 400, 404, 404};
+    dotted.push_back(dot);
+  }
+  CHECK(ex.extractCandidates(render(dotted, 0, 255)).size() <= 3);
 }
 
 TEST_CASE("extractor: a larger region elsewhere is not the object: candidates first, then where the object was",

@@ -97,9 +97,9 @@ public:
   vpMorphContour extractJoined(const vpImage<vpRGBa> &I, const vpMorphContour &previous) const;
   /*!
     The outlines the object may have, for a first image where nothing says which region it is: for each region of at
-    least joinedMinShare() of the area of the largest region seen whole (one the image's border does not cut: the
-    floor beyond the plane's edge shows an unknown part of itself; the largest when the border cuts every region),
-    largest first, the region joined with the smaller pieces near it (extractJoined()'s rule around it), then, when a
+    least joinedMinShare() of the largest one's area (largest first), and for the largest region seen whole (one the
+    image's border does not cut: the largest may be the floor beyond the plane's edge, whose area says nothing of the
+    object's), the region joined with the smaller pieces near it (extractJoined()'s rule around it), then, when a
     piece was joined, the region alone. The first is
     extractJoined(I). A template database tells which one shows a known part (vpMorphDatabase::recognize() on a
     list); extractJoined(I, previous) follows it afterwards. \throw vpMorphException::badImageError as extract().
