@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphRigidShape.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 
 #include "vpMorphOutlineShare.h"
@@ -19,12 +20,19 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPoseStep = 3.14159265358979323846 / 45.0; // 4 deg between an articulated template's poses
 constexpr double kRigidSupport = 0.5;                       // RIGID's minimum support (class description)
 
-// vpMorphDatabase::support() of view q on template t, from the correspondence q -> t.
-double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorphCorrespondence &correspondence)
+/*
+  vpMorphDatabase::support() of view q on template t, from the correspondence q -> t; where that shows less than
+  \e enough and t's outline shape is given, from the alignment of q's (\e view, built on first use) on it if that
+  shows at least \e enough. An occluder's notch throws the correspondence off (it is matched somewhere), not the
+  shapes' alignment, voted by the parts of the outline that show. Below \e enough the correspondence's share stands:
+  the best of more alignments shows more of any template, and the floor that rejects unknown shapes holds for one.
+*/
+double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorphCorrespondence &correspondence,
+                  double enough = kInf, vpMorphRigidShape *view = nullptr, const vpMorphRigidShape *shape = nullptr)
 {
   double best = 0.0;
+  const vpMorphOutlineShare shown(t);
   try {
-    const vpMorphOutlineShare shown(t);
     const vpMorphRigidTransform T0 = shown.fitted(q, correspondence);
     // From the fit and from it turned half a turn about the template's centre: the correspondence of a nearly
     // symmetric outline (a wedge, end for end) can put the view the wrong way round, where the refinement stays.
@@ -33,7 +41,20 @@ double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorp
   } catch (const vpException &) {
     // no similarity aligns them (a degenerate fit): the view shows nothing more of the template
   }
-  return best;
+  if (best >= enough || !view || !shape || shape->empty())
+    return best;
+  double aligned = 0.0;
+  try {
+    if (view->empty())
+      *view = vpMorphRigidShape(q);
+    const vpMorphRigidShape::Alignment a = view->alignOn(*shape);
+    aligned = shown.aligned(q, a.transform);
+    if (a.hasAlternative)
+      aligned = std::max(aligned, shown.aligned(q, a.alternative));
+  } catch (const vpException &) {
+    // a view too small for a shape: the correspondence's share stands
+  }
+  return aligned >= enough ? aligned : best;
 }
 
 /*
@@ -42,9 +63,10 @@ double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorp
   less work, and the polygons of its mirror image then align badly (0.05 of the outline shown).
 */
 double shownEitherWay(const vpMorphContour &q, const vpMorphContour &t, vpMorphMatcher &matcher, bool mirrored,
-                      const vpMorphCorrespondence &direct)
+                      const vpMorphCorrespondence &direct, double enough = kInf, vpMorphRigidShape *view = nullptr,
+                      const vpMorphRigidShape *shape = nullptr)
 {
-  const double s = shownShare(q, t, direct);
+  const double s = shownShare(q, t, direct, enough, view, shape);
   if (!mirrored)
     return s;
   const vpMorphContour m = q.mirrored();
@@ -87,6 +109,7 @@ void vpMorphDatabase::add(const vpMorphTemplate &t)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphDatabase::add: duplicate template name '" + t.name() + "'");
   m_shapes.push_back(m_distance.prepare(t.contour()));
+  m_outlineShapes.push_back(m_shapes.back().rigid.empty() ? vpMorphRigidShape(t.contour()) : vpMorphRigidShape());
   m_poses.push_back(poses(t));
   m_templates.push_back(t);
   invalidate();
@@ -99,6 +122,7 @@ void vpMorphDatabase::remove(const std::string &name)
     throw vpMorphException(vpMorphException::notFoundError, "vpMorphDatabase: no template named '" + name + "'");
   m_templates.erase(m_templates.begin() + static_cast<long>(k));
   m_shapes.erase(m_shapes.begin() + static_cast<long>(k));
+  m_outlineShapes.erase(m_outlineShapes.begin() + static_cast<long>(k));
   m_poses.erase(m_poses.begin() + static_cast<long>(k));
   invalidate();
 }
@@ -223,8 +247,11 @@ void vpMorphDatabase::setDistance(const vpMorphShapeDistance &d)
   m_distance = d;
   m_minSupport = vpMorphDatabase(d).m_minSupport; // the model's default
   m_shapes.clear();
-  for (const vpMorphTemplate &t : m_templates)
+  m_outlineShapes.clear();
+  for (const vpMorphTemplate &t : m_templates) {
     m_shapes.push_back(m_distance.prepare(t.contour()));
+    m_outlineShapes.push_back(m_shapes.back().rigid.empty() ? vpMorphRigidShape(t.contour()) : vpMorphRigidShape());
+  }
   // The poses are drawn from the articulation alone: only their shapes depend on the distance.
   for (std::vector<Pose> &poses : m_poses)
     for (Pose &p : poses)
@@ -264,6 +291,13 @@ double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mir
 
 double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mirrored, bool poses) const
 {
+  vpMorphRigidShape view;
+  return support(c, k, mirrored, poses, view);
+}
+
+double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mirrored, bool poses,
+                                vpMorphRigidShape &view) const
+{
   const vpMorphContour &t = operator[](k).contour();
   if (c.empty())
     throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::support: empty contour");
@@ -274,7 +308,8 @@ double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mir
   if (m_distance.model() == vpMorphShapeDistance::RIGID)
     return rigidCheck(m_distance.prepare(c), k, mirrored, poses).targetShare;
   vpMorphMatcher matcher = m_distance.matcher();
-  const double taught = shownEitherWay(c, t, matcher, mirrored, matcher.match(c, t));
+  const double taught =
+      shownEitherWay(c, t, matcher, mirrored, matcher.match(c, t), m_minSupport, &view, &outlineShape(k));
   if (!poses || m_poses[k].empty())
     return taught;
   // An articulated template: also the pose the view lies on best.
@@ -378,7 +413,9 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   if (!std::isfinite(m_minSupport))
     return r;
   // Not through support(), which refuses other units: the similarity fit does not need them equal.
-  r.support = shownEitherWay(c, templateView(r.index, bestPose), matcher, r.mirrored, r.correspondence);
+  vpMorphRigidShape view; // c's outline shape, built on first use
+  r.support = shownEitherWay(c, templateView(r.index, bestPose), matcher, r.mirrored, r.correspondence, m_minSupport,
+                             &view, bestPose == vpMorphRecognition::npos ? &outlineShape(r.index) : nullptr);
   if (r.support >= m_minSupport) {
     r.accepted = true;
     return r;
@@ -401,16 +438,34 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
       mirroredOther[k] = mir; // re-ranking is for occluded views: the other templates as taught
     }
   r.evaluated = T;
+  // The nearest by the distance, and those the view's outline shape aligns on at least cost (vpMorphRigidShape): the
+  // notch an occluder bites costs work, and can rank the view's own template far down, where the shapes' alignment is
+  // voted by the parts of the outline that show.
+  std::vector<std::pair<double, std::size_t>> aligned;
+  try {
+    if (view.empty())
+      view = vpMorphRigidShape(c);
+    for (const auto &o : others)
+      aligned.emplace_back(view.alignOn(outlineShape(o.second)).cost, o.second);
+  } catch (const vpException &) {
+    aligned.clear(); // a view too small for a shape: the distance's ranking alone
+  }
+  const std::size_t R = std::min(rerankCandidates(), others.size());
+  std::partial_sort(aligned.begin(), aligned.begin() + std::min(R, aligned.size()), aligned.end());
   std::sort(others.begin(), others.end());
-  if (others.size() > rerankCandidates())
-    others.resize(rerankCandidates());
+  std::vector<std::pair<double, std::size_t>> candidates(others.begin(), others.begin() + static_cast<long>(R));
+  for (std::size_t i = 0; i < std::min(R, aligned.size()); ++i) {
+    const auto same = [&](const std::pair<double, std::size_t> &o) { return o.second == aligned[i].second; };
+    if (std::none_of(candidates.begin(), candidates.end(), same))
+      candidates.push_back(*std::find_if(others.begin(), others.end(), same));
+  }
   double bestSupport = r.support;
   std::size_t bestIndex = r.index;
   double bestDistance = r.distance;
-  for (const auto &o : others) {
+  for (const auto &o : candidates) {
     if (m_templates[o.second].contour().units() != c.units())
       continue; // support() refuses them
-    const double s = support(c, o.second, mirroredOther[o.second], poses);
+    const double s = support(c, o.second, mirroredOther[o.second], poses, view);
     if (s > bestSupport) {
       bestSupport = s;
       bestIndex = o.second;

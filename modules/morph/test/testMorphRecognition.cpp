@@ -272,6 +272,39 @@ TEST_CASE("recognition: a view with a square bitten out of its outline is accept
   }
 }
 
+TEST_CASE("recognition: a view whose notch throws the correspondence off shows its outline by the shapes' alignment",
+          "[recognition]")
+{
+  const vpMorphDatabase &db = objectDatabase();
+  // A card hiding a fifth of the screwdriver's outline (a square bite) and a straight edge hiding a fifth of the key's:
+  // about 0.8 of each outline shows, but the minimal-work correspondence matches the notch somewhere and its fit shows
+  // 0.60 and 0.63. The outline shapes' alignment, voted by the parts that show, puts the view in place.
+  const std::size_t screwdriver = db.find("screwdriver"), key = db.find("key");
+  const vpMorphContour bitten =
+      extractJoined(squareOccluder(view(readGray(objectPath("screwdriver")), 30, 10, -5, 4, 3), 0.75, 0.2));
+  const vpMorphContour cut = extract(occlude(view(readGray(objectPath("key")), 34, 10, -5, 4, 3), 0.85, 0.2));
+  for (const auto &[c, k] : {std::make_pair(bitten, screwdriver), std::make_pair(cut, key)}) {
+    const vpMorphRecognition r = db.recognize(c);
+    CAPTURE(db[k].name(), r.distance, r.threshold, r.support, db[r.index].name());
+    CHECK(db.support(c, k) >= db.minimumSupport());
+    CHECK(db.support(c, k) < 0.9);
+    CHECK(r.accepted);
+    CHECK(r.index == k);
+    CHECK(r.support == db.support(c, k));
+  }
+  // Below the minimum, the correspondence's share stands: the best of more alignments would show more of any template,
+  // and the floor that rejects an unknown shape is set for one. A fifth of the pliers' outline bitten off: the
+  // distance takes the view for the wedge, whose outline it does not show (rejected).
+  const vpMorphContour jaw =
+      extractJoined(squareOccluder(view(readGray(objectPath("pliers")), 34, 10, -5, 4, 3), 0.85, 0.2));
+  const vpMorphRecognition r = db.recognize(jaw);
+  CAPTURE(r.distance, r.threshold, r.support, db[r.index].name());
+  CHECK(db[r.index].name() == "wedge");
+  CHECK(r.distance <= r.threshold);
+  CHECK(r.support < db.supportFloor());
+  CHECK_FALSE(r.accepted);
+}
+
 TEST_CASE("recognition: support and acceptance of a given template, and bad input", "[recognition]")
 {
   const vpMorphDatabase &db = objectDatabase();

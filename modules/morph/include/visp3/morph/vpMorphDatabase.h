@@ -42,8 +42,10 @@ struct vpMorphRigidView; // a template view of the RIGID search (internal)
   is accepted when its best distance is within its template's threshold and it shows at least supportFloor() of that
   template's outline (support()); or else, when the distance rejects it, when it shows at least minimumSupport()
   (an occluded view). When it shows less than minimumSupport() of its nearest template's outline, the
-  rerankCandidates() nearest other templates are aligned on it and the one it shows most replaces the distance's
-  choice if it reaches the minimum (vpMorphRecognition::reranked).
+  rerankCandidates() nearest other templates, and as many on which its outline shape aligns at least cost
+  (vpMorphRigidShape, voted by the parts that show: an occluder's notch can rank the view's own template far down the
+  distance), are aligned on it and the one it shows most replaces the distance's choice if it reaches the minimum
+  (vpMorphRecognition::reranked).
 
   <b>Acceptance with RIGID.</b> The rigidShortlist() templates whose coarse alignment (vpMorphRigidShape) costs least
   are compared exactly (vpMorphRigidCheck); the least exact cost wins. The view is accepted when it shows at least
@@ -155,7 +157,8 @@ public:
   static double calibrationSlack() { return 1.25; }
   /*!
     How many of the nearest other templates recognize() aligns on a view when the distance's choice shows too
-    little of its outline (re-ranking): 8, each alignment costing about a millisecond.
+    little of its outline (re-ranking), by the distance and again by the outline shapes' alignment cost: 8 each, an
+    alignment costing about a millisecond.
   */
   static std::size_t rerankCandidates() { return 8; }
   //! True once calibrate() has run since the last change.
@@ -167,7 +170,9 @@ public:
     onto the template and the template onto \e c, as an occluder's edge, which only \e c has, drags the first when it
     runs near a template edge; also from that fit turned half a turn, as a nearly symmetric outline can be matched end
     for end), and 512 points spread evenly along the template's outline are counted when they lie within 1/256 of its
-    perimeter of the aligned \e c (2 px on a 500-px outline); the best of the four alignments counts. \e mirrored also
+    perimeter of the aligned \e c (2 px on a 500-px outline); the best of the four alignments counts. When that is less
+    than minimumSupport(), the outline shapes' alignment (vpMorphRigidShape::alignOn(), which an occluder's notch does
+    not throw off as it can the correspondence) counts if it shows at least minimumSupport(). \e mirrored also
     aligns \e c's mirror image (a part turned over, vpMorphRecognition::mirrored; a nearly symmetric part may be matched
     either way), and the better counts. 0 when \e c cannot be aligned (a degenerate fit).
     \throw vpMorphException::notFoundError if \e k is out of range, badContourError on an empty contour or
@@ -251,6 +256,13 @@ private:
   bool rigidAccepted(const vpMorphRigidCheck::Result &r) const;
   //! support(), with an articulated template's poses or (\e poses false) its taught view only.
   double support(const vpMorphContour &c, std::size_t k, bool mirrored, bool poses) const;
+  //! The same with \e view, c's outline shape (vpMorphRigidShape), built on first use: once for all templates.
+  double support(const vpMorphContour &c, std::size_t k, bool mirrored, bool poses, vpMorphRigidShape &view) const;
+  //! Template k's outline shape (vpMorphRigidShape): RIGID's own, else one built for support() and re-ranking.
+  const vpMorphRigidShape &outlineShape(std::size_t k) const
+  {
+    return m_shapes[k].rigid.empty() ? m_outlineShapes[k] : m_shapes[k].rigid[0];
+  }
   //! One search over the taught views, or (\e poses) over the articulated templates' poses too.
   vpMorphRecognition search(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q, bool prune,
                             vpMorphMatcher &matcher, bool poses) const;
@@ -284,6 +296,7 @@ private:
   vpMorphShapeDistance m_distance;
   std::vector<vpMorphTemplate> m_templates;
   std::vector<vpMorphShapeDistance::Shape> m_shapes;
+  std::vector<vpMorphRigidShape> m_outlineShapes; // per template, when m_shapes holds none (see outlineShape())
   std::vector<std::vector<Pose>> m_poses; // per template: its articulated poses (none for a rigid one)
   double m_threshold;
   double m_minSupport = 0.75;
