@@ -20,19 +20,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPoseStep = 3.14159265358979323846 / 45.0; // 4 deg between an articulated template's poses
 constexpr double kRigidSupport = 0.5;                       // RIGID's minimum support (class description)
 
-/*
-  vpMorphDatabase::support() of view q on template t, from the correspondence q -> t; where that shows less than
-  \e enough and t's outline shape is given, from the alignment of q's (\e view, built on first use) on it if that
-  shows at least \e enough. An occluder's notch throws the correspondence off (it is matched somewhere), not the
-  shapes' alignment, voted by the parts of the outline that show. Below \e enough the correspondence's share stands:
-  the best of more alignments shows more of any template, and the floor that rejects unknown shapes holds for one.
-*/
-double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorphCorrespondence &correspondence,
-                  double enough = kInf, vpMorphRigidShape *view = nullptr, const vpMorphRigidShape *shape = nullptr)
+// vpMorphDatabase::support() of view q on template t, from the correspondence q -> t.
+double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorphCorrespondence &correspondence)
 {
   double best = 0.0;
-  const vpMorphOutlineShare shown(t);
   try {
+    const vpMorphOutlineShare shown(t);
     const vpMorphRigidTransform T0 = shown.fitted(q, correspondence);
     // From the fit and from it turned half a turn about the template's centre: the correspondence of a nearly
     // symmetric outline (a wedge, end for end) can put the view the wrong way round, where the refinement stays.
@@ -41,20 +34,34 @@ double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorp
   } catch (const vpException &) {
     // no similarity aligns them (a degenerate fit): the view shows nothing more of the template
   }
-  if (best >= enough || !view || !shape || shape->empty())
-    return best;
+  return best;
+}
+
+/*
+  \e share, q's share of t's outline from the correspondence, or where it is less than \e enough the share from the
+  alignment of q's outline shape (\e view, built on first use) on t's (\e shape) if that shows at least \e enough. An
+  occluder's notch throws the correspondence off (it is matched somewhere), not the shapes' alignment, voted by the
+  parts of the outline that show. Below \e enough the correspondence's share stands: the best of more alignments
+  shows more of any template, and the floor that rejects unknown shapes holds for one.
+*/
+double orAligned(double share, double enough, const vpMorphContour &q, const vpMorphContour &t, vpMorphRigidShape &view,
+                 const vpMorphRigidShape &shape)
+{
+  if (share >= enough || shape.empty())
+    return share;
   double aligned = 0.0;
   try {
-    if (view->empty())
-      *view = vpMorphRigidShape(q);
-    const vpMorphRigidShape::Alignment a = view->alignOn(*shape);
+    if (view.empty())
+      view = vpMorphRigidShape(q);
+    const vpMorphOutlineShare shown(t);
+    const vpMorphRigidShape::Alignment a = view.alignOn(shape);
     aligned = shown.aligned(q, a.transform);
     if (a.hasAlternative)
       aligned = std::max(aligned, shown.aligned(q, a.alternative));
   } catch (const vpException &) {
     // a view too small for a shape: the correspondence's share stands
   }
-  return aligned >= enough ? aligned : best;
+  return aligned >= enough ? aligned : share;
 }
 
 /*
@@ -63,10 +70,9 @@ double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorp
   less work, and the polygons of its mirror image then align badly (0.05 of the outline shown).
 */
 double shownEitherWay(const vpMorphContour &q, const vpMorphContour &t, vpMorphMatcher &matcher, bool mirrored,
-                      const vpMorphCorrespondence &direct, double enough = kInf, vpMorphRigidShape *view = nullptr,
-                      const vpMorphRigidShape *shape = nullptr)
+                      const vpMorphCorrespondence &direct)
 {
-  const double s = shownShare(q, t, direct, enough, view, shape);
+  const double s = shownShare(q, t, direct);
   if (!mirrored)
     return s;
   const vpMorphContour m = q.mirrored();
@@ -308,8 +314,8 @@ double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mir
   if (m_distance.model() == vpMorphShapeDistance::RIGID)
     return rigidCheck(m_distance.prepare(c), k, mirrored, poses).targetShare;
   vpMorphMatcher matcher = m_distance.matcher();
-  const double taught =
-      shownEitherWay(c, t, matcher, mirrored, matcher.match(c, t), m_minSupport, &view, &outlineShape(k));
+  const double taught = orAligned(shownEitherWay(c, t, matcher, mirrored, matcher.match(c, t)), m_minSupport, c, t,
+                                  view, outlineShape(k));
   if (!poses || m_poses[k].empty())
     return taught;
   // An articulated template: also the pose the view lies on best.
@@ -413,9 +419,7 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   if (!std::isfinite(m_minSupport))
     return r;
   // Not through support(), which refuses other units: the similarity fit does not need them equal.
-  vpMorphRigidShape view; // c's outline shape, built on first use
-  r.support = shownEitherWay(c, templateView(r.index, bestPose), matcher, r.mirrored, r.correspondence, m_minSupport,
-                             &view, bestPose == vpMorphRecognition::npos ? &outlineShape(r.index) : nullptr);
+  r.support = shownEitherWay(c, templateView(r.index, bestPose), matcher, r.mirrored, r.correspondence);
   if (r.support >= m_minSupport) {
     r.accepted = true;
     return r;
@@ -428,7 +432,10 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   // outline whole), the distance's choice stands, accepted by the distance unless the view shows almost nothing of it
   // (an unknown shape). Accepting a template that its own distance accepts and that shows at least the floor, when
   // the distance's choice does not, was tried: it took 50 more MPEG-7 images for the tools (126 of 1400).
+  // From here the candidates, the distance's choice included, are also aligned by their outline shapes (orAligned()):
+  // that lays a look-alike well too, so it only compares candidates, never accepts the distance's choice unseen.
   const bool distanceAccepted = r.accepted;
+  vpMorphRigidShape view; // c's outline shape, built on first use
   std::vector<std::pair<double, std::size_t>> others;
   std::vector<bool> mirroredOther(T, false);
   for (std::size_t k = 0; k < T; ++k)
@@ -459,7 +466,10 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
     if (std::none_of(candidates.begin(), candidates.end(), same))
       candidates.push_back(*std::find_if(others.begin(), others.end(), same));
   }
-  double bestSupport = r.support;
+  double bestSupport =
+      bestPose != vpMorphRecognition::npos
+          ? r.support
+          : orAligned(r.support, m_minSupport, c, templateView(r.index, bestPose), view, outlineShape(r.index));
   std::size_t bestIndex = r.index;
   double bestDistance = r.distance;
   for (const auto &o : candidates) {
@@ -472,8 +482,13 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
       bestDistance = o.first;
     }
   }
-  if (bestIndex == r.index || !(bestSupport >= m_minSupport)) {
+  if (!(bestSupport >= m_minSupport)) {
     r.accepted = distanceAccepted && r.support >= m_supportFloor;
+    return r;
+  }
+  if (bestIndex == r.index) {
+    r.support = bestSupport;
+    r.accepted = true;
     return r;
   }
   r.secondIndex = r.index;

@@ -285,12 +285,12 @@ TEST_CASE("recognition: a view whose notch throws the correspondence off shows i
   const vpMorphContour cut = extract(occlude(view(readGray(objectPath("key")), 34, 10, -5, 4, 3), 0.85, 0.2));
   for (const auto &[c, k] : {std::make_pair(bitten, screwdriver), std::make_pair(cut, key)}) {
     const vpMorphRecognition r = db.recognize(c);
-    CAPTURE(db[k].name(), r.distance, r.threshold, r.support, db[r.index].name());
+    CAPTURE(db[k].name(), r.distance, r.threshold, r.support, db[r.index].name(), r.mirrored);
     CHECK(db.support(c, k) >= db.minimumSupport());
     CHECK(db.support(c, k) < 0.9);
     CHECK(r.accepted);
     CHECK(r.index == k);
-    CHECK(r.support == db.support(c, k));
+    CHECK(r.support == db.support(c, k, r.mirrored));
   }
   // Below the minimum, the correspondence's share stands: the best of more alignments would show more of any template,
   // and the floor that rejects an unknown shape is set for one. A fifth of the pliers' outline bitten off: the

@@ -41,11 +41,11 @@ struct vpMorphRigidView; // a template view of the RIGID search (internal)
   views, another sampling start, a straight edge hiding 20 % of the outline); setThreshold() replaces them all. A view
   is accepted when its best distance is within its template's threshold and it shows at least supportFloor() of that
   template's outline (support()); or else, when the distance rejects it, when it shows at least minimumSupport()
-  (an occluded view). When it shows less than minimumSupport() of its nearest template's outline, the
-  rerankCandidates() nearest other templates, and as many on which its outline shape aligns at least cost
-  (vpMorphRigidShape, voted by the parts that show: an occluder's notch can rank the view's own template far down the
-  distance), are aligned on it and the one it shows most replaces the distance's choice if it reaches the minimum
-  (vpMorphRecognition::reranked).
+  (an occluded view). When it shows less than minimumSupport() of its nearest template's outline by their
+  correspondence, the rerankCandidates() nearest other templates, and as many on which its outline shape aligns at
+  least cost (vpMorphRigidShape, voted by the parts that show: an occluder's notch can rank the view's own template far
+  down the distance), are aligned on it (support()), the nearest by the outline shapes too, and the one it shows most
+  replaces the distance's choice if it reaches the minimum (vpMorphRecognition::reranked).
 
   <b>Acceptance with RIGID.</b> The rigidShortlist() templates whose coarse alignment (vpMorphRigidShape) costs least
   are compared exactly (vpMorphRigidCheck); the least exact cost wins. The view is accepted when it shows at least
