@@ -114,11 +114,16 @@ void vpMorphDatabase::add(const vpMorphTemplate &t)
   if (find(t.name()) != vpMorphRecognition::npos)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphDatabase::add: duplicate template name '" + t.name() + "'");
-  m_shapes.push_back(m_distance.prepare(t.contour()));
-  m_outlineShapes.push_back(m_shapes.back().rigid.empty() ? vpMorphRigidShape(t.contour()) : vpMorphRigidShape());
+  pushShapes(t.contour());
   m_poses.push_back(poses(t));
   m_templates.push_back(t);
   invalidate();
+}
+
+void vpMorphDatabase::pushShapes(const vpMorphContour &c)
+{
+  m_shapes.push_back(m_distance.prepare(c));
+  m_outlineShapes.push_back(m_shapes.back().rigid.empty() ? vpMorphRigidShape(c) : vpMorphRigidShape());
 }
 
 void vpMorphDatabase::remove(const std::string &name)
@@ -254,10 +259,8 @@ void vpMorphDatabase::setDistance(const vpMorphShapeDistance &d)
   m_minSupport = vpMorphDatabase(d).m_minSupport; // the model's default
   m_shapes.clear();
   m_outlineShapes.clear();
-  for (const vpMorphTemplate &t : m_templates) {
-    m_shapes.push_back(m_distance.prepare(t.contour()));
-    m_outlineShapes.push_back(m_shapes.back().rigid.empty() ? vpMorphRigidShape(t.contour()) : vpMorphRigidShape());
-  }
+  for (const vpMorphTemplate &t : m_templates)
+    pushShapes(t.contour());
   // The poses are drawn from the articulation alone: only their shapes depend on the distance.
   for (std::vector<Pose> &poses : m_poses)
     for (Pose &p : poses)

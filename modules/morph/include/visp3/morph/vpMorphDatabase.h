@@ -258,6 +258,8 @@ private:
   double support(const vpMorphContour &c, std::size_t k, bool mirrored, bool poses) const;
   //! The same with \e view, c's outline shape (vpMorphRigidShape), built on first use: once for all templates.
   double support(const vpMorphContour &c, std::size_t k, bool mirrored, bool poses, vpMorphRigidShape &view) const;
+  //! Appends a template contour's prepared shape and its outline shape (m_shapes and m_outlineShapes in step).
+  void pushShapes(const vpMorphContour &c);
   //! Template k's outline shape (vpMorphRigidShape): RIGID's own, else one built for support() and re-ranking.
   const vpMorphRigidShape &outlineShape(std::size_t k) const
   {
