@@ -47,20 +47,15 @@ double shownShare(const vpMorphContour &q, const vpMorphContour &t, const vpMorp
 double orAligned(double share, double enough, const vpMorphContour &q, const vpMorphContour &t, vpMorphRigidShape &view,
                  const vpMorphRigidShape &shape)
 {
-  if (share >= enough || shape.empty())
+  if (share >= enough)
     return share;
-  double aligned = 0.0;
-  try {
-    if (view.empty())
-      view = vpMorphRigidShape(q);
-    const vpMorphOutlineShare shown(t);
-    const vpMorphRigidShape::Alignment a = view.alignOn(shape);
-    aligned = shown.aligned(q, a.transform);
-    if (a.hasAlternative)
-      aligned = std::max(aligned, shown.aligned(q, a.alternative));
-  } catch (const vpException &) {
-    // a view too small for a shape: the correspondence's share stands
-  }
+  if (view.empty())
+    view = vpMorphRigidShape(q);
+  const vpMorphOutlineShare shown(t);
+  const vpMorphRigidShape::Alignment a = view.alignOn(shape);
+  double aligned = shown.aligned(q, a.transform);
+  if (a.hasAlternative)
+    aligned = std::max(aligned, shown.aligned(q, a.alternative));
   return aligned >= enough ? aligned : share;
 }
 
@@ -438,7 +433,6 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   // From here the candidates, the distance's choice included, are also aligned by their outline shapes (orAligned()):
   // that lays a look-alike well too, so it only compares candidates, never accepts the distance's choice unseen.
   const bool distanceAccepted = r.accepted;
-  vpMorphRigidShape view; // c's outline shape, built on first use
   std::vector<std::pair<double, std::size_t>> others;
   std::vector<bool> mirroredOther(T, false);
   for (std::size_t k = 0; k < T; ++k)
@@ -451,20 +445,15 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   // The nearest by the distance, and those the view's outline shape aligns on at least cost (vpMorphRigidShape): the
   // notch an occluder bites costs work, and can rank the view's own template far down, where the shapes' alignment is
   // voted by the parts of the outline that show.
+  vpMorphRigidShape view(c);
   std::vector<std::pair<double, std::size_t>> aligned;
-  try {
-    if (view.empty())
-      view = vpMorphRigidShape(c);
-    for (const auto &o : others)
-      aligned.emplace_back(view.alignOn(outlineShape(o.second)).cost, o.second);
-  } catch (const vpException &) {
-    aligned.clear(); // a view too small for a shape: the distance's ranking alone
-  }
+  for (const auto &o : others)
+    aligned.emplace_back(view.alignOn(outlineShape(o.second)).cost, o.second);
   const std::size_t R = std::min(rerankCandidates(), others.size());
-  std::partial_sort(aligned.begin(), aligned.begin() + std::min(R, aligned.size()), aligned.end());
+  std::partial_sort(aligned.begin(), aligned.begin() + static_cast<long>(R), aligned.end());
   std::sort(others.begin(), others.end());
   std::vector<std::pair<double, std::size_t>> candidates(others.begin(), others.begin() + static_cast<long>(R));
-  for (std::size_t i = 0; i < std::min(R, aligned.size()); ++i) {
+  for (std::size_t i = 0; i < R; ++i) {
     const auto same = [&](const std::pair<double, std::size_t> &o) { return o.second == aligned[i].second; };
     if (std::none_of(candidates.begin(), candidates.end(), same))
       candidates.push_back(*std::find_if(others.begin(), others.end(), same));
