@@ -9,6 +9,8 @@
   - BM_extract: the silhouette extraction of one 640x480 image (vpMorphContourExtractor, tag masking excluded);
   - BM_extractNoisy: the same view with the benchmark's noise set at its worst (grey-level noise of std 6, blur of
     std 1.5 px, gain 0.7, offset -25), where the mask is ragged and the edge is found under noise;
+  - BM_extractShaded: the same view under the benchmark's gradient set at its steepest (a fall-off of 0.6), where the
+    classes' levels follow the light's shading;
   - BM_extractCut: the same view with a card hiding 15 % of the pliers across their middle, cut in two and joined
     again (vpMorphContourExtractor::extractJoined(), as the benchmark's controllers extract every view);
   - BM_extractCutFollow: the same view followed from its own joined outline (extractJoined(I, previous), as the
@@ -200,6 +202,25 @@ void BM_extractNoisy(benchmark::State &state)
   vpHomogeneousMatrix cMt;
   if (!scene.tagPoseEstimator().estimate(I, cMt, &corners))
     state.SkipWithError("tag not found in the noisy view");
+  vpMorphTagPoseEstimator::maskTag(I, corners);
+  vpMorphContourExtractor extractor;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(extractor.extract(I).size());
+}
+
+// The recording's first view under the benchmark's gradient set at its steepest (a fall-off of 0.6 from the centre to
+// the corners, toward the view's lower right), the tag masked: the classes' shading fitted, from two starts.
+void BM_extractShaded(benchmark::State &state)
+{
+  vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
+  vpMorphPlanarScene::Faults f;
+  f.gradient = 0.6;
+  f.gradientAngle = M_PI / 4.0;
+  vpImage<unsigned char> I = firstView(scene, f);
+  std::vector<vpImagePoint> corners;
+  vpHomogeneousMatrix cMt;
+  if (!scene.tagPoseEstimator().estimate(I, cMt, &corners))
+    state.SkipWithError("tag not found in the shaded view");
   vpMorphTagPoseEstimator::maskTag(I, corners);
   vpMorphContourExtractor extractor;
   for (auto _ : state)
@@ -465,6 +486,7 @@ public:
 
 BENCHMARK(BM_extract)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_extractNoisy)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_extractShaded)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_extractCut)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_extractCutFollow)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_outlineBlur)->Unit(benchmark::kMicrosecond);

@@ -39,7 +39,8 @@ struct Sums
   lit surface is not read as a fall-off of its light. False otherwise (\e out untouched): the caller's constant level
   stands.
 */
-inline bool slope(const Sums &s, double pixel, Eigen::Vector3d &out)
+// Whether the sums' positions spread at least \e pixel in every direction (a slope across them is seen).
+inline bool spread(const Sums &s, double pixel)
 {
   const double n = s.n;
   if (!(n > 0.0))
@@ -48,7 +49,13 @@ inline bool slope(const Sums &s, double pixel, Eigen::Vector3d &out)
   Eigen::Matrix2d cov;
   cov << s.xx / n - mean(0) * mean(0), s.xy / n - mean(0) * mean(1), s.xy / n - mean(0) * mean(1),
       s.yy / n - mean(1) * mean(1);
-  if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov, Eigen::EigenvaluesOnly).eigenvalues()(0) < pixel * pixel)
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov, Eigen::EigenvaluesOnly).eigenvalues()(0) >= pixel * pixel;
+}
+
+inline bool slope(const Sums &s, double pixel, Eigen::Vector3d &out)
+{
+  const double n = s.n;
+  if (!spread(s, pixel))
     return false;
   Eigen::Matrix3d A;
   A << n, s.x, s.y, s.x, s.xx, s.xy, s.y, s.xy, s.yy;

@@ -12,17 +12,21 @@
 #include <opencv2/core.hpp>
 
 /*
-  Two classes of grey levels whose levels are affine functions of the image position: a plane and an object lit by
-  one light that falls off across the view (a shading gain on both, to first order) are two such classes. Otsu's
-  criterion generalised: the within-class squared deviation from each class's level. Otsu's split minimises it with
-  constant levels; when a class of that split shows a slope, the criterion is lowered from there by alternating
-  (Lloyd): each class's level fitted by least squares, each pixel given to the class whose level is nearer, until no
-  pixel changes class. A class's slope is fitted on its own surface: not on pixels at the sensor's limits (0, 255),
-  which only bound it, nor on those next to the other class, which the edge mixes; a slope counts when it is seen and
-  worth its parameters (vpMorphAffineLevel::slope()), else the class's level is the mean of its pixels. Levels that
-  cross within the image (no longer two surfaces under one light) leave Otsu's split. The levels are fitted on a lattice
-  of 2^12 to 2^14 pixels: a level fitted from them has at most 1/64 of the noise's deviation, under a grey level for any
-  noise in which an 8-bit image can show an object at all.
+  Two classes of grey levels under one light: a plane and an object lit by a light that falls off across the view share
+  its shading S(x, y) = 1 + a x + b y (a gain on both, to first order), each class's level its mean times S. Otsu's
+  criterion generalised: the within-class squared deviation from each class's level, a sample at the sensor's limits
+  (0, 255) deviating only by how far its level lies beyond the limit on its side (it bounds its value). Otsu's split
+  minimises the criterion with constant levels: when neither of its classes shows a slope, it stands. Else the
+  criterion is lowered by alternating (Lloyd): the levels fitted by least squares (the shading on both classes' own
+  surfaces: not at the limits, nor next to the other class, which the edge mixes; worth its two parameters by
+  vpMorphAffineLevel::slope()'s tests), each sample given to the class it deviates less from. The criterion is not
+  convex (two classes meeting across the plane's ramp are a local minimum), so it is descended from two starts: Otsu's
+  split, and Otsu's split of the samples with the dominant surface's level removed. The lower split is kept whose levels
+  stay apart across the whole image and which lowers the criterion of Otsu's split with constant levels by more than
+  the Bayesian information criterion charges for the shading's two parameters (a step in the plane's own level is no
+  shading); else Otsu's split stands. The levels are fitted on a lattice of 2^12 to 2^14 pixels: a level fitted from
+  them has at most 1/64 of the noise's deviation, under a grey level for any noise in which an 8-bit image can show an
+  object at all.
 */
 class vpMorphGreyClasses
 {

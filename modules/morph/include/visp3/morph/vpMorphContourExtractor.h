@@ -19,10 +19,12 @@
   \brief Finds the objects of an image and returns their outer boundaries as polygons (PIXEL units).
 
   The paper extracts contours automatically; so does this class, without any parameter:
-  - <b>Classes:</b> two classes of grey levels, Otsu's split generalised to levels that vary affinely across the
-    image (a light falling off across the view shades the plane and the object alike): when a class of Otsu's split
-    shows a slope, each class's level is fitted by least squares on its own surface and each pixel given to the nearer
-    level until none moves; an evenly lit view keeps Otsu's threshold.
+  - <b>Classes:</b> two classes of grey levels, Otsu's split generalised to a light that falls off across the image
+    (it shades the plane and the object alike: one affine shading times each class's level): when a class of Otsu's
+    split shows a slope, the shading and the levels are fitted by least squares on the classes' own surfaces and each
+    pixel given to the nearer level until none moves, from Otsu's split and from Otsu's split of the image with the
+    plane's trend removed, the split with the lower within-class deviation kept (pixels at 0 or 255 bound their level);
+    an evenly lit view keeps Otsu's threshold.
   - <b>Polarity:</b> the object is the class that does NOT dominate the image border, because a camera frames
     an object inside its background: the border pixels are mostly background whether the object is dark on
     light (Kimia-99, the project's own silhouettes) or light on dark (MPEG-7). If both classes cover exactly
