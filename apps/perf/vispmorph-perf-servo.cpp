@@ -188,43 +188,41 @@ vpImage<unsigned char> firstView(vpMorphPlanarScene &scene, const vpMorphPlanarS
   return I;
 }
 
-void BM_extractNoisy(benchmark::State &state)
+// The extraction of the recording's first view under the faults \e f, the tag masked where its detection finds it
+// (as the benchmark's controllers see their views).
+void extractUnder(benchmark::State &state, const vpMorphPlanarScene::Faults &f)
 {
   vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
-  vpMorphPlanarScene::Faults f;
-  f.noiseSigma = 6.0;
-  f.blurSigma = 1.5;
-  f.gain = 0.7;
-  f.offset = -25.0;
-  f.seed = 1;
   vpImage<unsigned char> I = firstView(scene, f);
   std::vector<vpImagePoint> corners;
   vpHomogeneousMatrix cMt;
   if (!scene.tagPoseEstimator().estimate(I, cMt, &corners))
-    state.SkipWithError("tag not found in the noisy view");
+    state.SkipWithError("tag not found in the view");
   vpMorphTagPoseEstimator::maskTag(I, corners);
   vpMorphContourExtractor extractor;
   for (auto _ : state)
     benchmark::DoNotOptimize(extractor.extract(I).size());
 }
 
+void BM_extractNoisy(benchmark::State &state)
+{
+  vpMorphPlanarScene::Faults f;
+  f.noiseSigma = 6.0;
+  f.blurSigma = 1.5;
+  f.gain = 0.7;
+  f.offset = -25.0;
+  f.seed = 1;
+  extractUnder(state, f);
+}
+
 // The recording's first view under the benchmark's gradient set at its steepest (a fall-off of 0.6 from the centre to
-// the corners, toward the view's lower right), the tag masked: the classes' shading fitted, from two starts.
+// the corners, toward the view's lower right): the classes' shading fitted, from two starts.
 void BM_extractShaded(benchmark::State &state)
 {
-  vpMorphPlanarScene scene(std::string(VISPMORPH_DATA_DIR) + "/objects/pliers.png");
   vpMorphPlanarScene::Faults f;
   f.gradient = 0.6;
   f.gradientAngle = M_PI / 4.0;
-  vpImage<unsigned char> I = firstView(scene, f);
-  std::vector<vpImagePoint> corners;
-  vpHomogeneousMatrix cMt;
-  if (!scene.tagPoseEstimator().estimate(I, cMt, &corners))
-    state.SkipWithError("tag not found in the shaded view");
-  vpMorphTagPoseEstimator::maskTag(I, corners);
-  vpMorphContourExtractor extractor;
-  for (auto _ : state)
-    benchmark::DoNotOptimize(extractor.extract(I).size());
+  extractUnder(state, f);
 }
 
 // The recording's first view's outline laid at a blur of 1.5 px (vpMorphOutlineBlur::blurred()): what the view aligner

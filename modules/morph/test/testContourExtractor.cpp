@@ -790,6 +790,25 @@ TEST_CASE("extractor: a background clipped by the sensor does not shrink the reg
   CHECK(std::fabs(clipped - plain) < 1e-3);
 }
 
+namespace
+{
+// \e b under the benchmark's gradient set: a gain of \e gain (1 + fallOff d), d the position along \e angle over the
+// half-diagonal from the centre, then unit noise (seeded), rounded and clipped.
+vpImage<unsigned char> shaded(const cv::Mat &b, double gain, double fallOff, double angle, unsigned int seed)
+{
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  const double cu = 0.5 * (b.cols - 1), cv = 0.5 * (b.rows - 1), half = std::hypot(cu, cv);
+  vpImage<unsigned char> J(static_cast<unsigned int>(b.rows), static_cast<unsigned int>(b.cols));
+  for (unsigned int v = 0; v < J.getHeight(); ++v)
+    for (unsigned int u = 0; u < J.getWidth(); ++u) {
+      const double g = gain * (1.0 + fallOff * ((u - cu) * std::cos(angle) + (v - cv) * std::sin(angle)) / half);
+      J[v][u] = cv::saturate_cast<unsigned char>(g * b.at<unsigned char>(int(v), int(u)) + noise(rng));
+    }
+  return J;
+}
+} // namespace
+
 TEST_CASE("extractor: a light falling off across the view neither joins the plane's dark side to the object nor moves "
           "its edge",
           "[extract][region][light]")
@@ -797,19 +816,9 @@ TEST_CASE("extractor: a light falling off across the view neither joins the plan
   // A gain affine in the image position on plane (210) and object (40), as the bench's gradient set renders it: at
   // 0.45 the plane's far corner is as dark as the object under Otsu's single threshold, and the bright corner clips.
   const Poly p = testPolygon(300, 250, 0.4);
+  const cv::Mat b = blurred(render({p}, 40, 210), 1.0);
   auto view = [&](double fallOff, double angle) {
-    const vpImage<unsigned char> I = render({p}, 40, 210);
-    const cv::Mat b = blurred(I, 1.0);
-    std::mt19937 rng(9);
-    std::normal_distribution<double> noise(0.0, 1.0);
-    const double cu = 0.5 * (I.getWidth() - 1), cv = 0.5 * (I.getHeight() - 1), half = std::hypot(cu, cv);
-    vpImage<unsigned char> J(I.getHeight(), I.getWidth());
-    for (unsigned int v = 0; v < J.getHeight(); ++v)
-      for (unsigned int u = 0; u < J.getWidth(); ++u) {
-        const double gain = 1.0 + fallOff * ((u - cu) * std::cos(angle) + (v - cv) * std::sin(angle)) / half;
-        J[v][u] = cv::saturate_cast<unsigned char>(gain * b.at<unsigned char>(int(v), int(u)) + noise(rng));
-      }
-    return vpMorphContourExtractor().extract(J);
+    return vpMorphContourExtractor().extract(shaded(b, 1.0, fallOff, angle, 9));
   };
   const vpMorphContour even = view(0.0, 0.0);
   REQUIRE(even.hasRegion());
@@ -858,19 +867,9 @@ TEST_CASE("extractor: a thin object under a light that clips one side of the vie
   // gain: the plane's bright side clips at 255 and its dark side reaches 60 % of its level. Otsu's split then falls
   // on the plane's ramp, and the two classes fitted from there meet across the ramp (a local minimum of the
   // within-class deviation), the object a speck of the dark side.
-  const vpImage<unsigned char> I = render({zigzagBand()}, 40, 210);
-  const cv::Mat b = blurred(I, 1.0);
+  const cv::Mat b = blurred(render({zigzagBand()}, 40, 210), 1.0);
   auto view = [&](double fallOff, double angle) {
-    std::mt19937 rng(11);
-    std::normal_distribution<double> noise(0.0, 1.0);
-    const double cu = 0.5 * (I.getWidth() - 1), cv = 0.5 * (I.getHeight() - 1), half = std::hypot(cu, cv);
-    vpImage<unsigned char> J(I.getHeight(), I.getWidth());
-    for (unsigned int v = 0; v < J.getHeight(); ++v)
-      for (unsigned int u = 0; u < J.getWidth(); ++u) {
-        const double gain = 1.3 * (1.0 + fallOff * ((u - cu) * std::cos(angle) + (v - cv) * std::sin(angle)) / half);
-        J[v][u] = cv::saturate_cast<unsigned char>(gain * b.at<unsigned char>(int(v), int(u)) + noise(rng));
-      }
-    return vpMorphContourExtractor().extract(J);
+    return vpMorphContourExtractor().extract(shaded(b, 1.3, fallOff, angle, 11));
   };
   const vpMorphContour even = view(0.0, 0.0);
   REQUIRE(even.hasRegion());
