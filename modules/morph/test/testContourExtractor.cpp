@@ -864,9 +864,9 @@ TEST_CASE("extractor: a thin object under a light that clips one side of the vie
           "[extract][region][light]")
 {
   // A zigzag band 8 px wide (about 1 % of the view) on the plane (210), the object at 40, under the gradient set's
-  // gain: the plane's bright side clips at 255 and its dark side reaches 60 % of its level. Otsu's split then falls
-  // on the plane's ramp, and the two classes fitted from there meet across the ramp (a local minimum of the
-  // within-class deviation), the object a speck of the dark side.
+  // gain: the plane's bright side clips at 255 and its darkest corner falls to 40 % of the centre's level (fall-off
+  // 0.6). Otsu's split then falls on the plane's ramp, and the two classes fitted from there meet across the ramp (a
+  // local minimum of the within-class deviation), the object a speck of the dark side.
   const cv::Mat b = blurred(render({zigzagBand()}, 40, 210), 1.0);
   auto view = [&](double fallOff, double angle) {
     return vpMorphContourExtractor().extract(shaded(b, 1.3, fallOff, angle, 11));
