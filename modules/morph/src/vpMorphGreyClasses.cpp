@@ -107,6 +107,7 @@ struct Split
 {
   std::vector<unsigned char> label;
   Eigen::Vector3d dark, light;
+  double lowest = std::numeric_limits<double>::infinity(); // criterion() of the split a descent ended with
 
   // The within-class squared deviation from the classes' levels: the criterion both descents lower.
   double criterion(const Lattice &L) const
@@ -138,84 +139,6 @@ struct Split
     return true;
   }
 };
-
-/*
-  The levels of two classes under one light: L_c = m_c S, the shading S = 1 + a x + b y shared (a light that falls off
-  across the view scales the plane's level and the object's alike), fitted by least squares on the classes' own
-  surfaces (\e own, alternating the means and the shading: each step is a linear least squares). A class with no
-  sample there gets the mean of all its samples (\e n, \e sumG, \e sumX, \e sumY: count and sums of g, x, y) over
-  the shading. False when the shading is not both seen and worth its two parameters (as vpMorphAffineLevel::slope():
-  the positions spread a pixel every way, and the Bayesian information criterion), the caller's constant levels
-  standing; else \e level[c] = (m_c, m_c a, m_c b).
-*/
-bool sharedShading(const vpMorphAffineLevel::Sums own[2], const double n[2], const double sumG[2], const double sumX[2],
-                   const double sumY[2], double pixel, Eigen::Vector3d level[2])
-{
-  vpMorphAffineLevel::Sums pooled;
-  for (const vpMorphAffineLevel::Sums *s : {&own[0], &own[1]}) {
-    pooled.n += s->n;
-    pooled.x += s->x;
-    pooled.y += s->y;
-    pooled.xx += s->xx;
-    pooled.xy += s->xy;
-    pooled.yy += s->yy;
-  }
-  const double N = pooled.n;
-  if (!vpMorphAffineLevel::spread(pooled, pixel))
-    return false;
-  // Over a class's own samples under the shading (a, b): the sums of S^2 and of g S, the least-squares mean, and the
-  // residual sum of squares at mean m.
-  auto shadedSquares = [](const vpMorphAffineLevel::Sums &s, double a, double b) {
-    return s.n + 2.0 * (a * s.x + b * s.y) + a * a * s.xx + 2.0 * a * b * s.xy + b * b * s.yy;
-  };
-  auto shadedLevels = [](const vpMorphAffineLevel::Sums &s, double a, double b) { return s.g + a * s.xg + b * s.yg; };
-  auto mean = [&](const vpMorphAffineLevel::Sums &s, double a, double b) {
-    return shadedLevels(s, a, b) / shadedSquares(s, a, b);
-  };
-  auto rss = [&](const vpMorphAffineLevel::Sums &s, double m, double a, double b) {
-    return s.gg - 2.0 * m * shadedLevels(s, a, b) + m * m * shadedSquares(s, a, b);
-  };
-  double a = 0.0, b = 0.0, m[2] = {0.0, 0.0};
-  const int maxIterations = 100; // a bound for safety: each step lowers the sum of squares, settling in a few
-  for (int it = 0; it < maxIterations; ++it) {
-    Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
-    Eigen::Vector2d r = Eigen::Vector2d::Zero();
-    for (int c = 0; c < 2; ++c) {
-      if (!(own[c].n > 0.0))
-        continue;
-      m[c] = mean(own[c], a, b);
-      // g - m = m (a x + b y) on the class's samples.
-      A += m[c] * m[c] * (Eigen::Matrix2d() << own[c].xx, own[c].xy, own[c].xy, own[c].yy).finished();
-      r += m[c] * Eigen::Vector2d(own[c].xg - m[c] * own[c].x, own[c].yg - m[c] * own[c].y);
-    }
-    const Eigen::Vector2d ab = A.ldlt().solve(r);
-    if (!ab.allFinite())
-      return false;
-    // Settled once the shading moves by a trillionth across the half-image: far under a grey level.
-    const bool settled = std::fabs(ab(0) - a) + std::fabs(ab(1) - b) < 1e-12;
-    a = ab(0);
-    b = ab(1);
-    if (settled)
-      break;
-  }
-  double rssConstant = 0.0, rssShaded = 0.0;
-  for (int c = 0; c < 2; ++c)
-    if (own[c].n > 0.0) {
-      m[c] = mean(own[c], a, b);
-      rssConstant += own[c].gg - own[c].g * own[c].g / own[c].n;
-      rssShaded += rss(own[c], m[c], a, b);
-    } else {
-      m[c] = sumG[c] / (n[c] + a * sumX[c] + b * sumY[c]);
-    }
-  const bool worth = rssShaded <= 0.0 ? rssConstant > 0.0 : N * std::log(rssConstant / rssShaded) > 2.0 * std::log(N);
-  if (!worth || !std::isfinite(m[0]) || !std::isfinite(m[1]) || (a == 0.0 && b == 0.0))
-    return false;
-  for (int c = 0; c < 2; ++c)
-    level[c] = Eigen::Vector3d(m[c], m[c] * a, m[c] * b);
-  return true;
-}
-
-enum class Descent { NO_SPLIT, NO_SLOPE, SETTLED };
 
 // A split's sums: per class, the count of its samples and their sums of g, x and y, and the least-squares sums of its
 // own surface (\e own): off the limits, and away from the other class (a sample whose lattice neighbours are all of its
@@ -276,6 +199,83 @@ struct ClassSums
   }
 };
 
+/*
+  The levels of two classes under one light: L_c = m_c S, the shading S = 1 + a x + b y shared (a light that falls off
+  across the view scales the plane's level and the object's alike), fitted by least squares on the classes' own
+  surfaces (\e own, alternating the means and the shading: each step is a linear least squares). A class with no
+  sample there gets the mean of all its samples over the shading. False when the shading is not both seen and worth its
+  two parameters (as vpMorphAffineLevel::slope(): the positions spread a pixel every way, and the Bayesian information
+  criterion), the caller's constant levels standing; else \e level[c] = (m_c, m_c a, m_c b).
+*/
+bool sharedShading(const ClassSums &cs, double pixel, Eigen::Vector3d level[2])
+{
+  const vpMorphAffineLevel::Sums *own = cs.own;
+  vpMorphAffineLevel::Sums pooled;
+  for (const vpMorphAffineLevel::Sums *s : {&own[0], &own[1]}) {
+    pooled.n += s->n;
+    pooled.x += s->x;
+    pooled.y += s->y;
+    pooled.xx += s->xx;
+    pooled.xy += s->xy;
+    pooled.yy += s->yy;
+  }
+  const double N = pooled.n;
+  if (!vpMorphAffineLevel::spread(pooled, pixel))
+    return false;
+  // Over a class's own samples under the shading (a, b): the sums of S^2 and of g S, the least-squares mean, and the
+  // residual sum of squares at mean m.
+  auto shadedSquares = [](const vpMorphAffineLevel::Sums &s, double a, double b) {
+    return s.n + 2.0 * (a * s.x + b * s.y) + a * a * s.xx + 2.0 * a * b * s.xy + b * b * s.yy;
+  };
+  auto shadedLevels = [](const vpMorphAffineLevel::Sums &s, double a, double b) { return s.g + a * s.xg + b * s.yg; };
+  auto mean = [&](const vpMorphAffineLevel::Sums &s, double a, double b) {
+    return shadedLevels(s, a, b) / shadedSquares(s, a, b);
+  };
+  auto rss = [&](const vpMorphAffineLevel::Sums &s, double m, double a, double b) {
+    return s.gg - 2.0 * m * shadedLevels(s, a, b) + m * m * shadedSquares(s, a, b);
+  };
+  double a = 0.0, b = 0.0, m[2] = {0.0, 0.0};
+  const int maxIterations = 100; // a bound for safety: each step lowers the sum of squares, settling in a few
+  for (int it = 0; it < maxIterations; ++it) {
+    Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d r = Eigen::Vector2d::Zero();
+    for (int c = 0; c < 2; ++c) {
+      if (!(own[c].n > 0.0))
+        continue;
+      m[c] = mean(own[c], a, b);
+      // g - m = m (a x + b y) on the class's samples.
+      A += m[c] * m[c] * (Eigen::Matrix2d() << own[c].xx, own[c].xy, own[c].xy, own[c].yy).finished();
+      r += m[c] * Eigen::Vector2d(own[c].xg - m[c] * own[c].x, own[c].yg - m[c] * own[c].y);
+    }
+    const Eigen::Vector2d ab = A.ldlt().solve(r);
+    if (!ab.allFinite())
+      return false;
+    // Settled once the shading moves by a trillionth across the half-image: far under a grey level.
+    const bool settled = std::fabs(ab(0) - a) + std::fabs(ab(1) - b) < 1e-12;
+    a = ab(0);
+    b = ab(1);
+    if (settled)
+      break;
+  }
+  double rssConstant = 0.0, rssShaded = 0.0;
+  for (int c = 0; c < 2; ++c)
+    if (own[c].n > 0.0) {
+      m[c] = mean(own[c], a, b);
+      rssConstant += own[c].gg - own[c].g * own[c].g / own[c].n;
+      rssShaded += rss(own[c], m[c], a, b);
+    } else {
+      m[c] = cs.g[c] / (cs.n[c] + a * cs.x[c] + b * cs.y[c]);
+    }
+  const bool worth = rssShaded <= 0.0 ? rssConstant > 0.0 : N * std::log(rssConstant / rssShaded) > 2.0 * std::log(N);
+  if (!worth || !std::isfinite(m[0]) || !std::isfinite(m[1]) || (a == 0.0 && b == 0.0))
+    return false;
+  for (int c = 0; c < 2; ++c)
+    level[c] = Eigen::Vector3d(m[c], m[c] * a, m[c] * b);
+  return true;
+}
+
+enum class Descent { NO_SPLIT, NO_SLOPE, SETTLED };
+
 // Lloyd's descent of the criterion from s.label: the classes' levels fitted, each sample given to the class it deviates
 // less from, until none moves. NO_SLOPE when the starting split shows no shading (with constant levels, Otsu's split is
 // the best), NO_SPLIT when a class has no sample or the levels fitted are not finite.
@@ -294,7 +294,7 @@ Descent descend(const Lattice &L, Split &s)
     // The classes' levels under one shading, or the mean of all each class's pixels (those at the limits included: the
     // mean of a clipped noise is nearer the level than the mean of its unclipped side).
     Eigen::Vector3d fit[2];
-    const bool sloped = sharedShading(cs.own, n, cs.g, cs.x, cs.y, 1.0 / L.scale, fit);
+    const bool sloped = sharedShading(cs, 1.0 / L.scale, fit);
     if (!sloped)
       for (int c = 0; c < 2; ++c)
         fit[c] = Eigen::Vector3d(cs.g[c] / n[c], 0.0, 0.0);
@@ -331,6 +331,7 @@ Descent descend(const Lattice &L, Split &s)
     }
     lowest = c;
     best = s;
+    best.lowest = c;
     if (changed == 0)
       break;
   }
@@ -447,9 +448,8 @@ vpMorphGreyClasses::vpMorphGreyClasses(const cv::Mat &grey, int t) : m_t0(t), m_
   const Split *best = nullptr;
   double lowest = std::numeric_limits<double>::infinity();
   auto consider = [&](const Split &s) {
-    const double c = s.criterion(L);
-    if (s.apartEverywhere(L) && c < lowest) {
-      lowest = c;
+    if (s.apartEverywhere(L) && s.lowest < lowest) {
+      lowest = s.lowest;
       best = &s;
     }
   };
