@@ -102,14 +102,15 @@ bool vpMorphTiltEstimator::homography(const vpMorphContour &currentN, const vpMo
                                       vpMorphHomography &G) const
 {
   // The robust scale floored as the view aligner's (the edges' noise); measured outlines sampled twice as densely as
-  // polygons (every few pixels of a tool's outline: what the tilt's second-order effect needs), with the common edge
-  // offset that measured edges carry.
+  // polygons (every few pixels of a tool's outline: what the tilt's second-order effect needs), with a common edge
+  // offset where a clipped level may have moved them (vpMorphViewAligner::edgesMayBeOffset()).
   const bool dense = currentN.hasOutline() && targetN.hasOutline();
   try {
     G = vpMorphHomography::refine(
         currentN.outline(), targetN.outline(), start,
         (dense ? vpMorphViewAligner::outlineSigmaFloorPx() : vpMorphViewAligner::polygonSigmaFloorPx()) * m_pixel,
-        dense ? 2 * kSamples : kSamples, vpMorphHomography::kDefaultIterations, dense);
+        dense ? 2 * kSamples : kSamples, vpMorphHomography::kDefaultIterations,
+        vpMorphViewAligner::edgesMayBeOffset(currentN, targetN));
   } catch (const vpException &) {
     return false;
   }

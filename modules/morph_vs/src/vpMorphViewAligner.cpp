@@ -212,6 +212,7 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, const vpMor
   const bool measured = currentN.hasOutline() && goalN.hasOutline();
   const double limit = normalisedPixels(measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx());
   const double floor = normalisedPixels(measured ? outlineSigmaFloorPx() : polygonSigmaFloorPx());
+  const bool offset = edgesMayBeOffset(currentN, goalN);
   auto explains = [&](const vpMorphHomography &G) { return G.inlierShare() >= kBreakdown && G.residual() <= limit; };
   vpMorphHomography G;
   bool ok = false;
@@ -220,7 +221,7 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, const vpMor
     try {
       const vpMorphHomography G0 = start == 0 ? m_homography : vpMorphHomography(a.transform.toMatrix());
       G = vpMorphHomography::refine(currentN.outline(), goalN.outline(), G0, floor, vpMorphHomography::kDefaultSamples,
-                                    vpMorphHomography::kDefaultIterations, measured);
+                                    vpMorphHomography::kDefaultIterations, offset);
       ok = explains(G);
     } catch (const vpException &) {
     }
@@ -230,7 +231,7 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, const vpMor
       const vpMorphCorrespondence &corr = m_tracker.update(currentN, m_goalN);
       G = vpMorphHomography::fit(currentN, m_goalN, corr, floor);
       G = vpMorphHomography::refine(currentN.outline(), goalN.outline(), G, floor, vpMorphHomography::kDefaultSamples,
-                                    vpMorphHomography::kDefaultIterations, measured);
+                                    vpMorphHomography::kDefaultIterations, offset);
       ok = explains(G);
     } catch (const vpException &) {
     }
@@ -249,6 +250,7 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, const vpMor
     vpMorphOutlineFit check(goalN);
     check.setMinimumSigma(floor);
     check.setMaxIterations(1);
+    check.setEdgeOffset(offset || !measured);
     check.fit(laid, vpMorphRigidTransform());
     const vpMorphContour region = laid.size() > kRegionPoints ? laid.resampled(kRegionPoints) : laid;
     const double area = region.area();
@@ -316,6 +318,8 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
     } else {
       vpMorphOutlineFit &fit = goal.fit;
       const bool measured = currentN.hasOutline() && goalN->hasOutline();
+      // Polygon fits keep the offset: their vertices lie on boundary pixels, not on the edges.
+      fit.setEdgeOffset(!measured || edgesMayBeOffset(currentN, *goalN));
       fit.setMinimumSigma(normalisedPixels(measured ? outlineSigmaFloorPx() : polygonSigmaFloorPx()));
       // Residuals beyond the noise's limit are not the goal's edges seen again: the fit settles on the part that is.
       fit.setMaximumSigma(normalisedPixels(measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx()));

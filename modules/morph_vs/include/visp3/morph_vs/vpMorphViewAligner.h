@@ -24,20 +24,20 @@
   measure through it.
 
   <b>Method (OUTLINE, default).</b> The view's outline is laid on the goal's by vpMorphOutlineFit: a robust
-  point-to-edge fit of the similarity and of one common edge offset (a lighting that grows or shrinks a measured
-  outline all round is not a depth). The fit starts from the last alignment to the same goal (the camera moved by a
-  fraction of it since), or from setStart(); without one, or when that start has lost the view (fewer than half of
-  its samples on the goal), from the minimal-work correspondence (vpMorphCorrespondenceTracker) and its robust
-  vertex fit, which finds the rotation at any angle; when both ran, the lower robust cost at one scale wins.
-  Hidden, bent and articulated parts are the robust fit's outliers: the part of the view that lies on the goal fixes
-  the pose (up to half of the view may be anything else), and vpMorphViewAlignment::model says which model explains
-  the residuals. A view that a similarity explains only with a part hidden or bent, but a homography explains
-  whole, is the goal seen tilted: RIGID, its similarity the homography's own over the view
-  (vpMorphViewAlignment::perspective). A view that no similarity explains at all is read under the homography with
-  the same model test (a tilted view whose narrow gap the foreshortening closed: a part bent). Measured outlines
-  (vpMorphContourExtractor) are compared at one blur: the sharper of the two, view or goal, is laid at the other's
-  blur (vpMorphOutlineBlur; their blurs from vpMorphContour::outlineBlur(), the view's seen at the goal's scale) where
-  the difference can move the finest edge the pixel grid draws by more than the outlines' floor, as a blur rounds
+  point-to-edge fit of the similarity, and of one common edge offset where a clipped level may have grown or shrunk
+  a measured outline all round (edgesMayBeOffset(): that is not a depth). The fit starts from the last alignment to the
+  same goal (the camera moved by a fraction of it since), or from setStart(); without one, or when that start has lost
+  the view (fewer than half of its samples on the goal), from the minimal-work correspondence
+  (vpMorphCorrespondenceTracker) and its robust vertex fit, which finds the rotation at any angle; when both ran, the
+  lower robust cost at one scale wins. Hidden, bent and articulated parts are the robust fit's outliers: the part of the
+  view that lies on the goal fixes the pose (up to half of the view may be anything else), and
+  vpMorphViewAlignment::model says which model explains the residuals. A view that a similarity explains only with a
+  part hidden or bent, but a homography explains whole, is the goal seen tilted: RIGID, its similarity the homography's
+  own over the view (vpMorphViewAlignment::perspective). A view that no similarity explains at all is read under the
+  homography with the same model test (a tilted view whose narrow gap the foreshortening closed: a part bent). Measured
+  outlines (vpMorphContourExtractor) are compared at one blur: the sharper of the two, view or goal, is laid at the
+  other's blur (vpMorphOutlineBlur; their blurs from vpMorphContour::outlineBlur(), the view's seen at the goal's scale)
+  where the difference can move the finest edge the pixel grid draws by more than the outlines' floor, as a blur rounds
   every detail of an edge finer than itself; polygons without them are fitted edge to edge, their robust scale
   floored at half a pixel (vertices on the pixel grid).
 
@@ -130,6 +130,18 @@ public:
   static double outlineSigmaLimitPx() { return 0.5; }
   //! The same for polygons (pixels, 1.5: two polygonisations place their vertices up to a pixel apart, on the grid).
   static double polygonSigmaLimitPx() { return 1.5; }
+  /*!
+    Whether two measured outlines of one object may lie offset all round: one of them was measured on a level the
+    sensor clipped (its blur unknown, vpMorphContour::outlineBlur() 0), where vpMorphContourExtractor's edge model
+    leaves up to a tenth of a pixel; elsewhere its outlines lie on their edges to a few hundredths. The fits then add
+    one common offset of the goal's edges (vpMorphOutlineFit::setEdgeOffset()), and not otherwise: on a view explained
+    in part, a free offset trades for the scale wherever the inliers' edges lie about equally far from their centroid,
+    and a bend's edges near its pivot pull along that trade.
+  */
+  static bool edgesMayBeOffset(const vpMorphContour &view, const vpMorphContour &goal)
+  {
+    return view.hasOutline() && goal.hasOutline() && !(view.outlineBlur() > 0.0 && goal.outlineBlur() > 0.0);
+  }
   //! The camera until setCameraParameters(): 800 px focal length, a 640 x 480 image (a 44 deg field of view).
   static vpCameraParameters getDefaultCameraParameters() { return vpCameraParameters(800, 800, 320, 240); }
   /*!
