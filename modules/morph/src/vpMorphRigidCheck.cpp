@@ -22,7 +22,6 @@ constexpr std::size_t kFitStride = 4; // the fit uses every 4th fine sample: 64 
 constexpr double kFirstCutOff = 0.05; // the Tukey cut-off's start, in target sizes (a coarse alignment's error)
 constexpr double kShrink = 0.6;       // and its decrease a step, down to twice the tolerance
 constexpr double kMaxTilt = 45.0 * M_PI / 180.0; // the steepest view of a part that the check admits
-constexpr double kPolygonBound = 4.0; // tolerances (2 px): a polygon lies within a pixel's diagonal of its outline
 
 // Maps (x, y) by H; false at infinity.
 inline bool project(const Mat3 &H, double x, double y, double &X, double &Y, double &w)
@@ -152,16 +151,6 @@ bool admissible(const Mat3 &G, const vpMorphRigidShapeData &in, const Frames &f)
   return true;
 }
 
-// Whether (x, y) is inside the closed curve c (even-odd rule).
-bool inside(const vpMorphContour &c, double x, double y)
-{
-  bool in = false;
-  for (std::size_t k = 0, l = c.size() - 1; k < c.size(); l = k++)
-    if ((c.y(k) > y) != (c.y(l) > y) && x < c.x(k) + (y - c.y(k)) / (c.y(l) - c.y(k)) * (c.x(l) - c.x(k)))
-      in = !in;
-  return in;
-}
-
 /*
   Share of \e side's fine samples within tol of the other curve once mapped by H (pixels), their mean truncated
   quadratic distance, and (when \e outside is given) the share beyond 2 tol outside the other curve. With \e base (the
@@ -187,12 +176,8 @@ bool measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &oth
       if (e <= tol) {
         d = e;
         ++on;
-      } else if (sign && e > 2.0 * tol &&
-                 !inside(other.polygon.size() * 8 < other.fine.size() && other.edges(X, Y, mx, my) > kPolygonBound * tol
-                             ? other.polygon
-                             : other.fine,
-                         X, Y)) {
-        ++out; // the polygon (tens of vertices, not hundreds) decides for a point beyond its approximation's bound
+      } else if (sign && e > 2.0 * tol && !other.fineInside(X, Y)) {
+        ++out;
       }
     }
     sum += (d * d) / (tol * tol);

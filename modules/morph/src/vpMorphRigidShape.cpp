@@ -287,11 +287,16 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
       ox[s] = static_cast<float>(kScales[s]) * rx;
       oy[s] = static_cast<float>(kScales[s]) * ry;
     }
-    for (int e = -kVoteTolerance; e <= kVoteTolerance; ++e) {
-      int b = in.bin[i] + bins + e; // in [-kVoteTolerance, 2 kBins + kVoteTolerance)
-      b = b < 0 ? b + kBins : (b >= 2 * kBins ? b - 2 * kBins : (b >= kBins ? b - kBins : b));
-      // The target's samples of bin b, in bucket order (voteX, voteY: their cells, cast once at preparation).
-      for (int k = t.bucketStart[b]; k < t.bucketStart[b + 1]; ++k) {
+    // The target's samples whose bins lie within kVoteTolerance of this sample's turned bin (mod kBins), in bucket
+    // order (voteX, voteY: their cells, cast once at preparation): the buckets lie one after the other, so one range,
+    // or two where the bins wrap, visited in the order of the bins.
+    int b0 = in.bin[i] + bins - kVoteTolerance; // in [-kVoteTolerance, 2 kBins - kVoteTolerance)
+    b0 = b0 < 0 ? b0 + kBins : (b0 >= kBins ? b0 - kBins : b0);
+    const int b1 = b0 + 2 * kVoteTolerance + 1; // one past the last bin, unwrapped: up to kBins + 2 kVoteTolerance
+    const int ranges[2][2] = {{t.bucketStart[b0], t.bucketStart[std::min(b1, kBins)]},
+                              {t.bucketStart[0], t.bucketStart[std::max(b1 - kBins, 0)]}};
+    for (const auto &range : ranges)
+      for (int k = range[0]; k < range[1]; ++k) {
         for (int s = 0; s < kNScales; ++s) {
           const float fx = vx[k] - ox[s], fy = vy[k] - oy[s];
           const bool on = (fx >= 0.0f) & (fy >= 0.0f) & (fx < kVoteCells) & (fy < kVoteCells);
@@ -300,7 +305,6 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
             seeds[s][nSeeds[s]++] = g;
         }
       }
-    }
   }
   for (int s = 0; s < kNScales; ++s) {
     out[s] = Vote();

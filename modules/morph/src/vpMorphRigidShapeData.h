@@ -11,6 +11,7 @@
 
 #include <visp3/morph/vpMorphContour.h>
 
+#include "vpMorphInsideTest.h"
 #include "vpMorphNearestEdge.h"
 
 /*
@@ -40,11 +41,12 @@ struct vpMorphRigidShapeData
   bool measured;                // the fine curve is a measured outline
   vpMorphContour fine;          // the fine curve, counter-clockwise
   vpMorphNearestEdge fineEdges; // on it
+  vpMorphInsideTest fineInside; // whether a point is inside it
   std::vector<double> fx, fy;   // kFineSamples samples along it, pixels
 
   explicit vpMorphRigidShapeData(const vpMorphContour &c)
     : contour(c), polygon(c.counterClockwise()), edges(polygon), measured(c.hasOutline()),
-      fine(c.outline().counterClockwise()), fineEdges(fine)
+      fine(c.outline().counterClockwise()), fineEdges(fine), fineInside(fine)
   {
     const vpMorphContour s = fine.resampled(kFineSamples);
     fx = s.xs();

@@ -343,3 +343,41 @@ TEST_CASE("rigid recognition: a saved and reloaded database gives identical answ
   }
   CHECK(accepted >= 10); // the answers compared are mostly the right ones, not twelve rejections
 }
+
+// vpMorphInsideTest (internal to the module, behind vpMorphRigidCheck's outside share) against the plain even-odd
+// scan of every edge, which its bands must reproduce bit for bit: the measured outlines of the six tools (a point per
+// boundary pixel, many edges level with each other), queried at random, at their vertices' ordinates and beyond them.
+#include "../src/vpMorphInsideTest.h"
+
+TEST_CASE("vpMorphInsideTest answers as the even-odd scan of every edge", "[rigid][inside]")
+{
+  auto scan = [](const vpMorphContour &c, double x, double y) {
+    bool in = false;
+    for (std::size_t k = 0, l = c.size() - 1; k < c.size(); l = k++)
+      if ((c.y(k) > y) != (c.y(l) > y) && x < c.x(k) + (y - c.y(k)) / (c.y(l) - c.y(k)) * (c.x(l) - c.x(k)))
+        in = !in;
+    return in;
+  };
+  std::mt19937 rng(21);
+  for (const char *name : kObjects) {
+    const vpMorphContour c = extract(readGray(name)).outline();
+    REQUIRE(c.size() > 100);
+    const vpMorphInsideTest inside(c);
+    const auto bx = std::minmax_element(c.xs().begin(), c.xs().end());
+    const auto by = std::minmax_element(c.ys().begin(), c.ys().end());
+    std::uniform_real_distribution<double> ux(*bx.first - 20, *bx.second + 20), uy(*by.first - 20, *by.second + 20);
+    std::uniform_int_distribution<std::size_t> vertex(0, c.size() - 1);
+    std::size_t in = 0;
+    for (int q = 0; q < 4000; ++q) {
+      const double x = ux(rng), y = q % 2 ? c.y(vertex(rng)) : uy(rng); // half of them level with a vertex
+      CAPTURE(name, x, y);
+      REQUIRE(inside(x, y) == scan(c, x, y));
+      in += inside(x, y);
+    }
+    CHECK(in > 400); // both answers are exercised
+    CHECK_FALSE(inside(std::numeric_limits<double>::quiet_NaN(), c.y(0)));
+    CHECK_FALSE(inside(c.x(0), std::numeric_limits<double>::quiet_NaN()));
+  }
+  // A contour without vertices: nothing is inside.
+  CHECK_FALSE(vpMorphInsideTest(vpMorphContour())(0.0, 0.0));
+}
