@@ -71,7 +71,9 @@ std::vector<Entry> teachAll(const std::vector<Shape> &shapes, const std::vector<
 //! Renders and extracts every query's view (all cores); a view without object stays empty.
 void extractQueries(std::vector<Query> &queries, const std::vector<Entry> &entries, std::uint64_t seed,
                     unsigned int threads);
-//! Recognises every query with every database on \e threads threads, each recognition timed on its own thread.
-void recognizeQueries(std::vector<Query> &queries, const std::vector<vpMorphDatabase> &dbs, unsigned int threads);
+//! Recognises every query with every database on \e threads threads, each recognition timed on its own thread: the
+//! fastest of \e repetitions recognitions (the answer is the same each time; the machine's noise is not).
+void recognizeQueries(std::vector<Query> &queries, const std::vector<vpMorphDatabase> &dbs, unsigned int threads,
+                      unsigned int repetitions = 1);
 
 #endif
