@@ -8,7 +8,8 @@
 /*
   The index in [0, n) of the cell holding f, a coordinate in cell units from the grid's origin; the nearest cell when
   f is outside, 0 for NaN. Clamped in floating point before the conversion: a query point may lie arbitrarily far
-  from the grid, and int(f) overflows there. Shared by the grids of vpMorphNearestEdge and vpMorphOverlapPolygon.
+  from the grid, and int(f) overflows there. Shared by the grids of vpMorphNearestEdge, vpMorphOverlapPolygon and
+  vpMorphInsideTest.
 */
 inline int vpMorphGridCell(double f, int n)
 {
