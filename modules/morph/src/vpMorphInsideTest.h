@@ -11,6 +11,7 @@
 
 #include <visp3/morph/vpMorphContour.h>
 
+#include "vpMorphBuckets.h"
 #include "vpMorphGridCell.h"
 
 /*
@@ -32,22 +33,19 @@ public:
     m_h = std::max(4.0 * c.perimeter() / double(n), 1e-9 * (y1 - m_y0));
     m_nb = std::min(4096, int((y1 - m_y0) / m_h) + 1);
     m_h = (y1 - m_y0) / m_nb * (1.0 + 1e-12) + 1e-300;
-    // Edge (k - 1, k), named k, in every band from its lower end's to its upper end's (counted, then filled): a
-    // band's index grows with the ordinate, so any ordinate the edge spans falls in one of them.
-    m_first.assign(std::size_t(m_nb) + 1, 0);
-    auto forBands = [&](std::size_t k, auto &&f) {
-      const std::size_t l = (k + n - 1) % n;
-      for (int b = band(std::min(c.y(k), c.y(l))), b1 = band(std::max(c.y(k), c.y(l))); b <= b1; ++b)
-        f(std::size_t(b));
-    };
-    for (std::size_t k = 0; k < n; ++k)
-      forBands(k, [&](std::size_t b) { ++m_first[b + 1]; });
-    for (std::size_t b = 1; b < m_first.size(); ++b)
-      m_first[b] += m_first[b - 1];
-    m_edges.resize(m_first.back());
-    std::vector<std::size_t> fill(m_first.begin(), m_first.end() - 1);
-    for (std::size_t k = 0; k < n; ++k)
-      forBands(k, [&](std::size_t b) { m_edges[fill[b]++] = static_cast<unsigned int>(k); });
+    // Edge (k - 1, k), named k, in every band from its lower end's to its upper end's: a band's index grows with the
+    // ordinate, so any ordinate the edge spans falls in one of them.
+    std::vector<std::size_t> cursor;
+    vpMorphFillBuckets(
+        std::size_t(m_nb),
+        [&](auto &&f) {
+          for (std::size_t k = 0; k < n; ++k) {
+            const std::size_t l = (k + n - 1) % n;
+            for (int b = band(std::min(c.y(k), c.y(l))), b1 = band(std::max(c.y(k), c.y(l))); b <= b1; ++b)
+              f(std::size_t(b), k);
+          }
+        },
+        m_first, m_edges, cursor);
   }
 
   //! Whether (x, y) is inside the curve: an odd number of its edges cross the ray from (x, y) along +x.

@@ -13,6 +13,7 @@
 
 #include <visp3/morph/vpMorphContour.h>
 
+#include "vpMorphBuckets.h"
 #include "vpMorphGridCell.h"
 
 /*
@@ -58,23 +59,20 @@ public:
     m_invH = 1.0 / m_h;
     // The cells' edge lists laid out one after the other (m_first[cell] to m_first[cell + 1] in m_cellEdges), each in
     // increasing edge order: counted, then filled.
-    m_first.assign(std::size_t(m_nx) * std::size_t(m_ny) + 1, 0);
-    auto forCells = [&](std::size_t k, auto &&f) {
-      const std::size_t l = (k + 1) % n;
-      const int i0 = cellX(std::min(c.x(k), c.x(l))), i1 = cellX(std::max(c.x(k), c.x(l)));
-      const int j0 = cellY(std::min(c.y(k), c.y(l))), j1 = cellY(std::max(c.y(k), c.y(l)));
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i)
-          f(std::size_t(j) * std::size_t(m_nx) + std::size_t(i));
-    };
-    for (std::size_t k = 0; k < n; ++k)
-      forCells(k, [&](std::size_t cell) { ++m_first[cell + 1]; });
-    for (std::size_t cell = 1; cell < m_first.size(); ++cell)
-      m_first[cell] += m_first[cell - 1];
-    m_cellEdges.resize(m_first.back());
-    std::vector<std::size_t> fill(m_first.begin(), m_first.end() - 1);
-    for (std::size_t k = 0; k < n; ++k)
-      forCells(k, [&](std::size_t cell) { m_cellEdges[fill[cell]++] = k; });
+    std::vector<std::size_t> cursor;
+    vpMorphFillBuckets(
+        std::size_t(m_nx) * std::size_t(m_ny),
+        [&](auto &&f) {
+          for (std::size_t k = 0; k < n; ++k) {
+            const std::size_t l = (k + 1) % n;
+            const int i0 = cellX(std::min(c.x(k), c.x(l))), i1 = cellX(std::max(c.x(k), c.x(l)));
+            const int j0 = cellY(std::min(c.y(k), c.y(l))), j1 = cellY(std::max(c.y(k), c.y(l)));
+            for (int j = j0; j <= j1; ++j)
+              for (int i = i0; i <= i1; ++i)
+                f(std::size_t(j) * std::size_t(m_nx) + std::size_t(i), k);
+          }
+        },
+        m_first, m_cellEdges, cursor);
   }
 
   double operator()(double px, double py, double &mx, double &my) const { return query(px, py, mx, my, nullptr); }

@@ -15,6 +15,7 @@
 
 #include <visp3/morph/vpMorphContour.h>
 
+#include "vpMorphBuckets.h"
 #include "vpMorphGridCell.h"
 
 //! A contour's vertices as points.
@@ -70,13 +71,8 @@ public:
                   cellY(std::max(a.y(), b.y()))};
     }
     // Cells in one array (counted, then filled).
-    m_start.assign(std::size_t(m_nx) * std::size_t(m_ny) + 1, 0);
-    forEachCell([&](std::size_t c, std::size_t) { ++m_start[c + 1]; });
-    for (std::size_t c = 1; c < m_start.size(); ++c)
-      m_start[c] += m_start[c - 1];
-    m_edges.resize(m_start.back());
-    m_fill.assign(m_start.begin(), m_start.end() - 1);
-    forEachCell([&](std::size_t c, std::size_t k) { m_edges[m_fill[c]++] = k; });
+    vpMorphFillBuckets(
+        std::size_t(m_nx) * std::size_t(m_ny), [this](auto &&f) { forEachCell(f); }, m_start, m_edges, m_fill);
   }
 
   const std::vector<Eigen::Vector2d> &points() const { return m_p; }
