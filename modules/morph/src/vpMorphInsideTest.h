@@ -30,9 +30,10 @@ public:
       return;
     m_y0 = *std::min_element(c.ys().begin(), c.ys().end());
     const double y1 = *std::max_element(c.ys().begin(), c.ys().end());
-    m_h = std::max(4.0 * c.perimeter() / double(n), 1e-9 * (y1 - m_y0));
-    m_nb = std::min(4096, int((y1 - m_y0) / m_h) + 1);
-    m_h = (y1 - m_y0) / m_nb * (1.0 + 1e-12) + 1e-300;
+    const double span = y1 - m_y0;
+    m_h = std::max(4.0 * c.perimeter() / double(n), 1e-9 * span);
+    m_nb = std::min(4096, int(span / m_h) + 1); // m_h > 0: a contour has 3 distinct vertices at least
+    m_h = span / m_nb * (1.0 + 1e-12) + 1e-300;
     // Edge (k - 1, k), named k, in every band from its lower end's to its upper end's: a band's index grows with the
     // ordinate, so any ordinate the edge spans falls in one of them.
     std::vector<std::size_t> cursor;
