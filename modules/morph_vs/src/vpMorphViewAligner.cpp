@@ -30,6 +30,13 @@ vpMorphViewAlignment::Model modelOf(double outside, double inside)
     return vpMorphViewAlignment::RIGID;
   return outside > inside ? vpMorphViewAlignment::PART_BENT : vpMorphViewAlignment::PART_HIDDEN;
 }
+
+// Whether the outline fit of \e view on \e goal adds a common edge offset: polygons keep it (their vertices lie on
+// boundary pixels, not on the edges); measured outlines where a clipped level may have moved them.
+bool outlineFitOffset(const vpMorphContour &view, const vpMorphContour &goal)
+{
+  return !(view.hasOutline() && goal.hasOutline()) || vpMorphViewAligner::edgesMayBeOffset(view, goal);
+}
 } // namespace
 
 vpMorphViewAligner::vpMorphViewAligner() : m_cam(getDefaultCameraParameters())
@@ -250,7 +257,7 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, const vpMor
     vpMorphOutlineFit check(goalN);
     check.setMinimumSigma(floor);
     check.setMaxIterations(1);
-    check.setEdgeOffset(offset || !measured);
+    check.setEdgeOffset(outlineFitOffset(currentN, goalN));
     check.fit(laid, vpMorphRigidTransform());
     const vpMorphContour region = laid.size() > kRegionPoints ? laid.resampled(kRegionPoints) : laid;
     const double area = region.area();
@@ -318,8 +325,7 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
     } else {
       vpMorphOutlineFit &fit = goal.fit;
       const bool measured = currentN.hasOutline() && goalN->hasOutline();
-      // Polygon fits keep the offset: their vertices lie on boundary pixels, not on the edges.
-      fit.setEdgeOffset(!measured || edgesMayBeOffset(currentN, *goalN));
+      fit.setEdgeOffset(outlineFitOffset(currentN, *goalN));
       fit.setMinimumSigma(normalisedPixels(measured ? outlineSigmaFloorPx() : polygonSigmaFloorPx()));
       // Residuals beyond the noise's limit are not the goal's edges seen again: the fit settles on the part that is.
       fit.setMaximumSigma(normalisedPixels(measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx()));
