@@ -258,37 +258,60 @@ vpMorphMatcher::solveStart(int b, const Path *lo, const Path *hi, Path *extent, 
   return work;
 }
 
-// Maes' divide and conquer: the optimal paths of starts bLo < b < bHi lie between those of bLo and bHi.
-void vpMorphMatcher::solveBetween(int bLo, int bHi, const Path &lo, const Path &hi, std::size_t depth, Best &best)
+namespace
+{
+// Whether the path \e lo lies weakly left of \e hi in every row (Maes' bound holds between them).
+bool leftOf(const std::vector<int> &loLeft, const std::vector<int> &loRight, const std::vector<int> &hiLeft,
+            const std::vector<int> &hiRight)
+{
+  for (std::size_t i = 0; i < loLeft.size(); ++i)
+    if (loLeft[i] > hiLeft[i] || loRight[i] > hiRight[i])
+      return false;
+  return true;
+}
+} // namespace
+
+// Maes' divide and conquer: the optimal paths of starts bLo < b < bHi lie between those of bLo and bHi (null: the
+// grid's edge).
+void vpMorphMatcher::solveBetween(int bLo, int bHi, const Path *lo, const Path *hi, std::size_t depth, Best &best)
 {
   if (bHi - bLo < 2)
     return;
+  // The lemma holds for some optimal paths, not for every traced one: tied optima may be traced crossing, and the
+  // band between them would be empty. Such a range is solved on the whole grid.
+  if (lo && hi && !leftOf(lo->left, lo->right, hi->left, hi->right))
+    lo = hi = nullptr;
   auto keep = [&](double w, int b) {
     if (w < best.work) {
       best.work = w;
       best.b = b;
-      best.lo = lo;
-      best.hi = hi;
-      best.bounded = true;
+      best.hasLo = lo != nullptr;
+      best.hasHi = hi != nullptr;
+      if (lo)
+        best.lo = *lo;
+      if (hi)
+        best.hi = *hi;
     }
   };
   // Lower bound for every start of the range: the same programme with all of them as sources at once and any
   // of their ends as the end. A range that cannot beat the best start found so far is skipped, subtree and all.
   // Only narrow ranges are tested: the bound relaxes the start-end pairing by the range's width, so it is
   // tight (and pays for itself) only there.
-  if (bHi - bLo <= kBoundGap && solveStart(bLo + 1, &lo, &hi, nullptr, nullptr, bHi - 1) >= best.work)
+  if (bHi - bLo <= kBoundGap && solveStart(bLo + 1, lo, hi, nullptr, nullptr, bHi - 1) >= best.work)
     return;
   if (bHi - bLo <= kDirectGap) {
     // A narrow band: solving its few starts directly in it costs less than tracing mid paths to split it.
     for (int b = bLo + 1; b < bHi; ++b)
-      keep(solveStart(b, &lo, &hi, nullptr, nullptr), b);
+      keep(solveStart(b, lo, hi, nullptr, nullptr), b);
     return;
   }
   const int mid = bLo + (bHi - bLo) / 2;
   Path &p = m_pool[depth];
-  keep(solveStart(mid, &lo, &hi, &p, nullptr), mid);
-  solveBetween(bLo, mid, lo, p, depth + 1, best);
-  solveBetween(mid, bHi, p, hi, depth + 1, best);
+  const double w = solveStart(mid, lo, hi, &p, nullptr);
+  keep(w, mid);
+  const Path *split = std::isfinite(w) ? &p : nullptr; // traced only when finite
+  solveBetween(bLo, mid, lo, split, depth + 1, best);
+  solveBetween(mid, bHi, split, hi, depth + 1, best);
 }
 
 // Best path over the starts 0 .. count-1 of the prepared problem (count <= n).
@@ -319,12 +342,12 @@ vpMorphCorrespondence vpMorphMatcher::solveRange(int count)
     while ((1 << levels) < count + 1)
       ++levels;
     m_pool.resize(levels + 1);
-    solveBetween(0, count == n ? n : count - 1, first, last, 0, best);
+    solveBetween(0, count == n ? n : count - 1, &first, &last, 0, best);
   }
   // Trace the winner again, in the same band, to get its cells.
   std::vector<std::pair<int, int>> cells;
   const double w =
-      solveStart(best.b, best.bounded ? &best.lo : nullptr, best.bounded ? &best.hi : nullptr, nullptr, &cells);
+      solveStart(best.b, best.hasLo ? &best.lo : nullptr, best.hasHi ? &best.hi : nullptr, nullptr, &cells);
   return toCorrespondence(cells, w);
 }
 

@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <set>
 
@@ -241,6 +243,34 @@ TEST_CASE("windowed search is exact within its window", "[matcher][window]")
     REQUIRE(w.work() >= matcher.match(A, B).work() - 1e-12);
     REQUIRE(matcher.matchWindow(A, B, 0, center, n).work() == Approx(matcher.match(A, B).work()));
   }
+}
+
+TEST_CASE("windowed search on pixel-grid polygons: tied optima traced crossing", "[matcher][window]")
+{
+  // Two measured silhouettes whose bounding paths, traced among tied optima, cross: the band between them is empty
+  // (it once sized a table negatively).
+  std::ifstream in((std::filesystem::path(__FILE__).parent_path() / "data" / "crossing-window.txt").string());
+  std::string line;
+  while (in.peek() == '#')
+    std::getline(in, line);
+  std::size_t m = 0, n = 0, a = 0, center = 0, half = 0;
+  REQUIRE(static_cast<bool>(in >> m >> n >> a >> center >> half));
+  auto read = [&](std::size_t k) {
+    std::vector<double> x(k), y(k);
+    for (std::size_t i = 0; i < k; ++i) {
+      REQUIRE(static_cast<bool>(in >> x[i] >> y[i]));
+      x[i] /= 800.0;
+      y[i] /= 800.0;
+    }
+    return vpMorphContour(x, y, vpMorphContour::NORMALIZED);
+  };
+  const vpMorphContour A = read(m), B = read(n);
+  vpMorphMatcher matcher;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t d = 0; d <= 2 * half; ++d)
+    best = std::min(best, matcher.matchFromStart(A, B, a, (center + n - half + d) % n).work());
+  CHECK(vpMorphMatcher().matchWindow(A, B, a, center, half).work() == Approx(best).epsilon(1e-9));
+  CHECK(matcher.matchWindow(A, B, a, center, half).work() == Approx(best).epsilon(1e-9));
 }
 
 TEST_CASE("morph distance invariances", "[matcher][invariance]")

@@ -125,14 +125,14 @@ private:
   {
     double work = 0.0;
     int b = 0;
-    bool bounded = false;
+    bool hasLo = false, hasHi = false; // bounded on that side
     Path lo, hi;
   };
   static void checkStart(const vpMorphContour &A, const vpMorphContour &B, std::size_t a, std::size_t b);
   void prepare(const vpMorphContour &A, const vpMorphContour &B, std::size_t a, std::size_t b);
   double solveStart(int b, const Path *lo, const Path *hi, Path *extent, std::vector<std::pair<int, int>> *cells,
                     int bLast = -1);
-  void solveBetween(int bLo, int bHi, const Path &lo, const Path &hi, std::size_t depth, Best &best);
+  void solveBetween(int bLo, int bHi, const Path *lo, const Path *hi, std::size_t depth, Best &best);
   vpMorphCorrespondence solveRange(int count);
   vpMorphCorrespondence toCorrespondence(const std::vector<std::pair<int, int>> &cells, double tableWork);
   //! The least work among the starts whose fitted rotation is within \e tolerance of \e theta; false if none.
