@@ -75,6 +75,7 @@ void vpMorphViewAligner::setStart(const vpMorphRigidTransform &currentToGoal, do
   m_start = currentToGoal;
   m_startSigma = sigmaPx / std::max(m_cam.get_px(), m_cam.get_py());
   m_haveStart = true;
+  m_startPredicted = true;
 }
 
 void vpMorphViewAligner::turnStart(double rad)
@@ -84,6 +85,7 @@ void vpMorphViewAligner::turnStart(double rad)
   // A point of the new view is where the last view had it turned by rad about the optical axis.
   if (m_haveStart && rad != 0.0)
     m_start = m_start * vpMorphRigidTransform(rad, 0.0, 0.0);
+  m_startPredicted = m_haveStart;
 }
 
 void vpMorphViewAligner::reset()
@@ -339,10 +341,14 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
         haveWarm = true;
         result = warm;
       }
-      if (!haveWarm || !warm.explained()) {
+      // From the last alignment alone (the motion since unknown), a fit that leaves part of the view off the goal
+      // may have settled in the wrong place, dropping the samples it did not reach: the correspondence's fit competes.
+      if (!haveWarm || !warm.explained() || (!m_startPredicted && warm.model != vpMorphViewAlignment::RIGID)) {
         vpMorphViewAlignment cold;
         const vpMorphRigidTransform T0 = correspondenceStart(currentN, cold);
-        const vpMorphRigidTransform T = fit.search(currentN, T0);
+        // Beside an explained warm fit, the correspondence's start is fitted as it is: the search's other starts
+        // look for the largest rigid part of a view no start explains.
+        const vpMorphRigidTransform T = haveWarm && warm.explained() ? fit.fit(currentN, T0) : fit.search(currentN, T0);
         vpMorphViewAlignment c = fromFit(T, fit, currentN, true, measured);
         c.work = cold.work;
         c.margin = cold.margin;
@@ -369,6 +375,7 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
     m_startSigma = 0.0;
     m_haveStart = true;
   }
+  m_startPredicted = false;
   m_last = result;
   return result;
 }

@@ -26,8 +26,10 @@
   <b>Method (OUTLINE, default).</b> The view's outline is laid on the goal's by vpMorphOutlineFit: a robust
   point-to-edge fit of the similarity, and of one common edge offset where a clipped level may have grown or shrunk
   a measured outline all round (edgesMayBeOffset(): that is not a depth). The fit starts from the last alignment to the
-  same goal (the camera moved by a fraction of it since), or from setStart(); without one, or when that start has lost
-  the view (fewer than half of its samples on the goal), from the minimal-work correspondence
+  same goal (the camera moved by a fraction of it since), or from setStart(); without one, when its fit has lost the
+  view (fewer than half of its samples on the goal), or when the last alignment alone (no setStart() or turnStart():
+  the motion since unknown) gives a fit that leaves part of the view off the goal (a robust fit drops what it does not
+  reach, so a start a turn off can settle on the wrong part), also from the minimal-work correspondence
   (vpMorphCorrespondenceTracker) and its robust vertex fit, which finds the rotation at any angle; when both ran, the
   lower robust cost at one scale wins. Hidden, bent and articulated parts are the robust fit's outliers: the part of the
   view that lies on the goal fixes the pose (up to half of the view may be anything else), and
@@ -179,6 +181,7 @@ private:
   bool m_haveStart = false;
   vpMorphRigidTransform m_start;
   double m_startSigma = 0.0; // the residuals' scale at the start (normalised; 0: unknown)
+  bool m_startPredicted = false; // the start moved by the motion since the last view (setStart(), turnStart())
   vpMorphViewAlignment m_last;
   vpMorphHomography m_homography; // the last period's, when the view was seen tilted
   bool m_haveHomography = false;
