@@ -241,7 +241,7 @@ vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const s
   res.symmetry = obs.symmetryOrder();
   res.unobservable = obs.reason(vpMorphBenchScenario::needsTilt(sc.set));
   std::string failure;
-  bool still = false, stopped = false;
+  bool still = false, stopped = false, clippedLast = false; // clippedLast: a joint stopped at its limit last period
   unsigned int lost = 0, stillCount = 0, measuredIterations = 0;
   double sumMeasure = 0, sumControl = 0;
   vpImage<unsigned char> I;
@@ -327,7 +327,8 @@ vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const s
     if (observer && !dropped)
       observer({it, I, *controller, cmd, cMo});
     if (cmd.stop) {
-      failure = cmd.reason;
+      // The clipped joint moved the camera off the command: what the controller stopped on followed from it.
+      failure = clippedLast ? "joint-limit" : cmd.reason;
       stopped = true;
       break;
     }
@@ -360,7 +361,9 @@ vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const s
       still = true;
       break;
     }
+    const unsigned int hits = robot.jointLimitHits();
     robot.setVelocity(cmd.frame, cmd.v);
+    clippedLast = robot.jointLimitHits() > hits;
   }
 
   // Final state, truth and tag (the scene without the transient faults).

@@ -23,8 +23,9 @@
   of the robot's reach), out-of-view, diverged (the camera left 0.15-1.5 m from the plane), feature-lost (features
   not measured in 10 successive images), recognition (the object was rejected or taken for another), a controller's
   own stop (its status, e.g. unreliable-correspondence, lost-too-long, too-many-replans, target-mismatch,
-  deformation-unresolved), joint-limit (a joint limit was hit), budget (still moving at the last iteration),
-  final-error (stopped away from the goal).
+  deformation-unresolved; joint-limit when a joint stopped at its limit in the period before, which moved the camera
+  off the command), joint-limit (a joint limit was hit), budget (still moving at the last iteration), final-error
+  (stopped away from the goal).
 
   False convergence (\e falseConverged): the controller declared itself done (vpMorphBenchController::Command::
   converged) while the truth is out of tolerance. A stop that is not a convergence is a failure, never a false
