@@ -343,12 +343,13 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
       }
       // From the last alignment alone (the motion since unknown), a fit that leaves part of the view off the goal
       // may have settled in the wrong place, dropping the samples it did not reach: the correspondence's fit competes.
-      if (!haveWarm || !warm.explained() || (!m_startPredicted && warm.model != vpMorphViewAlignment::RIGID)) {
+      const bool warmExplained = warm.explained(); // false without a warm start
+      if (!warmExplained || (!m_startPredicted && warm.model != vpMorphViewAlignment::RIGID)) {
         vpMorphViewAlignment cold;
         const vpMorphRigidTransform T0 = correspondenceStart(currentN, cold);
         // Beside an explained warm fit, the correspondence's start is fitted as it is: the search's other starts
         // look for the largest rigid part of a view no start explains.
-        const vpMorphRigidTransform T = haveWarm && warm.explained() ? fit.fit(currentN, T0) : fit.search(currentN, T0);
+        const vpMorphRigidTransform T = warmExplained ? fit.fit(currentN, T0) : fit.search(currentN, T0);
         vpMorphViewAlignment c = fromFit(T, fit, currentN, true, measured);
         c.work = cold.work;
         c.margin = cold.margin;

@@ -90,13 +90,14 @@ public:
   /*!
     The start of the next align() (normalised coordinates, current -> goal), in place of the last alignment, with the
     residuals' scale there (pixels; 0: unknown). E.g. the last alignment moved by the share of it a command executed.
+    A start told the motion is trusted: the correspondence's fit runs beside it only when its fit loses the view.
     \throw vpMorphException::badParameterError on a negative or non-finite sigma.
   */
   void setStart(const vpMorphRigidTransform &currentToGoal, double sigmaPx = 0.0);
   /*!
     The camera turned by \e rad about its optical axis since the last view (a commanded turn): the next align()
-    starts from the last alignment composed with that turn, the view having turned about the principal point. Nothing
-    to turn without a last alignment.
+    starts from the last alignment composed with that turn, the view having turned about the principal point, trusted
+    as a setStart() is. Nothing to turn without a last alignment.
   */
   void turnStart(double rad);
   //! Forgets the last alignment and the correspondence (after a jump of the view).
