@@ -262,13 +262,17 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &inpu
                                                    const vpMorphRigidShape::Alignment &alignment, double abandonAbove)
 {
   Result r = checkFrom(input, target, alignment.transform, abandonAbove);
-  if (alignment.hasAlternative) {
-    // The alternative matters only below the first's cost.
+  // The other hypotheses matter only below the least cost so far.
+  auto tryFrom = [&](const vpMorphRigidTransform &start) {
     const double above = abandonAbove >= 0.0 ? std::min(abandonAbove, r.cost) : r.cost;
-    const Result a = checkFrom(input, target, alignment.alternative, above);
+    const Result a = checkFrom(input, target, start, above);
     if (a.cost < r.cost)
       r = a;
-  }
+  };
+  if (alignment.hasAlternative)
+    tryFrom(alignment.alternative);
+  for (const vpMorphRigidShape::Hypothesis &h : alignment.symmetric)
+    tryFrom(h.transform);
   return r;
 }
 

@@ -43,7 +43,7 @@ vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &que
   for (std::size_t v = 0; v < views.size(); ++v) {
     if (v + 1 < views.size())
       prefetch(*views[v + 1].shape->m_data);
-    const vpMorphRigidShape::Alignment a = query.alignOn(*views[v].shape);
+    const vpMorphRigidShape::Alignment a = query.align(*views[v].shape, false);
     if (best.empty() || best.back().index != views[v].index)
       best.push_back(Coarse{a.cost, views[v].index, v, a});
     else if (a.cost < best.back().cost)
@@ -52,8 +52,19 @@ vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &que
   std::stable_sort(best.begin(), best.end(), [](const Coarse &a, const Coarse &b) {
     return a.cost < b.cost || (a.cost == b.cost && a.index < b.index);
   });
-  if (shortlist > 0 && best.size() > shortlist)
+  // A template's turns by its symmetries are compared exactly as templates are: those whose coarse cost is within
+  // the shortlist's when it left templates out, all of them otherwise.
+  double bar = std::numeric_limits<double>::infinity();
+  if (shortlist > 0 && best.size() > shortlist) {
     best.resize(shortlist);
+    bar = best.back().cost;
+  }
+  for (Coarse &c : best) {
+    query.addSymmetric(*views[c.view].shape, c.alignment);
+    std::vector<vpMorphRigidShape::Hypothesis> &h = c.alignment.symmetric;
+    h.erase(std::remove_if(h.begin(), h.end(), [bar](const vpMorphRigidShape::Hypothesis &y) { return y.cost > bar; }),
+            h.end());
+  }
   // Exact stage on the shortlist.
   Outcome o;
   for (const Coarse &c : best) {

@@ -22,6 +22,8 @@ struct vpMorphRigidView
   The template a view is, by the RIGID distance, in two stages: every template view is aligned coarsely
   (vpMorphRigidShape::alignOn(), tens of microseconds), and the \e shortlist templates whose coarse cost is least are
   compared exactly (vpMorphRigidCheck, a few hundred microseconds); the least exact cost wins, ties to the lower index.
+  A shortlisted template is compared from its alignment, its alternative, and those of its symmetric hypotheses
+  (vpMorphRigidShape::Alignment::symmetric) whose coarse cost is within the shortlist's: the rule that admits templates.
   Once two are compared, one whose cost is sure to exceed the runner-up's is measured no further (it can be neither).
   With shortlist 0 every template is compared exactly: the exhaustive search that the two stages stand for (a test
   checks they agree). An articulated template has several views (its taught one and its poses): its coarsely best

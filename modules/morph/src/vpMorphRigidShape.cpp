@@ -43,6 +43,8 @@ float voteCell(double v)
   return static_cast<float>(v) * inv + off;
 }
 
+std::vector<vpMorphRigidShape::Symmetry> symmetriesOf(const vpMorphRigidShapeData &d); // below
+
 int binOf(double angle)
 {
   double f = angle / kTwoPi * kBins;
@@ -163,6 +165,7 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
       }
     }
   }
+  d->symmetries = symmetriesOf(*d);
   m_data = d;
 }
 
@@ -333,6 +336,66 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
   }
 }
 
+// The local maxima of the circular correlation of the orientation histograms of \e in and \e t (turns in 72ths of a
+// turn), highest first; their number.
+typedef std::array<std::pair<float, int>, kBins> Peaks;
+int turnPeaks(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, Peaks &peaks)
+{
+  std::array<float, kBins> corr;
+  for (int d = 0; d < kBins; ++d) {
+    float s[8] = {}; // independent partial sums: the products pipeline (kBins is a multiple of 8)
+    for (int k = 0; k < kBins; k += 8)
+      for (int l = 0; l < 8; ++l)
+        s[l] += in.hist[k + l] * t.hist[k + l + d];
+    corr[d] = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+  }
+  int n = 0;
+  for (int d = 0; d < kBins; ++d)
+    if (corr[d] >= corr[(d + 1) % kBins] && corr[d] > corr[(d + kBins - 1) % kBins])
+      peaks[n++] = {-corr[d], d};
+  std::sort(peaks.begin(), peaks.begin() + n);
+  return n;
+}
+
+// Whether the turns of \e s and \e t differ by more than two histogram bins (10 deg): distinct hypotheses.
+bool turnsApart(const Sim &s, const Sim &t)
+{
+  return std::fabs(std::remainder(std::atan2(s.b, s.a) - std::atan2(t.b, t.a), kTwoPi)) > 2.0 * kTwoPi / kBins;
+}
+
+// s after t: X = s(t(x)).
+Sim compose(const Sim &s, const Sim &t)
+{
+  return Sim{s.a * t.a - s.b * t.b, s.b * t.a + s.a * t.b, s.a * t.tx - s.b * t.ty + s.tx,
+             s.b * t.tx + s.a * t.ty + s.ty};
+}
+
+std::vector<vpMorphRigidShape::Symmetry> symmetriesOf(const vpMorphRigidShapeData &d)
+{
+  Peaks peaks;
+  const int n = turnPeaks(d, d, peaks);
+  std::vector<vpMorphRigidShape::Symmetry> out;
+  const Sim none;
+  std::vector<Sim> kept;
+  for (int p = 0; p < n; ++p) {
+    const double turn = kTwoPi * peaks[p].second / kBins;
+    Sim s{std::cos(turn), std::sin(turn), 0.0, 0.0};
+    if (!turnsApart(s, none))
+      continue;
+    s = refine(d, d, s, vpMorphRigidShape::tau(), kIterations);
+    const double cost = hypothesisCost(d, d, s);
+    // A peak refined back onto no turn, onto one already kept, or off the plausible scales is no symmetry.
+    if (!(cost < 2.0) || !turnsApart(s, none) ||
+        std::any_of(kept.begin(), kept.end(), [&s](const Sim &k) { return !turnsApart(s, k); }))
+      continue;
+    kept.push_back(s);
+    out.push_back(vpMorphRigidShape::Symmetry{s.a, s.b, s.tx, s.ty, cost});
+  }
+  std::sort(out.begin(), out.end(),
+            [](const vpMorphRigidShape::Symmetry &x, const vpMorphRigidShape::Symmetry &y) { return x.cost < y.cost; });
+  return out;
+}
+
 Sim toSim(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const vpMorphRigidTransform &T)
 {
   // T: x' = s R (x - c) + c + t in pixels; normalised: X = (s in.size / t.size) R x + (T(in.c) - t.c) / t.size.
@@ -358,23 +421,16 @@ void check(const vpMorphRigidShape &in, const vpMorphRigidShape &t)
 
 vpMorphRigidShape::Alignment vpMorphRigidShape::alignOn(const vpMorphRigidShape &target) const
 {
+  return align(target, true);
+}
+
+vpMorphRigidShape::Alignment vpMorphRigidShape::align(const vpMorphRigidShape &target, bool symmetric) const
+{
   check(*this, target);
   const vpMorphRigidShapeData &in = *m_data, &t = *target.m_data;
   // Turns: the highest local maxima of the circular correlation of the orientation histograms.
-  std::array<std::pair<float, int>, kBins> peaks;
-  std::array<float, kBins> corr;
-  for (int d = 0; d < kBins; ++d) {
-    float s[8] = {}; // independent partial sums: the products pipeline (kBins is a multiple of 8)
-    for (int k = 0; k < kBins; k += 8)
-      for (int l = 0; l < 8; ++l)
-        s[l] += in.hist[k + l] * t.hist[k + l + d];
-    corr[d] = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
-  }
-  int nPeaks = 0;
-  for (int d = 0; d < kBins; ++d)
-    if (corr[d] >= corr[(d + 1) % kBins] && corr[d] > corr[(d + kBins - 1) % kBins])
-      peaks[nPeaks++] = {-corr[d], d};
-  std::sort(peaks.begin(), peaks.begin() + nPeaks);
+  Peaks peaks;
+  const int nPeaks = turnPeaks(in, t, peaks);
   // Shifts: per turn, the votes at both scales; the better-voted scale of each turn is refined.
   Alignment best;
   Sim sims[kTurns];
@@ -410,10 +466,8 @@ vpMorphRigidShape::Alignment vpMorphRigidShape::alignOn(const vpMorphRigidShape 
   for (int k = 1; k < n; ++k)
     if (costs[k] < costs[b])
       b = k;
-  const double turn = std::atan2(sims[b].b, sims[b].a);
   for (int k = 0; k < n; ++k)
-    if (k != b && std::fabs(std::remainder(std::atan2(sims[k].b, sims[k].a) - turn, kTwoPi)) > 2.0 * kTwoPi / kBins &&
-        (c < 0 || costs[k] < costs[c]))
+    if (k != b && turnsApart(sims[k], sims[b]) && (c < 0 || costs[k] < costs[c]))
       c = k;
   if (!(costs[b] < 2.0))
     return best; // every hypothesis left the plausible scales
@@ -425,7 +479,31 @@ vpMorphRigidShape::Alignment vpMorphRigidShape::alignOn(const vpMorphRigidShape 
     best.alternative = toPixels(in, t, sims[c]);
     best.hasAlternative = true;
   }
+  if (symmetric)
+    addSymmetric(target, best);
   return best;
+}
+
+void vpMorphRigidShape::addSymmetric(const vpMorphRigidShape &target, Alignment &a) const
+{
+  if (!(a.cost < 2.0))
+    return; // no alignment to turn
+  const vpMorphRigidShapeData &in = *m_data, &t = *target.m_data;
+  const Sim best = toSim(in, t, a.transform), other = toSim(in, t, a.alternative);
+  // Least cost first: the turns the alignment's cost cannot rule out, unless the alternative already is one.
+  for (const Symmetry &y : t.symmetries) {
+    if (y.cost > 2.0 * a.cost)
+      break;
+    const Sim turned = compose(Sim{y.a, y.b, y.tx, y.ty}, best);
+    if (!a.hasAlternative || turnsApart(turned, other))
+      a.symmetric.push_back(Hypothesis{toPixels(in, t, turned), hypothesisCost(in, t, turned)});
+  }
+}
+
+const std::vector<vpMorphRigidShape::Symmetry> &vpMorphRigidShape::symmetries() const
+{
+  static const std::vector<Symmetry> none;
+  return m_data ? m_data->symmetries : none;
 }
 
 double vpMorphRigidShape::cost(const vpMorphRigidShape &target, const vpMorphRigidTransform &transform) const

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <visp3/morph/vpMorphContour.h>
+#include <visp3/morph/vpMorphRigidShape.h>
 
 #include "vpMorphInsideTest.h"
 #include "vpMorphNearestEdge.h"
@@ -43,6 +44,7 @@ struct vpMorphRigidShapeData
   vpMorphNearestEdge fineEdges; // on it
   vpMorphInsideTest fineInside; // whether a point is inside it
   std::vector<double> fx, fy;   // kFineSamples samples along it, pixels
+  std::vector<vpMorphRigidShape::Symmetry> symmetries; // its turns onto itself, least cost first
 
   explicit vpMorphRigidShapeData(const vpMorphContour &c)
     : contour(c), polygon(c.counterClockwise()), edges(polygon), measured(c.hasOutline()),

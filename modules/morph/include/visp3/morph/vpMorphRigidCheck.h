@@ -65,7 +65,8 @@ public:
   */
   static Result check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                       const vpMorphRigidTransform &start);
-  //! The better (least cost) of check() from the alignment's transform and from its alternative, when it has one.
+  //! The best (least cost) of check() from the alignment's transform, its alternative when it has one, and its
+  //! symmetric hypotheses.
   static Result check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                       const vpMorphRigidShape::Alignment &alignment);
   /*!

@@ -44,6 +44,9 @@ struct vpMorphRigidShapeData; // the prepared data (internal)
      more for the two best. The one that costs least (below) wins; the best that turns elsewhere is kept as the
      alternative (a nearly symmetric outline). A hypothesis whose scale leaves [0.5, 2] sizes is discarded (a fit
      that shrinks the input to a point lays all its samples on one edge).
+  -# The winner turned by each of the target's symmetries (symmetries(), found once when it is prepared) that its
+     cost cannot rule out (Alignment::symmetric): four candidate turns cannot cover a star's ten alike lobes, and the
+     smoothed outlines rank them by chance, so the outlines decide (vpMorphRigidCheck tries each).
   The cost of the result is the mean distance, truncated at tau() and divided by it, of the input's samples to the
   target plus that of the target's samples to the input (each on the other's grid): 0 for outlines that coincide, 2
   for none in common. It ranks templates; it does not decide (vpMorphRigidCheck does, on the outlines).
@@ -57,6 +60,12 @@ struct vpMorphRigidShapeData; // the prepared data (internal)
 class vpMorphRigidShape
 {
 public:
+  //! A similarity from the input's coordinates to the target's and its cost, as alignOn() measures it.
+  struct Hypothesis
+  {
+    vpMorphRigidTransform transform; //!< input pixels to target pixels
+    double cost = 2.0;               //!< its cost, in [0, 2] (see the class description)
+  };
   //! A similarity from the input's coordinates to the target's, and the alignment's cost (see the description).
   struct Alignment
   {
@@ -65,6 +74,22 @@ public:
     //! The other refined hypothesis when it turns more than 10 deg away (a nearly symmetric outline), else none.
     vpMorphRigidTransform alternative;
     bool hasAlternative = false; //!< whether \e alternative is set
+    /*!
+      \e transform followed by each of the target's turns onto itself (symmetries()) that the cost cannot rule out, and
+      other than \e alternative: a turn whose own cost is at most twice this alignment's (were the turned hypothesis
+      the true one at no more than that cost, the triangle inequality on the truncated distances would bound the
+      turn's cost by the sum of the two). Each with its cost, unrefined.
+    */
+    std::vector<Hypothesis> symmetric;
+  };
+  //! A turn of a shape onto itself, in its normalised frame (X = a x - b y + tx, Y = b x + a y + ty), and its cost.
+  struct Symmetry
+  {
+    double a = 1.0;    //!< scale times the cosine of the turn
+    double b = 0.0;    //!< scale times the sine of the turn
+    double tx = 0.0;   //!< shift along x (sizes)
+    double ty = 0.0;   //!< shift along y (sizes)
+    double cost = 2.0; //!< the cost of the shape on itself through it (as an alignment's)
   };
 
   //! An empty shape (empty() is true).
@@ -91,12 +116,26 @@ public:
   */
   double cost(const vpMorphRigidShape &target, const vpMorphRigidTransform &transform) const;
 
+  /*!
+    The shape's near-symmetries: every peak of its orientation histogram's correlation with itself, more than 10 deg
+    from no turn, refined on its own distance grid as an alignment's turns are, with its cost (least first). A star of
+    five alike lobes has four cheap ones: the smoothed outlines the coarse stage compares cannot tell its lobes apart,
+    and only the outlines can (vpMorphRigidCheck, from each hypothesis in Alignment::symmetric).
+  */
+  const std::vector<Symmetry> &symmetries() const;
+
   //! Distance (in sizes) beyond which a sample is an outlier: a tenth of the size, a few percent of a part's length.
   static double tau() { return 0.1; }
 
 private:
+  //! alignOn(), with Alignment::symmetric filled when \e symmetric (the search fills it for its shortlist only).
+  Alignment align(const vpMorphRigidShape &target, bool symmetric) const;
+  //! Appends to \e a.symmetric the hypotheses that alignOn() describes there (\e a from align() on \e target).
+  void addSymmetric(const vpMorphRigidShape &target, Alignment &a) const;
+
   friend class vpMorphRigidCheck;  // the fine stage reads the prepared outline
-  friend class vpMorphRigidSearch; // the search asks the cache for the next template's data
+  friend class vpMorphRigidSearch; // the search asks the cache for the next template's data, aligns without the
+                                   // symmetric hypotheses and adds them to its shortlist's
   std::shared_ptr<const vpMorphRigidShapeData> m_data;
 };
 
