@@ -283,9 +283,10 @@ TEST_CASE("rigid recognition: the two-stage search gives the exhaustive search's
 TEST_CASE("rigid recognition: the search's shortcuts give the plain two-stage search's answers", "[rigid][recognition]")
 {
   // The plain two-stage search written out from the public stages: every template aligned coarsely, the
-  // rigidShortlist() least (ties to the lower index) compared exactly in full, the least cost wins and the next is the
-  // runner-up. The database's search stops measuring a template that can be neither: the same answers, bit for bit.
-  // 18 templates (the tools, their bent drawings, the tools at half size) and 36 views, half of them under a card.
+  // rigidShortlist() least (ties to the lower index) compared exactly in full (from their alignments, alternatives and
+  // symmetric hypotheses within the shortlist's coarse cost), the least cost wins and the next is the runner-up. The
+  // database's search stops measuring a template that can be neither: the same answers, bit for bit. 18 templates (the
+  // tools, their bent drawings, the tools at half size) and 36 views, half of them under a card.
   std::vector<cv::Mat> images;
   const vpMorphDatabase db = toolsBentDrawingsAndHalves(images);
   std::vector<vpMorphRigidShape> shapes;
@@ -308,6 +309,14 @@ TEST_CASE("rigid recognition: the search's shortcuts give the plain two-stage se
     }
     std::sort(coarse.begin(), coarse.end());
     coarse.resize(vpMorphDatabase::rigidShortlist());
+    // A shortlisted template's symmetric hypotheses within the shortlist's coarse cost are compared too.
+    for (const auto &e : coarse) {
+      std::vector<vpMorphRigidShape::Hypothesis> &h = alignments[e.second].symmetric;
+      h.erase(
+          std::remove_if(h.begin(), h.end(),
+                         [&coarse](const vpMorphRigidShape::Hypothesis &y) { return y.cost > coarse.back().first; }),
+          h.end());
+    }
     std::size_t best = vpMorphRecognition::npos, second = vpMorphRecognition::npos;
     vpMorphRigidCheck::Result rb, rs;
     for (const auto &e : coarse) {
