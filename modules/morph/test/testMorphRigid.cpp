@@ -149,9 +149,11 @@ TEST_CASE("rigid check: a star of alike lobes is laid lobe on lobe, each lobe tr
   const vpMorphRigidShape t(goal[0].contour()), q(vpMorphContourExtractor().extract(V));
   // Nine turns onto itself, a tenth of a turn apart, each cheaper than any of the six tools' turns onto themselves.
   double tools = 2.0;
-  for (const char *name : kObjects)
-    for (const vpMorphRigidShape::Symmetry &y : vpMorphRigidShape(extract(readGray(name))).symmetries())
+  for (const char *name : kObjects) {
+    const vpMorphRigidShape tool(extract(readGray(name)));
+    for (const vpMorphRigidShape::Symmetry &y : tool.symmetries())
       tools = std::min(tools, y.cost);
+  }
   std::vector<double> turns;
   for (const vpMorphRigidShape::Symmetry &y : t.symmetries())
     if (y.cost < tools)
