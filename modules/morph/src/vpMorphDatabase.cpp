@@ -52,7 +52,7 @@ double orAligned(double share, double enough, const vpMorphContour &q, const vpM
   if (view.empty())
     view = vpMorphRigidShape(q);
   const vpMorphOutlineShare shown(t);
-  const vpMorphRigidShape::Alignment a = view.alignOn(shape);
+  const vpMorphRigidShape::Alignment a = view.alignOn(shape, false);
   double aligned = shown.aligned(q, a.transform);
   if (a.hasAlternative)
     aligned = std::max(aligned, shown.aligned(q, a.alternative));
@@ -448,7 +448,7 @@ vpMorphRecognition vpMorphDatabase::search(const vpMorphContour &c, const vpMorp
   vpMorphRigidShape view(c);
   std::vector<std::pair<double, std::size_t>> aligned;
   for (const auto &o : others)
-    aligned.emplace_back(view.alignOn(outlineShape(o.second)).cost, o.second);
+    aligned.emplace_back(view.alignOn(outlineShape(o.second), false).cost, o.second);
   const std::size_t R = std::min(rerankCandidates(), others.size());
   std::partial_sort(aligned.begin(), aligned.begin() + static_cast<long>(R), aligned.end());
   std::sort(others.begin(), others.end());

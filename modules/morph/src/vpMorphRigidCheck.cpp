@@ -301,7 +301,7 @@ double vpMorphRigidCheck::similarityDeviation(const vpMorphRigidShape &a, const 
                            "vpMorphRigidCheck::similarityDeviation: empty shapes or units that differ");
   const vpMorphRigidShapeData &in = *a.m_data, &tg = *b.m_data;
   double best = std::numeric_limits<double>::infinity();
-  for (const vpMorphRigidTransform &start : {a.alignOn(b).transform, b.alignOn(a).transform.inverse()}) {
+  for (const vpMorphRigidTransform &start : {a.alignOn(b, false).transform, b.alignOn(a, false).transform.inverse()}) {
     try {
       const vpMorphRigidTransform T = vpMorphRigidTransform::refineOnOutline(in.fine, tg.fine, start, true, 0.05, 30);
       const vpMorphRigidTransform Ti = T.inverse();

@@ -43,7 +43,7 @@ vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &que
   for (std::size_t v = 0; v < views.size(); ++v) {
     if (v + 1 < views.size())
       prefetch(*views[v + 1].shape->m_data);
-    const vpMorphRigidShape::Alignment a = query.align(*views[v].shape, false);
+    const vpMorphRigidShape::Alignment a = query.alignOn(*views[v].shape, false);
     if (best.empty() || best.back().index != views[v].index)
       best.push_back(Coarse{a.cost, views[v].index, v, a});
     else if (a.cost < best.back().cost)

@@ -421,10 +421,10 @@ void check(const vpMorphRigidShape &in, const vpMorphRigidShape &t)
 
 vpMorphRigidShape::Alignment vpMorphRigidShape::alignOn(const vpMorphRigidShape &target) const
 {
-  return align(target, true);
+  return alignOn(target, true);
 }
 
-vpMorphRigidShape::Alignment vpMorphRigidShape::align(const vpMorphRigidShape &target, bool symmetric) const
+vpMorphRigidShape::Alignment vpMorphRigidShape::alignOn(const vpMorphRigidShape &target, bool symmetric) const
 {
   check(*this, target);
   const vpMorphRigidShapeData &in = *m_data, &t = *target.m_data;

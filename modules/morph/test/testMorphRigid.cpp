@@ -211,6 +211,7 @@ TEST_CASE("rigid check: one shape at two sizes, and bad input", "[rigid][safety]
   CHECK(vpMorphRigidCheck::tolerance(k, k) == 0.5);                              // measured outlines
   CHECK(vpMorphRigidCheck::tolerance(vpMorphContour(k.xs(), k.ys()), k) == 1.5); // a polygon
   CHECK_THROWS_AS(vpMorphRigidShape(vpMorphContour()), vpMorphException);
+  CHECK(vpMorphRigidShape().symmetries().empty()); // an empty shape turns onto nothing
   CHECK_THROWS_AS(vpMorphRigidShape(vpMorphContour({0.0, 1.0}, {0.0, 1.0})), vpMorphException);
   CHECK_THROWS_AS(vpMorphRigidShape(vpMorphContour({0.0, 1.0, 2.0}, {0.0, 1.0, 2.0})), vpMorphException); // no area
   const vpMorphRigidShape empty, a(k);

@@ -110,6 +110,9 @@ public:
     \throw vpMorphException::badParameterError when either is empty.
   */
   Alignment alignOn(const vpMorphRigidShape &target) const;
+  //! alignOn(), with Alignment::symmetric left empty unless \e symmetric: for a caller that needs only the cost or
+  //! the transform.
+  Alignment alignOn(const vpMorphRigidShape &target, bool symmetric) const;
   /*!
     The cost of \e transform (this shape's pixels to the target's) as alignOn() measures it, without search.
     \throw as alignOn().
@@ -128,14 +131,12 @@ public:
   static double tau() { return 0.1; }
 
 private:
-  //! alignOn(), with Alignment::symmetric filled when \e symmetric (the search fills it for its shortlist only).
-  Alignment align(const vpMorphRigidShape &target, bool symmetric) const;
-  //! Appends to \e a.symmetric the hypotheses that alignOn() describes there (\e a from align() on \e target).
+  //! Appends to \e a.symmetric the hypotheses that alignOn() describes there (\e a from alignOn(target, false)).
   void addSymmetric(const vpMorphRigidShape &target, Alignment &a) const;
 
   friend class vpMorphRigidCheck;  // the fine stage reads the prepared outline
-  friend class vpMorphRigidSearch; // the search asks the cache for the next template's data, aligns without the
-                                   // symmetric hypotheses and adds them to its shortlist's
+  friend class vpMorphRigidSearch; // the search asks the cache for the next template's data and adds the symmetric
+                                   // hypotheses to its shortlist's alignments only
   std::shared_ptr<const vpMorphRigidShapeData> m_data;
 };
 
