@@ -208,7 +208,12 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &
 {
   if (input.empty() || target.empty())
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck: empty shape");
-  const vpMorphRigidShapeData &in = *input.m_data, &tg = *target.m_data;
+  // Both outlines at one blur: the sharper laid at the other's, the start's scale converting between their pixels.
+  const double scale = start.scale();
+  const bool scaled = scale > 0.0 && std::isfinite(scale);
+  const vpMorphRigidShape &blurredInput = scaled ? input.atBlur(target.contour().outlineBlur() / scale) : input;
+  const vpMorphRigidShape &blurredTarget = scaled ? target.atBlur(input.contour().outlineBlur() * scale) : target;
+  const vpMorphRigidShapeData &in = *blurredInput.m_data, &tg = *blurredTarget.m_data;
   if (in.contour.units() != tg.contour.units())
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck: the contours' units differ");
   const Frames f{in.cx, in.cy, in.size, tg.cx, tg.cy, tg.size};

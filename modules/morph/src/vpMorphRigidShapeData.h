@@ -7,6 +7,8 @@
 
 #include <array>
 #include <cstddef>
+#include <map>
+#include <mutex>
 #include <vector>
 
 #include <visp3/morph/vpMorphContour.h>
@@ -45,6 +47,10 @@ struct vpMorphRigidShapeData
   vpMorphInsideTest fineInside; // whether a point is inside it
   std::vector<double> fx, fy;   // kFineSamples samples along it, pixels
   std::vector<vpMorphRigidShape::Symmetry> symmetries; // its turns onto itself, least cost first
+  // The blur ladder (vpMorphRigidShape::atBlur()): rung k is the shape at blur k x blurRung(), empty when the blur
+  // erases the part; filled on first use under the mutex, never erased (references to rungs stay valid).
+  mutable std::mutex ladderMutex;
+  mutable std::map<int, vpMorphRigidShape> ladder;
 
   explicit vpMorphRigidShapeData(const vpMorphContour &c)
     : contour(c), polygon(c.counterClockwise()), edges(polygon), measured(c.hasOutline()),

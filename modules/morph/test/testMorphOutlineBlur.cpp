@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <thread>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -14,6 +15,8 @@
 #include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphOutlineBlur.h>
+#include <visp3/morph/vpMorphRigidCheck.h>
+#include <visp3/morph/vpMorphRigidShape.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 
 #include "testMorphImages.h"
@@ -145,4 +148,74 @@ TEST_CASE("vpMorphOutlineBlur: bad input is a clear error", "[outline_blur][bad]
   const vpMorphContour small = seen(speck, 0.0);
   REQUIRE(small.hasOutline());
   CHECK_THROWS_AS(vpMorphOutlineBlur::blurred(small, 40.0), vpMorphException);
+}
+
+TEST_CASE("vpMorphRigidShape::atBlur: a ladder of blurs, each rung laid once and shared", "[outline_blur][rigid]")
+{
+  const vpMorphContour sharp = seen(serratedStar(320.3, 240.6), 0.0);
+  const vpMorphRigidShape t(sharp);
+  const double own = sharp.outlineBlur(), rung = vpMorphRigidShape::blurRung();
+  CHECK(&t.atBlur(own) == &t);
+  CHECK(&t.atBlur(0.0) == &t);
+  CHECK(&t.atBlur(NAN) == &t);
+  // One rung for the blurs nearest it, its blur as measured on the image it stands for.
+  const vpMorphRigidShape &r4 = t.atBlur(4.0 * rung - 0.2 * rung);
+  REQUIRE(&r4 != &t);
+  CHECK(&t.atBlur(4.0 * rung + 0.2 * rung) == &r4);
+  CHECK(&t.atBlur(5.0 * rung - 0.2 * rung) != &r4);
+  // The extractor reads a blur of 2 px up to 0.2 px low; the polygon and region are the contour's own.
+  CHECK(r4.contour().outlineBlur() == Approx(4.0 * rung).margin(0.25));
+  CHECK(r4.contour().xs() == sharp.xs());
+  // The copies share the ladder.
+  const vpMorphRigidShape copy = t;
+  CHECK(&copy.atBlur(4.0 * rung) == &r4);
+  // Threads asking for one new rung get the same one.
+  const vpMorphRigidShape *got[2] = {nullptr, nullptr};
+  std::thread a([&] { got[0] = &t.atBlur(3.0 * rung); });
+  std::thread b([&] { got[1] = &copy.atBlur(3.0 * rung); });
+  a.join();
+  b.join();
+  CHECK(got[0] == got[1]);
+  CHECK(got[0] != &t);
+  // Nothing to lay: no measured outline, NORMALIZED units; a part the blur erases is compared as it is.
+  const vpMorphRigidShape polygon(vpMorphContour(sharp.xs(), sharp.ys()));
+  CHECK(&polygon.atBlur(3.0) == &polygon);
+  const vpMorphRigidShape normalized(sharp.toNormalized(vpCameraParameters(800, 800, 320, 240)));
+  CHECK(&normalized.atBlur(3.0) == &normalized);
+  vpMorphTest::Poly speck;
+  speck.x = {300, 306, 306, 300};
+  speck.y = {200, 200, 206, 206};
+  const vpMorphRigidShape small(seen(speck, 0.0));
+  CHECK(&small.atBlur(80.0) == &small);
+  CHECK_THROWS_AS(vpMorphRigidShape().atBlur(1.0), vpMorphException);
+}
+
+TEST_CASE("vpMorphRigidCheck: a blurred view of a serrated part coincides with its sharp template laid at its blur",
+          "[outline_blur][rigid]")
+{
+  // The template sharp; the view turned, shifted, a tenth larger and blurred by 2 px: its teeth are rounded off.
+  const vpMorphTest::Poly star = serratedStar(0.0, 0.0);
+  vpMorphTest::Poly turned;
+  for (std::size_t k = 0; k < star.x.size(); ++k) {
+    const double c = std::cos(0.7), s = std::sin(0.7);
+    turned.x.push_back(330.2 + 1.1 * (c * star.x[k] - s * star.y[k]));
+    turned.y.push_back(236.7 + 1.1 * (s * star.x[k] + c * star.y[k]));
+  }
+  const vpMorphContour sharp = seen(serratedStar(320.3, 240.6), 0.0), view = seen(turned, 2.0);
+  const vpMorphRigidShape t(sharp), v(view);
+  const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(v, t, v.alignOn(t));
+  // The same sharp outline declared at the view's blur, so that nothing is laid: its teeth stand out of the view's
+  // outline by up to a tolerance, and most of the outline is off by a good part of one.
+  vpMorphContour declared(sharp);
+  declared.setOutline(sharp.outline(), view.outlineBlur() * 1.1);
+  const vpMorphRigidShape d(declared);
+  const vpMorphRigidCheck::Result n = vpMorphRigidCheck::check(v, d, v.alignOn(d));
+  INFO("view blur " << view.outlineBlur() << " px: laid at it, shares " << r.targetShare << " / " << r.inputShare
+                    << ", cost " << r.cost << "; sharp, shares " << n.targetShare << " / " << n.inputShare << ", cost "
+                    << n.cost);
+  REQUIRE(r.fitted);
+  CHECK(r.targetShare > 0.95);
+  CHECK(r.inputShare > 0.95);
+  CHECK(n.cost > 0.15);
+  CHECK(r.cost < 0.1 * n.cost);
 }

@@ -22,6 +22,10 @@
   outline's measurement noise. Laid on each other, the right template's outline coincides with the view's
   everywhere the view shows it, and a look-alike's leaves its differences uncovered.
 
+  Outlines measured at different blurs differ along the details finer than the blur (a sharp corner, a tooth): the
+  sharper of the two is first laid at the other's blur (vpMorphRigidShape::atBlur(), the start's scale converting
+  between their pixels), so that the two are compared as one image would show them.
+
   check(input, target, start): from the similarity \e start (input to target, vpMorphRigidShape::alignOn()), the
   homography is fitted by Gauss-Newton on point-to-edge distances both ways (64 points of each outline onto the
   other's edges, Tukey weights whose cut-off shrinks from a twentieth of the target's size to twice tolerance(): the

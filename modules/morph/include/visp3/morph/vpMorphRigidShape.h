@@ -127,6 +127,24 @@ public:
   */
   const std::vector<Symmetry> &symmetries() const;
 
+  /*!
+    This shape as an image of the part blurred to an outline blur of \e blur (pixels, as vpMorphContour::outlineBlur()
+    measures it) would show it: the nearest to \e blur of this shape and the rungs of its blur ladder, blurs
+    blurRung() apart, each laid by vpMorphOutlineBlur and prepared on first use (a few milliseconds), then kept and
+    shared by the shape's copies (thread-safe; the reference lives as long as any copy). A blur rounds the details
+    finer than itself, so outlines measured at different blurs differ there by more than their noise: the exact
+    comparison (vpMorphRigidCheck) lays the sharper at the other's blur. This shape itself for a blur not above its
+    own, a contour without a measured outline or in NORMALIZED units, and a part that the blur would erase.
+    \throw vpMorphException::badParameterError when the shape is empty.
+  */
+  const vpMorphRigidShape &atBlur(double blur) const;
+  /*!
+    Spacing of the blur ladder (pixels): half a pixel, vpMorphRigidCheck's tolerance between measured outlines. A blur
+    off by half a rung moves a straight edge not at all and a right-angled corner's tip by 0.77 times that, a fifth of a
+    pixel.
+  */
+  static double blurRung() { return 0.5; }
+
   //! Distance (in sizes) beyond which a sample is an outlier: a tenth of the size, a few percent of a part's length.
   static double tau() { return 0.1; }
 
