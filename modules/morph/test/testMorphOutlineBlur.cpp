@@ -203,13 +203,16 @@ TEST_CASE("vpMorphRigidCheck: a blurred view of a serrated part coincides with i
   }
   const vpMorphContour sharp = seen(serratedStar(320.3, 240.6), 0.0), view = seen(turned, 2.0);
   const vpMorphRigidShape t(sharp), v(view);
-  const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(v, t, v.alignOn(t));
-  // The same sharp outline declared at the view's blur, so that nothing is laid: its teeth stand out of the view's
-  // outline by up to a tolerance, and most of the outline is off by a good part of one.
+  const vpMorphRigidShape::Alignment a = v.alignOn(t);
+  const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(v, t, a);
+  // The same sharp outline declared at the view's blur (in its own pixels), so that neither is laid: its teeth stand
+  // out of the view's outline by up to a tolerance, and most of the outline is off by a good part of one.
   vpMorphContour declared(sharp);
-  declared.setOutline(sharp.outline(), view.outlineBlur() * 1.1);
+  declared.setOutline(sharp.outline(), view.outlineBlur() * a.transform.scale());
   const vpMorphRigidShape d(declared);
-  const vpMorphRigidCheck::Result n = vpMorphRigidCheck::check(v, d, v.alignOn(d));
+  REQUIRE(&d.atBlur(view.outlineBlur() * a.transform.scale()) == &d);
+  REQUIRE(&v.atBlur(declared.outlineBlur() / a.transform.scale()) == &v);
+  const vpMorphRigidCheck::Result n = vpMorphRigidCheck::check(v, d, a);
   INFO("view blur " << view.outlineBlur() << " px: laid at it, shares " << r.targetShare << " / " << r.inputShare
                     << ", cost " << r.cost << "; sharp, shares " << n.targetShare << " / " << n.inputShare << ", cost "
                     << n.cost);
