@@ -104,3 +104,18 @@ vpMorphContour vpMorphOutlineBlur::blurred(const vpMorphContour &contour, double
   out.setOutline(vpMorphContour(ex, ey), measured.outlineBlur());
   return out;
 }
+
+double vpMorphOutlineBlur::leastBlur(const vpMorphContour &contour)
+{
+  return std::sqrt(contour.outlineBlur() * contour.outlineBlur() + pixelVariance());
+}
+
+vpMorphContour vpMorphOutlineBlur::blurredTo(const vpMorphContour &contour, double blur)
+{
+  const double least = leastBlur(contour);
+  if (!(blur >= least) || !std::isfinite(blur))
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphOutlineBlur::blurredTo: the blur must be finite and at least the outline's own and "
+                           "the pixel's (leastBlur())");
+  return blurred(contour, std::sqrt(blur * blur - least * least));
+}

@@ -17,15 +17,15 @@ const vpMorphRigidShape &vpMorphRigidShape::atBlur(double blur) const
   const double own = d.contour.outlineBlur();
   if (!d.measured || d.contour.units() != vpMorphContour::PIXEL || !std::isfinite(blur) || !(blur > own))
     return *this;
-  // The nearest of this shape's blur and the two rungs about \e blur that a blur can reach (laying an outline
-  // integrates the pixels once more: its blur is at least sqrt(own^2 + pixelVariance())).
-  const double minimum2 = own * own + vpMorphOutlineBlur::pixelVariance();
+  // The nearest of this shape's blur and the two rungs about \e blur that a laying can reach (it integrates the
+  // pixels once more: vpMorphOutlineBlur::leastBlur()).
+  const double least = vpMorphOutlineBlur::leastBlur(d.contour);
   int rung = -1;
   double off = blur - own;
   const int below = static_cast<int>(std::floor(blur / blurRung()));
   for (int k = below; k <= below + 1; ++k) {
     const double b = k * blurRung();
-    if (b * b > minimum2 && std::fabs(blur - b) < off) {
+    if (b > least && std::fabs(blur - b) < off) {
       rung = k;
       off = std::fabs(blur - b);
     }
@@ -37,8 +37,7 @@ const vpMorphRigidShape &vpMorphRigidShape::atBlur(double blur) const
   if (it == d.ladder.end()) {
     vpMorphRigidShape laid;
     try {
-      const double b = rung * blurRung();
-      laid = vpMorphRigidShape(vpMorphOutlineBlur::blurred(d.contour, std::sqrt(b * b - minimum2)));
+      laid = vpMorphRigidShape(vpMorphOutlineBlur::blurredTo(d.contour, rung * blurRung()));
     } catch (const vpMorphException &) {
       // the blur erases the part (thinner than it everywhere): compared as it is
     }

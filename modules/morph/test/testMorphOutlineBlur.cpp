@@ -77,10 +77,8 @@ vpMorphContour seen(const vpMorphTest::Poly &p, double s)
 // \e sharp's outline laid at \e view's blur: the variance the view's blur adds, less the pixel's the laying adds.
 vpMorphContour laidAtBlurOf(const vpMorphContour &sharp, const vpMorphContour &view)
 {
-  const double extra2 = view.outlineBlur() * view.outlineBlur() - sharp.outlineBlur() * sharp.outlineBlur() -
-                        vpMorphOutlineBlur::pixelVariance();
-  REQUIRE(extra2 > 0.0);
-  return vpMorphOutlineBlur::blurred(sharp, std::sqrt(extra2));
+  REQUIRE(view.outlineBlur() > vpMorphOutlineBlur::leastBlur(sharp));
+  return vpMorphOutlineBlur::blurredTo(sharp, view.outlineBlur());
 }
 } // namespace
 
@@ -155,6 +153,13 @@ TEST_CASE("vpMorphOutlineBlur: bad input is a clear error", "[outline_blur][bad]
   CHECK_THROWS_AS(vpMorphOutlineBlur::blurred(c.toNormalized(vpCameraParameters(800, 800, 320, 240)), 1.0),
                   vpMorphException);
   CHECK_THROWS_AS(vpMorphOutlineBlur::blurred(vpMorphContour(c.xs(), c.ys()), 1.0), vpMorphException); // no outline
+  // blurredTo(): a blur below what laying gives (the outline's own and the pixel's), or not finite.
+  const double least = vpMorphOutlineBlur::leastBlur(c);
+  CHECK(least == Approx(std::sqrt(c.outlineBlur() * c.outlineBlur() + vpMorphOutlineBlur::pixelVariance())));
+  CHECK_THROWS_AS(vpMorphOutlineBlur::blurredTo(c, 0.9 * least), vpMorphException);
+  CHECK_THROWS_AS(vpMorphOutlineBlur::blurredTo(c, NAN), vpMorphException);
+  CHECK_THROWS_AS(vpMorphOutlineBlur::blurredTo(c, INFINITY), vpMorphException);
+  CHECK(vpMorphOutlineBlur::blurredTo(c, least).outline().xs() == vpMorphOutlineBlur::blurred(c, 0.0).outline().xs());
   // A speck under a blur seven times its size: a uniform image (under a grey level of contrast), nothing to measure.
   vpMorphTest::Poly speck;
   speck.x = {300, 306, 306, 300};

@@ -25,10 +25,8 @@
 
   \code
   // A goal sharper than the view, laid at the view's blur before the two are compared (pixels, one scale).
-  const double v = view.outlineBlur(), g = goal.outlineBlur();
-  const double extra2 = v * v - g * g - vpMorphOutlineBlur::pixelVariance();
-  if (extra2 > 0.0)
-    goal = vpMorphOutlineBlur::blurred(goal, std::sqrt(extra2));
+  if (view.outlineBlur() >= vpMorphOutlineBlur::leastBlur(goal))
+    goal = vpMorphOutlineBlur::blurredTo(goal, view.outlineBlur());
   \endcode
 */
 class vpMorphOutlineBlur
@@ -42,6 +40,14 @@ public:
     badContourError when the blurred image shows no outline (an object thinner than the blur everywhere).
   */
   static vpMorphContour blurred(const vpMorphContour &contour, double sigma);
+  /*!
+    \e contour laid at an outline blur of \e blur (pixels, as vpMorphContour::outlineBlur() measures it): blurred() by
+    the Gaussian whose variance, with its outline's and the pixel's, makes up blur^2.
+    \throw vpMorphException::badParameterError when \e blur is below leastBlur(); as blurred() otherwise.
+  */
+  static vpMorphContour blurredTo(const vpMorphContour &contour, double blur);
+  //! The least outline blur that laying \e contour gives (pixels): its own and the pixel's area, in quadrature.
+  static double leastBlur(const vpMorphContour &contour);
   //! The variance a pixel's area adds to an edge's spread (px^2): a box one pixel wide, 1/12.
   static double pixelVariance() { return 1.0 / 12.0; }
 };
