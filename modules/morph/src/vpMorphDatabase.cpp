@@ -85,6 +85,14 @@ void vpMorphDatabase::invalidate()
   m_calibrated = false;
   m_within.clear();
   m_between.clear();
+  m_lookAlikes.clear();
+}
+
+const std::vector<vpMorphDatabase::LookAlike> &vpMorphDatabase::lookAlikes(std::size_t k) const
+{
+  static const std::vector<LookAlike> none;
+  (void)operator[](k);
+  return k < m_lookAlikes.size() ? m_lookAlikes[k] : none;
 }
 
 double vpMorphDatabase::threshold(std::size_t k) const

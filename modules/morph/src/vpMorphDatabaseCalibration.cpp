@@ -110,6 +110,7 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
   const std::size_t perRow = T > 1 ? T : 0;
   const bool rigid = m_distance.model() == vpMorphShapeDistance::RIGID;
   std::vector<double> D(T * T, rigid ? kInf : 0.0); // RIGID fills only each row's nearest other template
+  std::vector<std::vector<Found>> found(rigid ? T : 0); // RIGID: the look-alikes each row finds
   // Jobs 0..T-1: within(t); jobs T..2T-1: row t of the between-template matrix.
   m_distance.parallelFor(
       T + (perRow ? T : 0), threads,
@@ -120,10 +121,10 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
         } else if (rigid) {
           // The nearest other template by the two-stage search (the full matrix would take T^2 exact comparisons).
           const std::size_t i = k - T;
-          const vpMorphRigidSearch::Outcome o =
-              vpMorphRigidSearch::run(m_shapes[i].rigid[0], rigidViews(false, i), rigidShortlist());
-          if (o.index != vpMorphRecognition::npos)
-            D[i * T + o.index] = o.best.cost;
+          std::size_t nearest;
+          const double d = rigidRow(i, found[i], nearest);
+          if (nearest != vpMorphRecognition::npos)
+            D[i * T + nearest] = d;
         } else {
           const std::size_t i = k - T;
           for (std::size_t j = i + 1; j < T; ++j)
@@ -138,5 +139,39 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
         between[i] = std::min(between[i], D[i * T + j]);
   m_within = within;
   m_between = between;
+  m_lookAlikes = gathered(found);
   m_calibrated = true;
+}
+
+double vpMorphDatabase::rigidRow(std::size_t i, std::vector<Found> &found, std::size_t &nearest) const
+{
+  const vpMorphRigidSearch::Outcome o =
+      vpMorphRigidSearch::run(m_shapes[i].rigid[0], rigidViews(false, i), rigidShortlist(), nullptr, {}, false);
+  // Template i is a look-alike of j when its whole outline shows at least the minimum support of j's.
+  for (const vpMorphRigidSearch::Exact &e : o.exact)
+    if (e.result.fitted && e.result.targetShare >= m_minSupport)
+      found.push_back(Found{e.index, LookAlike{i, e.result.start.inverse()}});
+  nearest = o.index;
+  return o.best.cost;
+}
+
+std::vector<std::vector<vpMorphDatabase::LookAlike>>
+vpMorphDatabase::gathered(const std::vector<std::vector<Found>> &found) const
+{
+  std::vector<std::vector<LookAlike>> lookAlikes(m_templates.size());
+  for (const std::vector<Found> &row : found) // rows in index order: each list sorted by index
+    for (const Found &f : row)
+      lookAlikes[f.of].push_back(f.lookAlike);
+  return lookAlikes;
+}
+
+void vpMorphDatabase::findLookAlikes(unsigned int threads)
+{
+  const std::size_t T = m_templates.size();
+  std::vector<std::vector<Found>> found(T);
+  m_distance.parallelFor(T, threads, [&](std::size_t i, vpMorphMatcher &) {
+    std::size_t nearest;
+    rigidRow(i, found[i], nearest);
+  });
+  m_lookAlikes = gathered(found);
 }

@@ -73,6 +73,39 @@ std::vector<double> numbersOrInf(const json &cal, const char *key)
   return v;
 }
 
+// The calibration's "look_alikes": per template, its look-alikes' indices and transforms.
+std::vector<std::vector<vpMorphDatabase::LookAlike>> lookAlikesFromJson(const json &a, std::size_t size)
+{
+  const std::string bad = "vpMorphDatabase: \"calibration\": \"look_alikes\" must hold, per template, a list of "
+                          "{index, theta, tx, ty, scale, cx, cy}";
+  if (!a.is_array() || a.size() != size)
+    throw ioError(bad);
+  std::vector<std::vector<vpMorphDatabase::LookAlike>> lists;
+  for (const json &list : a) {
+    if (!list.is_array())
+      throw ioError(bad);
+    lists.emplace_back();
+    for (const json &o : list) {
+      double v[6];
+      const char *keys[6] = {"theta", "tx", "ty", "scale", "cx", "cy"};
+      for (int k = 0; k < 6; ++k) {
+        if (!o.is_object() || !o.contains(keys[k]) || !o[keys[k]].is_number())
+          throw ioError(bad);
+        v[k] = o[keys[k]].get<double>();
+      }
+      if (!o.contains("index") || !o["index"].is_number_unsigned() || o["index"].get<std::size_t>() >= size)
+        throw ioError(bad);
+      try {
+        lists.back().push_back(vpMorphDatabase::LookAlike{o["index"].get<std::size_t>(),
+                                                          vpMorphRigidTransform(v[0], v[1], v[2], v[3], v[4], v[5])});
+      } catch (const vpException &) { // not finite, or a scale <= 0
+        throw ioError(bad);
+      }
+    }
+  }
+  return lists;
+}
+
 //! A contour's fields of a template object: units, vertices, and the measured region and outline when present.
 void contourToJson(const vpMorphContour &c, json &o)
 {
@@ -214,6 +247,24 @@ std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
   cal["slack"] = calibrationSlack();
   cal["within"] = finiteOrNull(m_within);
   cal["between"] = finiteOrNull(m_between);
+  if (!m_lookAlikes.empty()) {
+    json all = json::array();
+    for (const std::vector<LookAlike> &list : m_lookAlikes) {
+      json a = json::array();
+      for (const LookAlike &l : list) {
+        const vpMorphRigidTransform &t = l.transform;
+        a.push_back(json{{"index", l.index},
+                         {"theta", t.theta()},
+                         {"tx", t.tx()},
+                         {"ty", t.ty()},
+                         {"scale", t.scale()},
+                         {"cx", t.cx()},
+                         {"cy", t.cy()}});
+      }
+      all.push_back(a);
+    }
+    cal["look_alikes"] = all;
+  }
   cal["support"] = std::isfinite(m_minSupport) ? json(m_minSupport) : json(nullptr);
   cal["support_floor"] = m_supportFloor;
   j["calibration"] = cal;
@@ -413,6 +464,10 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
         throw ioError("vpMorphDatabase: \"calibration\": support_floor must be a number in [0, 1]");
       db.m_supportFloor = fl.get<double>();
     }
+    if (cal.contains("look_alikes"))
+      db.m_lookAlikes = lookAlikesFromJson(cal["look_alikes"], db.size());
+    else if (calibrated && db.m_distance.model() == vpMorphShapeDistance::RIGID)
+      db.findLookAlikes(0); // a file written before look-alikes were kept
   }
   return db;
 }

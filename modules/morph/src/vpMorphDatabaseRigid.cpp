@@ -52,7 +52,9 @@ vpMorphRecognition vpMorphDatabase::rigidSearch(const vpMorphContour &c, const v
   vpMorphRecognition r;
   // The view as it is, then (mirrors on) its mirror image when that is not accepted: a part turned over.
   for (std::size_t m = 0; m < q.rigid.size(); ++m) {
-    const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(q.rigid[m], views, prune ? rigidShortlist() : 0);
+    const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(
+        q.rigid[m], views, prune ? rigidShortlist() : 0, m_lookAlikes.empty() ? nullptr : &m_lookAlikes,
+        [this](const vpMorphRigidCheck::Result &b) { return rigidAccepted(b); });
     vpMorphRecognition a;
     a.index = o.index;
     a.distance = o.best.cost;

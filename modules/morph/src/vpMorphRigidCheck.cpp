@@ -253,6 +253,7 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &
   } catch (const vpException &) {
     return Result(); // singular: no fit
   }
+  r.start = start;
   r.fitted = true;
   return r;
 }

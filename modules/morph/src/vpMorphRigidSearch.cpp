@@ -30,7 +30,8 @@ void prefetch(const vpMorphRigidShapeData &d)
 } // namespace
 
 vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &query, const std::vector<View> &views,
-                                                    std::size_t shortlist)
+                                                    std::size_t shortlist, const LookAlikes *lookAlikes,
+                                                    const Acceptable &acceptable, bool abandon)
 {
   // Coarse stage: each template's coarsely best view.
   struct Coarse
@@ -54,36 +55,68 @@ vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &que
   });
   // A template's turns by its symmetries are compared exactly as templates are: those whose coarse cost is within
   // the shortlist's when it left templates out, all of them otherwise.
-  double bar = std::numeric_limits<double>::infinity();
-  if (shortlist > 0 && best.size() > shortlist) {
-    best.resize(shortlist);
-    bar = best.back().cost;
-  }
+  const std::size_t listed = shortlist > 0 && best.size() > shortlist ? shortlist : best.size();
+  const double bar = listed < best.size() ? best[listed - 1].cost : std::numeric_limits<double>::infinity();
+  best.resize(listed);
   for (Coarse &c : best) {
     query.addSymmetric(*views[c.view].shape, c.alignment);
     std::vector<vpMorphRigidShape::Hypothesis> &h = c.alignment.symmetric;
     h.erase(std::remove_if(h.begin(), h.end(), [bar](const vpMorphRigidShape::Hypothesis &y) { return y.cost > bar; }),
             h.end());
   }
-  // Exact stage on the shortlist.
+  // The exact results, the least per template; the best and the runner-up by cost, ties to the lower index.
   Outcome o;
-  for (const Coarse &c : best) {
+  auto before = [](const Exact &a, const Exact &b) {
+    return a.result.cost < b.result.cost || (a.result.cost == b.result.cost && a.index < b.index);
+  };
+  auto compare = [&](std::size_t view, const vpMorphRigidShape::Alignment &alignment) {
     // Once there is a runner-up, a template whose cost exceeds it is neither the best nor the runner-up: its
     // measurement stops there (the exhaustive search measures every one in full, as the reference).
-    const double abandonAbove = shortlist > 0 && o.second != npos ? o.runnerUp.cost : -1.0;
-    const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(query, *views[c.view].shape, c.alignment, abandonAbove);
-    ++o.compared;
-    const bool first = o.index == npos || r.cost < o.best.cost || (r.cost == o.best.cost && c.index < o.index);
-    if (first) {
-      o.second = o.index;
-      o.runnerUp = o.best;
-      o.index = c.index;
-      o.pose = views[c.view].pose;
-      o.best = r;
-    } else if (o.second == npos || r.cost < o.runnerUp.cost || (r.cost == o.runnerUp.cost && c.index < o.second)) {
-      o.second = c.index;
-      o.runnerUp = r;
+    double abandonAbove = -1.0;
+    if (abandon && shortlist > 0 && o.exact.size() > 1) {
+      std::vector<Exact> two(2);
+      std::partial_sort_copy(o.exact.begin(), o.exact.end(), two.begin(), two.end(), before);
+      abandonAbove = two[1].result.cost;
     }
+    const Exact e{views[view].index, views[view].pose,
+                  vpMorphRigidCheck::check(query, *views[view].shape, alignment, abandonAbove)};
+    ++o.compared;
+    auto same = std::find_if(o.exact.begin(), o.exact.end(), [&e](const Exact &x) { return x.index == e.index; });
+    if (same == o.exact.end())
+      o.exact.push_back(e);
+    else if (e.result.cost < same->result.cost)
+      *same = e;
+  };
+  auto ranked = [&]() {
+    std::vector<Exact> two(std::min<std::size_t>(2, o.exact.size()));
+    std::partial_sort_copy(o.exact.begin(), o.exact.end(), two.begin(), two.end(), before);
+    o.index = two.empty() ? npos : two[0].index;
+    o.pose = two.empty() ? npos : two[0].pose;
+    o.best = two.empty() ? vpMorphRigidCheck::Result() : two[0].result;
+    o.second = two.size() < 2 ? npos : two[1].index;
+    o.runnerUp = two.size() < 2 ? vpMorphRigidCheck::Result() : two[1].result;
+  };
+  // Exact stage on the shortlist.
+  for (const Coarse &c : best)
+    compare(c.view, c.alignment);
+  ranked();
+  // The best's look-alikes, from its fitted start carried over, while the best is acceptable and one whose
+  // look-alikes were not compared yet.
+  std::vector<std::size_t> visited;
+  while (lookAlikes && o.index != npos && o.index < lookAlikes->size() && o.pose == npos && acceptable(o.best) &&
+         std::find(visited.begin(), visited.end(), o.index) == visited.end()) {
+    visited.push_back(o.index);
+    const vpMorphRigidTransform fitted = o.best.start; // the query's pixels to the best's
+    for (const vpMorphDatabase::LookAlike &l : (*lookAlikes)[o.index]) {
+      const auto v = std::find_if(views.begin(), views.end(),
+                                  [&l](const View &x) { return x.index == l.index && x.pose == npos; });
+      if (v == views.end())
+        continue; // not among the views searched
+      vpMorphRigidShape::Alignment carried;
+      carried.transform = l.transform * fitted;
+      compare(static_cast<std::size_t>(v - views.begin()), carried);
+    }
+    ranked();
   }
   return o;
 }

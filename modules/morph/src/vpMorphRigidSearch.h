@@ -6,8 +6,10 @@
 #define VP_MORPH_RIGID_SEARCH_H
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
+#include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph/vpMorphRigidCheck.h>
 #include <visp3/morph/vpMorphRigidShape.h>
 
@@ -28,22 +30,43 @@ struct vpMorphRigidView
   With shortlist 0 every template is compared exactly: the exhaustive search that the two stages stand for (a test
   checks they agree). An articulated template has several views (its taught one and its poses): its coarsely best
   view is the one compared.
+  Given \e lookAlikes (per template, vpMorphDatabase::lookAlikes()), the look-alikes of a best that is \e acceptable (a
+  taught view) are then compared exactly too, from the best's fitted start carried over by the look-alike's transform;
+  and so on for a new best. An acceptable answer is then compared with every template a view of it could be taken
+  for, whatever the coarse stage ranked.
 */
 class vpMorphRigidSearch
 {
 public:
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
   typedef vpMorphRigidView View;
+  typedef std::vector<std::vector<vpMorphDatabase::LookAlike>> LookAlikes;
+  typedef std::function<bool(const vpMorphRigidCheck::Result &)> Acceptable;
+  //! A template compared exactly: its view and its least cost result.
+  struct Exact
+  {
+    std::size_t index, pose;
+    vpMorphRigidCheck::Result result;
+  };
   struct Outcome
   {
     std::size_t index = npos, pose = npos; // the best template and its view
     vpMorphRigidCheck::Result best;        // its exact comparison
     std::size_t second = npos;             // the runner-up among those compared exactly
     vpMorphRigidCheck::Result runnerUp;    // its exact comparison
-    std::size_t compared = 0;              // templates compared exactly
+    std::size_t compared = 0;              // exact comparisons made
+    std::vector<Exact> exact;              // every template compared exactly
   };
 
-  static Outcome run(const vpMorphRigidShape &query, const std::vector<View> &views, std::size_t shortlist);
+  /*!
+    \param lookAlikes per template index, or null: none compared beyond the shortlist.
+    \param acceptable whether a result would accept the view: only such a best's look-alikes are compared.
+    \param abandon with a shortlist, measure no further a template that can be neither the best nor the runner-up
+    (false: every result in Outcome::exact is measured in full).
+  */
+  static Outcome run(const vpMorphRigidShape &query, const std::vector<View> &views, std::size_t shortlist,
+                     const LookAlikes *lookAlikes = nullptr, const Acceptable &acceptable = Acceptable(),
+                     bool abandon = true);
 };
 
 #endif

@@ -269,6 +269,36 @@ TEST_CASE("database: bad files give clear errors", "[database]")
     CHECK(vpMorphDatabase::load(p.string()).minimumSupport() == 0.75);
     CHECK(vpMorphDatabase::load(p.string()).supportFloor() == 0.5);
   }
+  // RIGID's look-alikes: malformed ones refused; a calibrated file written before they were kept finds them again.
+  {
+    vpMorphDatabase r = folderDatabase();
+    r.setDistance(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
+    r.calibrate(0);
+    r.save(good.string());
+    const std::string rt = readText(good);
+    REQUIRE(rt.find("\"look_alikes\": [") != std::string::npos);
+    REQUIRE(rt.find("\"index\": ") != std::string::npos); // one at least
+    auto rigidEdited = [&](const std::string &what, const std::string &with) {
+      std::string t = rt;
+      t.replace(t.find(what), what.size(), with);
+      return t;
+    };
+    for (const auto &bad :
+         {std::make_pair("\"index\": ", "\"index\": 1000"), std::make_pair("\"index\": ", "\"index\": -"),
+          std::make_pair("\"scale\": ", "\"scale\": -"), std::make_pair("\"theta\": ", "\"theta\": \"up\", \"was\": "),
+          std::make_pair("\"look_alikes\": [", "\"look_alikes\": [[], ")})
+      expectIo(loadText(rigidEdited(bad.first, bad.second)), "\"look_alikes\" must hold");
+    const fs::path p = dir / "old-rigid.json";
+    writeText(p, rigidEdited("\"look_alikes\"", "\"look_alikez\""));
+    const vpMorphDatabase back = vpMorphDatabase::load(p.string());
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      REQUIRE(back.lookAlikes(k).size() == r.lookAlikes(k).size());
+      for (std::size_t i = 0; i < r.lookAlikes(k).size(); ++i) {
+        CHECK(back.lookAlikes(k)[i].index == r.lookAlikes(k)[i].index);
+        CHECK(back.lookAlikes(k)[i].transform.theta() == r.lookAlikes(k)[i].transform.theta());
+      }
+    }
+  }
   expectIo(errorOf([&] { vpMorphDatabase::load((dir / "absent.json").string()); }), "cannot open");
   // Found by fuzz_database_json: a number beyond double made the JSON parser throw out_of_range, which escaped
   // as a nlohmann exception instead of a vpMorphException (regressions/database_json/).

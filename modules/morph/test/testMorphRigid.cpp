@@ -376,6 +376,17 @@ TEST_CASE("rigid recognition: a saved and reloaded database gives identical answ
   CHECK(back.minimumSupport() == db.minimumSupport());
   CHECK(back.withinDistances() == db.withinDistances());
   CHECK(back.betweenDistances() == db.betweenDistances());
+  for (std::size_t k = 0; k < db.size(); ++k) {
+    REQUIRE(back.lookAlikes(k).size() == db.lookAlikes(k).size());
+    for (std::size_t i = 0; i < db.lookAlikes(k).size(); ++i) {
+      const vpMorphDatabase::LookAlike &a = db.lookAlikes(k)[i], &b = back.lookAlikes(k)[i];
+      CHECK(a.index == b.index);
+      CHECK(a.transform.theta() == b.transform.theta());
+      CHECK(a.transform.tx() == b.transform.tx());
+      CHECK(a.transform.scale() == b.transform.scale());
+      CHECK(a.transform.cx() == b.transform.cx());
+    }
+  }
   std::mt19937 rng(13);
   std::uniform_real_distribution<double> turn(-180, 180), scale(0.8, 1.2);
   std::size_t accepted = 0;
@@ -399,6 +410,88 @@ TEST_CASE("rigid recognition: a saved and reloaded database gives identical answ
     accepted += a.accepted && db[a.index].name() == kObjects[k % 6];
   }
   CHECK(accepted >= 10); // the answers compared are mostly the right ones, not twelve rejections
+}
+
+#include "../src/vpMorphRigidSearch.h"
+
+TEST_CASE("rigid database: look-alikes are the templates whose outline shows enough of another's", "[rigid][lookalike]")
+{
+  // The tools, their bent drawings and the tools at half size: each tool and its half are one shape, look-alikes of
+  // each other; the key is no look-alike of the hammer.
+  std::vector<cv::Mat> images;
+  vpMorphDatabase db = toolsBentDrawingsAndHalves(images);
+  for (std::size_t k = 0; k < db.size(); ++k)
+    CHECK(db.lookAlikes(k).empty()); // not calibrated
+  db.calibrate(0);
+  std::vector<vpMorphRigidShape> shapes;
+  for (std::size_t k = 0; k < db.size(); ++k)
+    shapes.emplace_back(db[k].contour());
+  auto listed = [&db](std::size_t k, std::size_t i) {
+    const std::vector<vpMorphDatabase::LookAlike> &l = db.lookAlikes(k);
+    return std::find_if(l.begin(), l.end(), [i](const vpMorphDatabase::LookAlike &x) { return x.index == i; }) !=
+           l.end();
+  };
+  for (std::size_t k = 0; k < 6; ++k) {
+    CAPTURE(db[2 * k].name());
+    CHECK(listed(2 * k, 12 + k));
+    CHECK(listed(12 + k, 2 * k));
+  }
+  CHECK_FALSE(listed(db.find("hammer"), db.find("key")));
+  for (std::size_t k = 0; k < db.size(); ++k)
+    for (const vpMorphDatabase::LookAlike &l : db.lookAlikes(k)) {
+      CAPTURE(db[k].name(), db[l.index].name());
+      CHECK(l.index != k);
+      // The transform lays template k on its look-alike: from its inverse, the look-alike's outline shows at least
+      // the minimum support of k's.
+      const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(shapes[l.index], shapes[k], l.transform.inverse());
+      CHECK(r.targetShare >= db.minimumSupport());
+    }
+  CHECK_THROWS_AS(db.lookAlikes(db.size()), vpMorphException);
+}
+
+TEST_CASE("rigid recognition: the best template's look-alikes are compared whatever the coarse stage ranked",
+          "[rigid][lookalike]")
+{
+  // A shortlist of one compares only the coarse stage's first template. With the look-alikes, the best one's are all
+  // compared exactly too (from the best's fitted start carried over): each tool and its half (one shape, look-alikes
+  // of each other) meet, and the answer is mostly the exhaustive search's (the two of one shape may swap, their costs
+  // measured from other starts); without them, the coarse stage's choice between the two stands.
+  std::vector<cv::Mat> images;
+  vpMorphDatabase db = toolsBentDrawingsAndHalves(images);
+  db.calibrate(0);
+  std::vector<vpMorphRigidShape> shapes;
+  std::vector<vpMorphRigidSearch::View> views;
+  vpMorphRigidSearch::LookAlikes lookAlikes;
+  for (std::size_t k = 0; k < db.size(); ++k) {
+    shapes.emplace_back(db[k].contour());
+    lookAlikes.push_back(db.lookAlikes(k));
+  }
+  for (std::size_t k = 0; k < db.size(); ++k)
+    views.push_back(vpMorphRigidSearch::View{k, vpMorphRigidSearch::npos, &shapes[k]});
+  const auto always = [](const vpMorphRigidCheck::Result &) { return true; };
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> turn(-180, 180), scale(0.8, 1.2);
+  int agreeWith = 0, agreeWithout = 0;
+  for (int k = 0; k < 24; ++k) {
+    cv::Mat v = images[k % 6];
+    if (k % 2 == 0)
+      v = vpMorphTest::squareOccluder(v, 0.11 * k, 0.2);
+    const vpMorphRigidShape q(extract(warp(v, similarity(v, turn(rng), scale(rng), 0, 0), 5, 200 + k)));
+    const vpMorphRigidSearch::Outcome with = vpMorphRigidSearch::run(q, views, 1, &lookAlikes, always),
+                                      without = vpMorphRigidSearch::run(q, views, 1),
+                                      all = vpMorphRigidSearch::run(q, views, 0);
+    CAPTURE(k, db[with.index].name(), db[without.index].name(), db[all.index].name());
+    for (const vpMorphDatabase::LookAlike &l : lookAlikes[with.index])
+      CHECK(std::any_of(with.exact.begin(), with.exact.end(),
+                        [&l](const vpMorphRigidSearch::Exact &e) { return e.index == l.index; }));
+    CHECK(with.best.cost <= without.best.cost); // more compared, from more starts
+    agreeWith += with.index == all.index;
+    agreeWithout += without.index == all.index;
+  }
+  WARN("shortlist of one: the exhaustive search's answer " << agreeWithout << " times of 24 without the look-alikes, "
+                                                           << agreeWith << " with");
+  CHECK(agreeWith > agreeWithout);
+  CHECK(agreeWith >= 22);
 }
 
 // vpMorphInsideTest (internal to the module, behind vpMorphRigidCheck's outside share) against the plain even-odd

@@ -51,6 +51,10 @@ struct vpMorphRigidView; // a template view of the RIGID search (internal)
   are compared exactly (vpMorphRigidCheck); the least exact cost wins. The view is accepted when it shows at least
   minimumSupport() of the template's outline, sticks out of it by at most maximumOutside() of its own, and no other
   acceptable template comes within ambiguity() of its cost (look-alikes the visible part cannot tell apart: rejected).
+  Before that, when the best template would accept the view, its lookAlikes() are compared exactly too, each from the
+  best's fitted start carried over by the two templates' own alignment (and so on, should one of them become the best):
+  a view is accepted only against every template whose views could be taken for it, not only against those the coarse
+  stage happened to rank (calibrate() finds the look-alikes; an uncalibrated database compares the shortlist only).
 
   <b>Search.</b> recognize() visits the templates by increasing lower bound of their distance and stops when the bound
   exceeds the runner-up's distance: the result is exactly that of recognize(c, false). An articulated template is also
@@ -207,6 +211,21 @@ public:
   const std::vector<double> &withinDistances() const { return m_within; }
   //! between(t) of the last calibration, per template: the distance to its nearest other template (diagnosis).
   const std::vector<double> &betweenDistances() const { return m_between; }
+  //! A template whose views could be taken for another (lookAlikes()), and how to lay the other on it.
+  struct LookAlike
+  {
+    std::size_t index;               //!< the look-alike template
+    vpMorphRigidTransform transform; //!< the other template's pixels to this one's (a start for the exact check)
+  };
+  /*!
+    RIGID, calibrated: the templates some view of which the search could accept as template \e k. A view of \e i is
+    accepted as \e k only if it shows at least minimumSupport() of k's outline, and an occluder only hides: so \e i is
+    a look-alike of \e k when i's whole outline, laid on k's (vpMorphRigidCheck), shows at least minimumSupport() of
+    it. calibrate() finds them among the rigidShortlist() templates nearest each one by the coarse alignment.
+    Empty for an uncalibrated database or another distance.
+    \throw vpMorphException::notFoundError on an index out of range.
+  */
+  const std::vector<LookAlike> &lookAlikes(std::size_t k) const;
 
   /*!
     Recognises a contour (see the class description). \e prune = false runs the exhaustive reference search.
@@ -252,6 +271,21 @@ private:
   //! RIGID: the comparison of \e q with template k, its poses too (\e poses), its mirror image too (\e mirrored).
   vpMorphRigidCheck::Result rigidCheck(const vpMorphShapeDistance::Shape &q, std::size_t k, bool mirrored,
                                        bool poses) const;
+  //! A look-alike found by calibration: \e lookAlike belongs to template \e of's list (lookAlikes()).
+  struct Found
+  {
+    std::size_t of;
+    LookAlike lookAlike;
+  };
+  /*!
+    RIGID: template \e i compared exactly with the rigidShortlist() others nearest it by the coarse alignment, each in
+    full; appends to \e found the templates it is a look-alike of, sets \e nearest (npos: none) and returns its cost.
+  */
+  double rigidRow(std::size_t i, std::vector<Found> &found, std::size_t &nearest) const;
+  //! The per-template look-alike lists from the rows' findings.
+  std::vector<std::vector<LookAlike>> gathered(const std::vector<std::vector<Found>> &found) const;
+  //! RIGID: lookAlikes() found anew (a calibrated file written without them), on \e threads threads (0: all cores).
+  void findLookAlikes(unsigned int threads);
   //! RIGID: whether a comparison accepts the view as that template (minimumSupport(), nothing outside it).
   bool rigidAccepted(const vpMorphRigidCheck::Result &r) const;
   //! support(), with an articulated template's poses or (\e poses false) its taught view only.
@@ -305,6 +339,7 @@ private:
   double m_supportFloor = 0.5;
   bool m_calibrated = false, m_manual = false;
   std::vector<double> m_within, m_between;
+  std::vector<std::vector<LookAlike>> m_lookAlikes; // RIGID, calibrated: per template (lookAlikes())
 };
 
 #endif

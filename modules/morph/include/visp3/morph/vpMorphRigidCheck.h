@@ -60,6 +60,7 @@ public:
     //! silhouette joined across its occluder, vpMorphContourExtractor::extractJoined(), has bridges that may)
     double outsideShare = 0.0;
     vpMorphHomography homography; //!< input to target, pixels (identity when the fit failed)
+    vpMorphRigidTransform start;  //!< the similarity the fit started from (of the hypotheses tried, the best's)
     bool fitted = false;          //!< the fit converged to a possible view (else the shares are 0 and the cost 1)
   };
 
