@@ -240,8 +240,8 @@ int main(int argc, char **argv)
       if (db.distance().model() == vpMorphShapeDistance::RIGID) {
         std::cout << "minimum support (share of a template's outline a view must show): " << fmt(db.minimumSupport())
                   << "; most outside it: " << fmt(vpMorphDatabase::maximumOutside())
-                  << "; ambiguity (least cost between two acceptable templates): " << fmt(vpMorphDatabase::ambiguity())
-                  << "\n";
+                  << "; ambiguity (least evidence telling two acceptable templates apart): "
+                  << fmt(vpMorphDatabase::ambiguity()) << "\n";
       } else {
         std::cout << "minimum support (share of a template's outline that accepts a view its distance rejects): "
                   << fmt(db.minimumSupport()) << "\n";

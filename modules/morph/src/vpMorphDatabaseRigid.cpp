@@ -16,6 +16,11 @@ bool vpMorphDatabase::rigidAccepted(const vpMorphRigidCheck::Result &r) const
   return r.fitted && r.targetShare >= m_minSupport && r.outsideShare <= maximumOutside();
 }
 
+const vpMorphRigidShape &vpMorphDatabase::rigidView(std::size_t k, std::size_t pose) const
+{
+  return pose == vpMorphRecognition::npos ? m_shapes[k].rigid[0] : m_poses[k][pose].shape.rigid[0];
+}
+
 std::vector<vpMorphRigidSearch::View> vpMorphDatabase::rigidViews(bool poses, std::size_t skip) const
 {
   std::vector<vpMorphRigidSearch::View> views;
@@ -68,9 +73,10 @@ vpMorphRecognition vpMorphDatabase::rigidSearch(const vpMorphContour &c, const v
     a.mirrored = m == 1;
     a.articulation = o.pose == vpMorphRecognition::npos ? 0.0 : m_poses[a.index][o.pose].angle;
     a.evaluated = o.compared;
-    // Two templates that both explain the view within the cost's noise: no telling which.
+    // Two templates that the view's outline does not tell apart, both acceptable: no telling which.
     const bool ambiguous = o.second != vpMorphRecognition::npos && rigidAccepted(o.runnerUp) &&
-                           o.runnerUp.cost - o.best.cost < ambiguity();
+                           vpMorphRigidCheck::evidence(q.rigid[m], rigidView(o.index, o.pose), o.best,
+                                                       rigidView(o.second, o.secondPose), o.runnerUp) < ambiguity();
     a.accepted = rigidAccepted(o.best) && !ambiguous;
     if (m == 0 || a.accepted) {
       r = a;

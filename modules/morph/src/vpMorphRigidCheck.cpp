@@ -196,6 +196,21 @@ double vpMorphRigidCheck::tolerance(const vpMorphContour &input, const vpMorphCo
   return target.units() == vpMorphContour::PIXEL ? px : px * std::sqrt(target.regionArea()) / 128.0;
 }
 
+// Both outlines at one blur: the sharper laid at the other's, the start's scale converting between their pixels.
+const vpMorphRigidShape &vpMorphRigidCheck::laidInput(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                                      const vpMorphRigidTransform &start)
+{
+  const double scale = start.scale();
+  return scale > 0.0 && std::isfinite(scale) ? input.atBlur(target.contour().outlineBlur() / scale) : input;
+}
+
+const vpMorphRigidShape &vpMorphRigidCheck::laidTarget(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                                       const vpMorphRigidTransform &start)
+{
+  const double scale = start.scale();
+  return scale > 0.0 && std::isfinite(scale) ? target.atBlur(input.contour().outlineBlur() * scale) : target;
+}
+
 vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                                                    const vpMorphRigidTransform &start)
 {
@@ -208,12 +223,8 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &
 {
   if (input.empty() || target.empty())
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck: empty shape");
-  // Both outlines at one blur: the sharper laid at the other's, the start's scale converting between their pixels.
-  const double scale = start.scale();
-  const bool scaled = scale > 0.0 && std::isfinite(scale);
-  const vpMorphRigidShape &blurredInput = scaled ? input.atBlur(target.contour().outlineBlur() / scale) : input;
-  const vpMorphRigidShape &blurredTarget = scaled ? target.atBlur(input.contour().outlineBlur() * scale) : target;
-  const vpMorphRigidShapeData &in = *blurredInput.m_data, &tg = *blurredTarget.m_data;
+  const vpMorphRigidShapeData &in = *laidInput(input, target, start).m_data,
+                              &tg = *laidTarget(input, target, start).m_data;
   if (in.contour.units() != tg.contour.units())
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck: the contours' units differ");
   const Frames f{in.cx, in.cy, in.size, tg.cx, tg.cy, tg.size};
@@ -330,4 +341,85 @@ double vpMorphRigidCheck::similarityDeviation(const vpMorphRigidShape &a, const 
     }
   }
   return best;
+}
+
+namespace
+{
+Mat3 toMat3(const vpMorphHomography &h)
+{
+  Mat3 H;
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      H(static_cast<int>(i), static_cast<int>(j)) = h.matrix()[i][j];
+  return H;
+}
+
+// Each of \e in's fine samples mapped by H: its truncated quadratic distance to \e tg's outline, min(d, tol)^2 / tol^2
+// (1: not within tol).
+std::vector<double> terms(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, const Mat3 &H, double tol)
+{
+  std::vector<double> t(in.fx.size(), 1.0);
+  double X, Y, w, mx, my;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (project(H, in.fx[i], in.fy[i], X, Y, w)) {
+      const double d = std::fabs(tg.fineEdges.within(X, Y, 2.0 * tol, mx, my));
+      if (d <= tol)
+        t[i] = d * d / (tol * tol);
+    }
+  return t;
+}
+
+// The mean of terms() of \e tg's samples mapped back onto the input (H input to target), a sample the input does not
+// show counting 0 when its nearest input sample is an occluder's edge: hidden there, not absent.
+double targetSide(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, const Mat3 &H, double tol,
+                  const std::vector<char> &occluderEdge)
+{
+  const std::vector<double> t = terms(tg, in, H.inverse(), tol);
+  const Mat3 Hi = H.inverse();
+  double sum = 0.0, X, Y, w;
+  for (std::size_t j = 0; j < t.size(); ++j) {
+    if (t[j] < 1.0 || !project(Hi, tg.fx[j], tg.fy[j], X, Y, w)) {
+      sum += t[j];
+      continue;
+    }
+    std::size_t nearest = 0;
+    double d2 = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < in.fx.size(); ++i) {
+      const double dx = in.fx[i] - X, dy = in.fy[i] - Y;
+      if (dx * dx + dy * dy < d2) {
+        d2 = dx * dx + dy * dy;
+        nearest = i;
+      }
+    }
+    sum += occluderEdge[nearest] ? 0.0 : 1.0;
+  }
+  return sum / static_cast<double>(t.size());
+}
+} // namespace
+
+double vpMorphRigidCheck::evidence(const vpMorphRigidShape &input, const vpMorphRigidShape &a, const Result &ra,
+                                   const vpMorphRigidShape &b, const Result &rb)
+{
+  if (!ra.fitted || !rb.fitted)
+    throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck::evidence: a comparison not fitted");
+  const vpMorphRigidShapeData &in = *laidInput(input, a, ra.start).m_data;
+  const vpMorphRigidShapeData &ta = *laidTarget(input, a, ra.start).m_data,
+                              &tb = *laidTarget(input, b, rb.start).m_data;
+  const double tolA = tolerance(in.contour, ta.contour), tolB = tolerance(in.contour, tb.contour);
+  const Mat3 Ha = toMat3(ra.homography), Hb = toMat3(rb.homography);
+  const std::vector<double> ta_ = terms(in, ta, Ha, tolA), tb_ = terms(in, tb, Hb, tolB);
+  // The view's outline that neither explains: an occluder's edge, behind which either may hide what it lacks.
+  std::vector<char> occluderEdge(ta_.size());
+  double inputSide = 0.0;
+  bool occluded = false;
+  for (std::size_t i = 0; i < ta_.size(); ++i) {
+    occluderEdge[i] = ta_[i] >= 1.0 && tb_[i] >= 1.0;
+    occluded = occluded || occluderEdge[i];
+    inputSide += tb_[i] - ta_[i];
+  }
+  inputSide /= static_cast<double>(ta_.size());
+  // An occluder's stretch has two ends on each of the three outlines, each a sample either way.
+  const double ends = occluded ? 0.5 * 6.0 / static_cast<double>(ta_.size()) : 0.0;
+  return 0.5 * (inputSide + targetSide(in, tb, Hb, tolB, occluderEdge) - targetSide(in, ta, Ha, tolA, occluderEdge)) -
+         ends;
 }

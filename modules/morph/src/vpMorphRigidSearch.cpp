@@ -94,6 +94,7 @@ vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &que
     o.pose = two.empty() ? npos : two[0].pose;
     o.best = two.empty() ? vpMorphRigidCheck::Result() : two[0].result;
     o.second = two.size() < 2 ? npos : two[1].index;
+    o.secondPose = two.size() < 2 ? npos : two[1].pose;
     o.runnerUp = two.size() < 2 ? vpMorphRigidCheck::Result() : two[1].result;
   };
   // Exact stage on the shortlist.

@@ -52,7 +52,7 @@ public:
   {
     std::size_t index = npos, pose = npos; // the best template and its view
     vpMorphRigidCheck::Result best;        // its exact comparison
-    std::size_t second = npos;             // the runner-up among those compared exactly
+    std::size_t second = npos, secondPose = npos; // the runner-up among those compared exactly, and its view
     vpMorphRigidCheck::Result runnerUp;    // its exact comparison
     std::size_t compared = 0;              // exact comparisons made
     std::vector<Exact> exact;              // every template compared exactly

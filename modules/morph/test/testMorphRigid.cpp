@@ -494,6 +494,54 @@ TEST_CASE("rigid recognition: the best template's look-alikes are compared whate
   CHECK(agreeWith >= 22);
 }
 
+TEST_CASE("rigid recognition: two look-alikes that differ only under the card are not told apart", "[rigid][ambiguity]")
+{
+  // The key, and the key with a tab 40 px long sticking out of one side. Seen whole, each is named. With the tab
+  // under a card, the view's own outline is explained alike by both: a rejection, although the plain key, with less
+  // outline under the card, costs less (the template's side of the cost counts what the card hides against it).
+  const cv::Mat key = readGray("key");
+  const std::vector<cv::Point> boundary = vpMorphTest::largestBoundary(key);
+  const std::size_t i = boundary.size() * 3 / 10;
+  const cv::Point at = boundary[i],
+                  t = boundary[(i + 5) % boundary.size()] - boundary[(i + boundary.size() - 5) % boundary.size()];
+  cv::Point2d n(-t.y, t.x);
+  n /= cv::norm(n);
+  if (key.at<unsigned char>(cv::Point(at + cv::Point(cvRound(4 * n.x), cvRound(4 * n.y)))) == 0)
+    n = -n; // outward
+  auto along = [&](double s, double w) {
+    return cv::Point(cvRound(at.x + s * n.x - w * n.y), cvRound(at.y + s * n.y + w * n.x));
+  };
+  cv::Mat tabbed = key.clone();
+  const std::vector<cv::Point> tab{along(-3, -4), along(40, -4), along(40, 4), along(-3, 4)};
+  cv::fillConvexPoly(tabbed, tab, cv::Scalar(0));
+  vpMorphDatabase db(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
+  db.add(vpMorphTemplate("key", extract(key)));
+  db.add(vpMorphTemplate("key-tab", extract(tabbed)));
+  db.calibrate(0);
+  cv::Mat hidden = tabbed.clone();
+  const cv::Point centre = along(20, 0);
+  cv::rectangle(hidden, centre - cv::Point(28, 28), centre + cv::Point(28, 28), cv::Scalar(170), cv::FILLED);
+  for (int k = 0; k < 4; ++k) {
+    const double deg = 40.0 + 75.0 * k, scale = 0.9 + 0.05 * k;
+    auto view = [&](const cv::Mat &m) { return extract(warp(m, similarity(m, deg, scale, 0, 0), 3, 300 + k)); };
+    const vpMorphRecognition plain = db.recognize(view(key)), whole = db.recognize(view(tabbed)),
+                             card = db.recognize(view(hidden));
+    CAPTURE(k, db[plain.index].name(), db[whole.index].name(), db[card.index].name(), card.distance,
+            card.secondDistance);
+    CHECK((plain.accepted && db[plain.index].name() == "key"));
+    CHECK((whole.accepted && db[whole.index].name() == "key-tab"));
+    CHECK(db[card.index].name() == "key"); // less outline under the card: the least cost, by a clear gap
+    CHECK(card.secondDistance - card.distance > 0.03);
+    CHECK_FALSE(card.accepted);
+  }
+  // The evidence needs two fitted comparisons.
+  const vpMorphRigidShape a(extract(key)), b(extract(tabbed));
+  const vpMorphRigidCheck::Result fitted = vpMorphRigidCheck::check(a, b, a.alignOn(b)), none;
+  REQUIRE(fitted.fitted);
+  CHECK_THROWS_AS(vpMorphRigidCheck::evidence(a, b, fitted, b, none), vpMorphException);
+  CHECK(vpMorphRigidCheck::evidence(a, b, fitted, b, fitted) <= 0.0); // one comparison against itself
+}
+
 // vpMorphInsideTest (internal to the module, behind vpMorphRigidCheck's outside share) against the plain even-odd
 // scan of every edge, which its bands must reproduce bit for bit: the measured outlines of the six tools (a point per
 // boundary pixel, many edges level with each other), queried at random, at their vertices' ordinates and beyond them.

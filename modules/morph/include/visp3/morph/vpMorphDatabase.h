@@ -5,6 +5,7 @@
 #ifndef VP_MORPH_DATABASE_H
 #define VP_MORPH_DATABASE_H
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -49,8 +50,10 @@ struct vpMorphRigidView; // a template view of the RIGID search (internal)
 
   <b>Acceptance with RIGID.</b> The rigidShortlist() templates whose coarse alignment (vpMorphRigidShape) costs least
   are compared exactly (vpMorphRigidCheck); the least exact cost wins. The view is accepted when it shows at least
-  minimumSupport() of the template's outline, sticks out of it by at most maximumOutside() of its own, and no other
-  acceptable template comes within ambiguity() of its cost (look-alikes the visible part cannot tell apart: rejected).
+  minimumSupport() of the template's outline, sticks out of it by at most maximumOutside() of its own, and the
+  runner-up, if acceptable too, is told from it by at least ambiguity() (vpMorphRigidCheck::evidence(): outline that
+  one explains and the other not, on the view's side, and on the templates' side what the view says is absent rather
+  than hidden; look-alikes that differ only where the view is hidden are not told apart: rejected).
   Before that, when the best template would accept the view, its lookAlikes() are compared exactly too, each from the
   best's fitted start carried over by the two templates' own alignment (and so on, should one of them become the best):
   a view is accepted only against every template whose views could be taken for it, not only against those the coarse
@@ -257,8 +260,13 @@ public:
   static std::size_t rigidShortlist() { return 5; }
   //! RIGID: the largest share of a view's outline outside its template's region that accepts it (see the class).
   static double maximumOutside() { return 0.1; }
-  //! RIGID: the least exact cost by which the best template must beat another acceptable one (see the class).
-  static double ambiguity() { return 0.03; }
+  /*!
+    RIGID: the least evidence (vpMorphRigidCheck::evidence()) that tells the best template from another acceptable
+    one: 2.88 standard deviations (one-sided 0.2 %, the wrong answers aimed at) of the evidence between two templates
+    that the view fits alike, under the measured outline's edge noise (sigma a fifth of the check's tolerance: a
+    sample's term has variance 2 / 625, each side's mean over 256 samples, the two sides averaged).
+  */
+  static double ambiguity() { return 2.88 * std::sqrt(2.0 / 625.0 / 256.0); }
 
 private:
   vpMorphRecognition search(const vpMorphContour &c, const vpMorphShapeDistance::Shape &q, bool prune,
@@ -268,6 +276,8 @@ private:
                                  vpMorphMatcher &matcher, bool poses) const;
   //! RIGID: the views of every template (with \e poses, the articulated ones' poses too), but template \e skip.
   std::vector<vpMorphRigidView> rigidViews(bool poses, std::size_t skip = vpMorphRecognition::npos) const;
+  //! RIGID: template k's prepared view \e pose (npos: the taught one).
+  const vpMorphRigidShape &rigidView(std::size_t k, std::size_t pose) const;
   //! RIGID: the comparison of \e q with template k, its poses too (\e poses), its mirror image too (\e mirrored).
   vpMorphRigidCheck::Result rigidCheck(const vpMorphShapeDistance::Shape &q, std::size_t k, bool mirrored,
                                        bool poses) const;

@@ -85,6 +85,18 @@ public:
   static Result check(const vpMorphContour &input, const vpMorphContour &target, const vpMorphRigidTransform &start);
 
   /*!
+    How surely the view \e input is target \e a rather than target \e b, from their comparisons \e ra and \e rb
+    (fitted): b's cost less a's, each with what of the target the view hides counted as neutral. A target's sample
+    that the view does not show counts 0 when its nearest sample of the view's outline is an occluder's edge (a
+    sample neither target explains), 1 otherwise: an occluder hides only behind its edge, and a part that the other
+    target's outline closes off is absent, not hidden. When the view shows an occluder's edge, the three samples' worth
+    by which its stretches' six ends (two on each outline) can tip either way are taken off. About 0 when the view
+    cannot tell the two apart, at most 1.
+    \throw vpMorphException::badParameterError when either comparison was not fitted.
+  */
+  static double evidence(const vpMorphRigidShape &input, const vpMorphRigidShape &a, const Result &ra,
+                         const vpMorphRigidShape &b, const Result &rb);
+  /*!
     Distance within which two points of the outlines coincide, in the target's units: half a pixel between measured
     outlines (the edge outline's error under the documented noise and blur is a tenth of a pixel, and a homography
     maps a flat part's views onto each other exactly), 1.5 px when either is a polygon (each vertex is a boundary
@@ -108,6 +120,11 @@ public:
                                     double quantile = 0.99);
 
 private:
+  //! The input and the target as check() from \e start compares them: the sharper laid at the other's blur.
+  static const vpMorphRigidShape &laidInput(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                            const vpMorphRigidTransform &start);
+  static const vpMorphRigidShape &laidTarget(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                             const vpMorphRigidTransform &start);
   //! check() from \e start, abandoned above \e abandonAbove when it is >= 0.
   static Result checkFrom(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                           const vpMorphRigidTransform &start, double abandonAbove);
