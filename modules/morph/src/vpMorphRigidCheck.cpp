@@ -374,8 +374,8 @@ std::vector<double> terms(const vpMorphRigidShapeData &in, const vpMorphRigidSha
 double targetSide(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, const Mat3 &H, double tol,
                   const std::vector<char> &occluderEdge)
 {
-  const std::vector<double> t = terms(tg, in, H.inverse(), tol);
   const Mat3 Hi = H.inverse();
+  const std::vector<double> t = terms(tg, in, Hi, tol);
   double sum = 0.0, X, Y, w;
   for (std::size_t j = 0; j < t.size(); ++j) {
     if (t[j] < 1.0 || !project(Hi, tg.fx[j], tg.fy[j], X, Y, w)) {
@@ -402,24 +402,25 @@ double vpMorphRigidCheck::evidence(const vpMorphRigidShape &input, const vpMorph
 {
   if (!ra.fitted || !rb.fitted)
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck::evidence: a comparison not fitted");
+  // The view as a's check laid it (b's laid it alike unless the view is the sharper of the two and b blurrier than a).
   const vpMorphRigidShapeData &in = *laidInput(input, a, ra.start).m_data;
   const vpMorphRigidShapeData &ta = *laidTarget(input, a, ra.start).m_data,
                               &tb = *laidTarget(input, b, rb.start).m_data;
   const double tolA = tolerance(in.contour, ta.contour), tolB = tolerance(in.contour, tb.contour);
   const Mat3 Ha = toMat3(ra.homography), Hb = toMat3(rb.homography);
-  const std::vector<double> ta_ = terms(in, ta, Ha, tolA), tb_ = terms(in, tb, Hb, tolB);
+  const std::vector<double> termsA = terms(in, ta, Ha, tolA), termsB = terms(in, tb, Hb, tolB);
   // The view's outline that neither explains: an occluder's edge, behind which either may hide what it lacks.
-  std::vector<char> occluderEdge(ta_.size());
+  std::vector<char> occluderEdge(termsA.size());
   double inputSide = 0.0;
   bool occluded = false;
-  for (std::size_t i = 0; i < ta_.size(); ++i) {
-    occluderEdge[i] = ta_[i] >= 1.0 && tb_[i] >= 1.0;
+  for (std::size_t i = 0; i < termsA.size(); ++i) {
+    occluderEdge[i] = termsA[i] >= 1.0 && termsB[i] >= 1.0;
     occluded = occluded || occluderEdge[i];
-    inputSide += tb_[i] - ta_[i];
+    inputSide += termsB[i] - termsA[i];
   }
-  inputSide /= static_cast<double>(ta_.size());
+  inputSide /= static_cast<double>(termsA.size());
   // An occluder's stretch has two ends on each of the three outlines, each a sample either way.
-  const double ends = occluded ? 0.5 * 6.0 / static_cast<double>(ta_.size()) : 0.0;
+  const double ends = occluded ? 0.5 * 6.0 / static_cast<double>(termsA.size()) : 0.0;
   return 0.5 * (inputSide + targetSide(in, tb, Hb, tolB, occluderEdge) - targetSide(in, ta, Ha, tolA, occluderEdge)) -
          ends;
 }
