@@ -27,9 +27,9 @@ std::vector<vpMorphRigidSearch::View> vpMorphDatabase::rigidViews(bool poses, st
   for (std::size_t k = 0; k < m_templates.size(); ++k) {
     if (k == skip)
       continue;
-    views.push_back(vpMorphRigidSearch::View{k, vpMorphRecognition::npos, &m_shapes[k].rigid[0]});
+    views.push_back(vpMorphRigidSearch::View{k, vpMorphRecognition::npos, &rigidView(k, vpMorphRecognition::npos)});
     for (std::size_t p = 0; poses && p < m_poses[k].size(); ++p)
-      views.push_back(vpMorphRigidSearch::View{k, p, &m_poses[k][p].shape.rigid[0]});
+      views.push_back(vpMorphRigidSearch::View{k, p, &rigidView(k, p)});
   }
   return views;
 }
@@ -38,9 +38,9 @@ vpMorphRigidCheck::Result vpMorphDatabase::rigidCheck(const vpMorphShapeDistance
                                                       bool mirrored, bool poses) const
 {
   std::vector<vpMorphRigidSearch::View> views;
-  views.push_back(vpMorphRigidSearch::View{k, vpMorphRecognition::npos, &m_shapes[k].rigid[0]});
+  views.push_back(vpMorphRigidSearch::View{k, vpMorphRecognition::npos, &rigidView(k, vpMorphRecognition::npos)});
   for (std::size_t p = 0; poses && p < m_poses[k].size(); ++p)
-    views.push_back(vpMorphRigidSearch::View{k, p, &m_poses[k][p].shape.rigid[0]});
+    views.push_back(vpMorphRigidSearch::View{k, p, &rigidView(k, p)});
   vpMorphRigidCheck::Result best;
   for (std::size_t m = 0; m < (mirrored ? q.rigid.size() : 1); ++m) {
     const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(q.rigid[m], views, 1);
@@ -73,11 +73,12 @@ vpMorphRecognition vpMorphDatabase::rigidSearch(const vpMorphContour &c, const v
     a.mirrored = m == 1;
     a.articulation = o.pose == vpMorphRecognition::npos ? 0.0 : m_poses[a.index][o.pose].angle;
     a.evaluated = o.compared;
-    // Two templates that the view's outline does not tell apart, both acceptable: no telling which.
-    const bool ambiguous = o.second != vpMorphRecognition::npos && rigidAccepted(o.runnerUp) &&
-                           vpMorphRigidCheck::evidence(q.rigid[m], rigidView(o.index, o.pose), o.best,
-                                                       rigidView(o.second, o.secondPose), o.runnerUp) < ambiguity();
-    a.accepted = rigidAccepted(o.best) && !ambiguous;
+    // Two acceptable templates that the view's outline does not tell apart: no telling which. Weighed only when the
+    // best would be accepted.
+    a.accepted = rigidAccepted(o.best) &&
+                 !(o.second != vpMorphRecognition::npos && rigidAccepted(o.runnerUp) &&
+                   vpMorphRigidCheck::evidence(q.rigid[m], rigidView(o.index, o.pose), o.best,
+                                               rigidView(o.second, o.secondPose), o.runnerUp) < ambiguity());
     if (m == 0 || a.accepted) {
       r = a;
       r.correspondence = matcher.match(c, templateView(r.index, o.pose));

@@ -23,6 +23,22 @@ constexpr double kFirstCutOff = 0.05; // the Tukey cut-off's start, in target si
 constexpr double kShrink = 0.6;       // and its decrease a step, down to twice the tolerance
 constexpr double kMaxTilt = 45.0 * M_PI / 180.0; // the steepest view of a part that the check admits
 
+// The input and the target as check() from \e start compares them, both at one blur: the sharper laid at the other's,
+// the start's scale converting between their pixels.
+const vpMorphRigidShape &laidInput(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                   const vpMorphRigidTransform &start)
+{
+  const double scale = start.scale();
+  return scale > 0.0 && std::isfinite(scale) ? input.atBlur(target.contour().outlineBlur() / scale) : input;
+}
+
+const vpMorphRigidShape &laidTarget(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                    const vpMorphRigidTransform &start)
+{
+  const double scale = start.scale();
+  return scale > 0.0 && std::isfinite(scale) ? target.atBlur(input.contour().outlineBlur() * scale) : target;
+}
+
 // Maps (x, y) by H; false at infinity.
 inline bool project(const Mat3 &H, double x, double y, double &X, double &Y, double &w)
 {
@@ -194,21 +210,6 @@ double vpMorphRigidCheck::tolerance(const vpMorphContour &input, const vpMorphCo
 {
   const double px = input.hasOutline() && target.hasOutline() ? 0.5 : 1.5;
   return target.units() == vpMorphContour::PIXEL ? px : px * std::sqrt(target.regionArea()) / 128.0;
-}
-
-// Both outlines at one blur: the sharper laid at the other's, the start's scale converting between their pixels.
-const vpMorphRigidShape &vpMorphRigidCheck::laidInput(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
-                                                      const vpMorphRigidTransform &start)
-{
-  const double scale = start.scale();
-  return scale > 0.0 && std::isfinite(scale) ? input.atBlur(target.contour().outlineBlur() / scale) : input;
-}
-
-const vpMorphRigidShape &vpMorphRigidCheck::laidTarget(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
-                                                       const vpMorphRigidTransform &start)
-{
-  const double scale = start.scale();
-  return scale > 0.0 && std::isfinite(scale) ? target.atBlur(input.contour().outlineBlur() * scale) : target;
 }
 
 vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,

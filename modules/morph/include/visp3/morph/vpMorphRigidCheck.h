@@ -120,11 +120,6 @@ public:
                                     double quantile = 0.99);
 
 private:
-  //! The input and the target as check() from \e start compares them: the sharper laid at the other's blur.
-  static const vpMorphRigidShape &laidInput(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
-                                            const vpMorphRigidTransform &start);
-  static const vpMorphRigidShape &laidTarget(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
-                                             const vpMorphRigidTransform &start);
   //! check() from \e start, abandoned above \e abandonAbove when it is >= 0.
   static Result checkFrom(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                           const vpMorphRigidTransform &start, double abandonAbove);
