@@ -282,8 +282,19 @@ void vpMorphContour::setOutline(const vpMorphContour &outline, double blur)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphContour::setOutline: the blur must be finite and >= 0");
   vpMorphContour o(outline.m_x, outline.m_y, outline.m_units); // without region or outline of its own
+  o.m_ownEdges = outline.m_ownEdges;
   m_outline = std::make_shared<const vpMorphContour>(std::move(o));
   m_outlineBlur = blur;
+}
+
+void vpMorphContour::setOwnEdges(const std::vector<bool> &marks)
+{
+  if (!marks.empty() && marks.size() != size()) {
+    std::ostringstream os;
+    os << "vpMorphContour::setOwnEdges: " << marks.size() << " marks for " << size() << " vertices";
+    throw vpMorphException(vpMorphException::badParameterError, os.str());
+  }
+  m_ownEdges.assign(marks.begin(), marks.end());
 }
 
 void vpMorphContour::mapRegion(double a11, double a12, double a21, double a22, double b1, double b2)
@@ -321,6 +332,8 @@ vpMorphContour vpMorphContour::rotatedStart(std::size_t k) const
     return c;
   std::rotate(c.m_x.begin(), c.m_x.begin() + (k % n), c.m_x.end());
   std::rotate(c.m_y.begin(), c.m_y.begin() + (k % n), c.m_y.end());
+  if (!c.m_ownEdges.empty())
+    std::rotate(c.m_ownEdges.begin(), c.m_ownEdges.begin() + (k % n), c.m_ownEdges.end());
   return c;
 }
 
@@ -331,6 +344,10 @@ vpMorphContour vpMorphContour::reversed() const
     std::reverse(c.m_x.begin() + 1, c.m_x.end());
     std::reverse(c.m_y.begin() + 1, c.m_y.end());
   }
+  // The edge from new vertex j to j + 1 is the old one from j + 1's old index, n - j - 1, to j's.
+  const std::size_t n = size();
+  for (std::size_t j = 0; j < c.m_ownEdges.size(); ++j)
+    c.m_ownEdges[j] = m_ownEdges[n - 1 - j];
   return c;
 }
 
@@ -395,6 +412,8 @@ vpMorphContour vpMorphContour::resampled(std::size_t n) const
   std::vector<double> x, y;
   x.reserve(n);
   y.reserve(n);
+  std::vector<bool> marks; // each new vertex's edge: the old edge it lies on
+  marks.reserve(m_ownEdges.empty() ? 0 : n);
   std::size_t k = 0;  // current edge goes from vertex k to k+1
   double along = 0.0; // arc length at vertex k
   double elen = edgeLength(1 % m);
@@ -409,8 +428,11 @@ vpMorphContour vpMorphContour::resampled(std::size_t n) const
     const double t = elen > 0 ? std::min(1.0, std::max(0.0, (target - along) / elen)) : 0.0;
     x.push_back(m_x[k] + t * (m_x[k1] - m_x[k]));
     y.push_back(m_y[k] + t * (m_y[k1] - m_y[k]));
+    if (!m_ownEdges.empty())
+      marks.push_back(m_ownEdges[k] != 0);
   }
   vpMorphContour out(x, y, m_units);
+  out.setOwnEdges(marks);
   if (hasRegion())
     out.setRegion(m_regionArea, m_regionCx, m_regionCy, m_regionMu20, m_regionMu11, m_regionMu02); // same region
   out.m_outline = m_outline; // same edge

@@ -165,7 +165,9 @@ vpMorphContour polygon(const Region &r)
       y.push_back(p.y);
     }
     try {
-      c.setOutline(vpMorphContour(x, y), r.edgeBlur);
+      vpMorphContour outline(x, y);
+      outline.setOwnEdges(r.outlineOwn);
+      c.setOutline(outline, r.edgeBlur);
     } catch (const vpMorphException &) {
       // Not a valid outline (a sliver): the contour goes without.
     }

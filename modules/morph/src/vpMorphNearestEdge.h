@@ -29,9 +29,16 @@
 class vpMorphNearestEdge
 {
 public:
-  explicit vpMorphNearestEdge(const vpMorphContour &c)
+  explicit vpMorphNearestEdge(const vpMorphContour &c) : vpMorphNearestEdge(c, std::vector<char>()) {}
+
+  /*!
+    Over the edges \e keep marks only (edge k from vertex k to k + 1; empty: every edge): an outline's stretches
+    that are the object's own edge, say. Without any edge kept, no point is within reach (+inf).
+  */
+  vpMorphNearestEdge(const vpMorphContour &c, const std::vector<char> &keep)
   {
     const std::size_t n = c.size();
+    auto kept = [&keep](std::size_t k) { return keep.empty() || keep[k] != 0; };
     // Each edge's start and direction, laid out flat: a query visits dozens of edges.
     m_edges.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
@@ -46,7 +53,10 @@ public:
       e.nx = len > 0 ? -e.dy / len : 0.0;
       e.ny = len > 0 ? e.dx / len : 1.0;
     }
-    if (n < 32)
+    for (std::size_t k = 0; k < n; ++k)
+      if (kept(k))
+        m_kept.push_back(k);
+    if (n < 32 || m_kept.empty())
       return; // a polygon: scanning is as fast
     m_x0 = *std::min_element(c.xs().begin(), c.xs().end());
     m_y0 = *std::min_element(c.ys().begin(), c.ys().end());
@@ -63,7 +73,7 @@ public:
     vpMorphFillBuckets(
         std::size_t(m_nx) * std::size_t(m_ny),
         [&](auto &&f) {
-          for (std::size_t k = 0; k < n; ++k) {
+          for (std::size_t k : m_kept) {
             const std::size_t l = (k + 1) % n;
             const int i0 = cellX(std::min(c.x(k), c.x(l))), i1 = cellX(std::max(c.x(k), c.x(l)));
             const int j0 = cellY(std::min(c.y(k), c.y(l))), j1 = cellY(std::max(c.y(k), c.y(l)));
@@ -115,7 +125,7 @@ public:
       return b.d2;
     };
     if (m_first.empty()) {
-      for (std::size_t k = 0; k < m_edges.size(); ++k)
+      for (std::size_t k : m_kept)
         if (distance2(k) < tol2)
           return true;
       return false;
@@ -136,12 +146,13 @@ private:
                double reach = std::numeric_limits<double>::infinity()) const
   {
     Best b;
-    const std::size_t n = m_edges.size();
     if (!std::isfinite(px) || !std::isfinite(py))
       return finish(b, px, py, mx, my, along); // no edge compared: NaN
+    if (m_kept.empty())
+      return beyond(mx, my, along);
     // No grid: the scan.
     if (m_first.empty()) {
-      for (std::size_t k = 0; k < n; ++k)
+      for (std::size_t k : m_kept)
         visit(k, px, py, b);
       return b.d2 > reach * reach ? beyond(mx, my, along) : finish(b, px, py, mx, my, along);
     }
@@ -288,6 +299,7 @@ private:
     double nx, ny; // the unit normal (0, 1 for a null edge), computed once: a query used to take two hypot()s
   };
   std::vector<Edge> m_edges;
+  std::vector<std::size_t> m_kept;                // the edges searched, increasing
   double m_x0 = 0, m_y0 = 0, m_h = 1, m_invH = 1; // m_invH: a product instead of two divisions per query
   int m_nx = 0, m_ny = 0;
   std::vector<std::size_t> m_first, m_cellEdges; // empty without a grid

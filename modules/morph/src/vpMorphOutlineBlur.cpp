@@ -52,6 +52,37 @@ cv::Mat coverage(const std::vector<double> &x, const std::vector<double> &y, int
   }
   return cover;
 }
+/*
+  The ownEdge() marks of \e from for the outline (x, y) measured on its blurred image: each vertex takes its
+  nearest vertex's of \e from. Both run the same way round from nearby starts, so after the first vertex the nearest
+  is sought a few vertices about the last one's (the whole outline again when none is within the blur's reach).
+*/
+std::vector<bool> carriedMarks(const vpMorphContour &from, const std::vector<double> &x, const std::vector<double> &y,
+                               double reach)
+{
+  const std::size_t m = from.size();
+  auto d2 = [&](std::size_t i, std::size_t j) {
+    const double dx = x[i] - from.x(j), dy = y[i] - from.y(j);
+    return dx * dx + dy * dy;
+  };
+  auto nearestOf = [&](std::size_t i, std::size_t j0, std::size_t count) {
+    std::size_t best = j0 % m;
+    for (std::size_t k = 0; k < count; ++k)
+      if (d2(i, (j0 + k) % m) < d2(i, best))
+        best = (j0 + k) % m;
+    return best;
+  };
+  constexpr std::size_t kBack = 8, kWindow = 40; // a blurred corner's vertices spread over a few old ones
+  std::vector<bool> marks(x.size());
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    j = i == 0 ? nearestOf(i, 0, m) : nearestOf(i, j + m - kBack, std::min(m, kWindow));
+    if (d2(i, j) > reach * reach)
+      j = nearestOf(i, 0, m);
+    marks[i] = from.ownEdge(j);
+  }
+  return marks;
+}
 } // namespace
 
 vpMorphContour vpMorphOutlineBlur::blurred(const vpMorphContour &contour, double sigma)
@@ -100,8 +131,11 @@ vpMorphContour vpMorphOutlineBlur::blurred(const vpMorphContour &contour, double
     ex[k] += u0;
     ey[k] += v0;
   }
+  vpMorphContour outline(ex, ey);
+  if (o.hasOwnEdges())
+    outline.setOwnEdges(carriedMarks(o, ex, ey, 3.0 * sigma + 1.0));
   vpMorphContour out(contour);
-  out.setOutline(vpMorphContour(ex, ey), measured.outlineBlur());
+  out.setOutline(outline, measured.outlineBlur());
   return out;
 }
 

@@ -1,5 +1,7 @@
 #include "vpMorphRegionMeasure.h"
 #include "vpMorphAffineLevel.h"
+#include "vpMorphLevelSpread.h"
+#include "vpMorphOwnEdges.h"
 
 #include <algorithm>
 #include <array>
@@ -17,9 +19,10 @@ using vpMorphRegionMeasure::Region;
 
 namespace
 {
-// The half-width of a surface's levels about their centre: 4 sigma of a normal noise (sigma = 1.4826 MAD), at least
-// half a grey level (the quantisation's).
-double fourSigma(double mad) { return std::max(0.5, 4.0 * 1.4826 * mad); }
+using vpMorphLevelSpread::fourSigma;
+using vpMorphLevelSpread::median;
+using vpMorphLevelSpread::medianOf;
+using vpMorphLevelSpread::oneSidedMad;
 
 /*
   The histogram of the grey levels under a mask: built once per mask, it gives the level under it, the share of it at
@@ -66,24 +69,28 @@ struct LevelHistogram
     }
   }
 
-  // The histogram's median (the lowest level with half the counts at or under it) and a window about it of 4 sigma
-  // (sigma = 1.4826 MAD, at least half a grey level): the levels of the mask's main surface. n > 0.
+  /*
+    The histogram's median (the lowest level with half the counts at or under it) and a window about it of 4 sigma
+    (at least half a grey level): the levels of the mask's main surface. n > 0. Sigma is 1.4826 times the median
+    deviation of the side of the median that deviates less (oneSidedMad()): another surface in the mask (a card
+    beside the object) lies on one side and would widen the window over its own levels.
+  */
   void window(int &med, double &halfWidth) const
   {
-    auto median = [this](const std::array<long, 256> &hist) {
-      long acc = 0;
-      for (int v = 0; v < 256; ++v) {
-        acc += hist[v];
-        if (2 * acc >= n)
-          return v;
+    long acc = 0;
+    med = 255;
+    for (int v = 0; v < 256; ++v) {
+      acc += h[v];
+      if (2 * acc >= n) {
+        med = v;
+        break;
       }
-      return 255;
-    };
-    med = median(h);
-    std::array<long, 256> dev{}; // histogram of |level - median|
+    }
+    std::array<long, 256> below{}, above{}; // histograms of the deviations on each side, the median's own in both
     for (int v = 0; v < 256; ++v)
-      dev[std::abs(v - med)] += h[v];
-    halfWidth = fourSigma(median(dev));
+      (v <= med ? below : above)[std::abs(v - med)] += h[v];
+    above[0] += h[med];
+    halfWidth = fourSigma(oneSidedMad(medianOf(below), h[0] > 0, medianOf(above), h[255] > 0));
   }
 
   /*
@@ -157,16 +164,19 @@ Level affineLevel(const cv::Mat &g, const cv::Mat &m, const cv::Point &tl, const
   if (!vpMorphAffineLevel::slope(hist.sums(int(std::ceil(med - halfWidth)), int(std::floor(med + halfWidth))), 1.0, p))
     return out;
   const double cx = hist.cx, cy = hist.cy;
-  std::vector<double> dev;
-  dev.reserve(static_cast<std::size_t>(hist.n));
+  std::vector<double> below, above; // the residuals' magnitudes on each side
+  bool belowClipped = false, aboveClipped = false;
   for (int r = 0; r < m.rows; ++r) {
     const unsigned char *pm = m.ptr<unsigned char>(r), *pg = g.ptr<unsigned char>(r);
     for (int c = 0; c < m.cols; ++c)
-      if (pm[c])
-        dev.push_back(std::fabs(pg[c] - p(0) - p(1) * (c - cx) - p(2) * (r - cy)));
+      if (pm[c]) {
+        const double e = pg[c] - p(0) - p(1) * (c - cx) - p(2) * (r - cy);
+        (e < 0.0 ? below : above).push_back(std::fabs(e));
+        belowClipped = belowClipped || pg[c] == 0;
+        aboveClipped = aboveClipped || pg[c] == 255;
+      }
   }
-  std::nth_element(dev.begin(), dev.begin() + long(dev.size() / 2), dev.end());
-  const double within = fourSigma(dev[dev.size() / 2]);
+  const double within = fourSigma(oneSidedMad(median(below), belowClipped, median(above), aboveClipped));
   vpMorphAffineLevel::Sums s;
   for (int r = 0; r < m.rows; ++r) {
     const unsigned char *pm = m.ptr<unsigned char>(r), *pg = g.ptr<unsigned char>(r);
@@ -322,10 +332,6 @@ bool edgeProfile(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy, const c
     }
   if (levels.size() < 16)
     return false;
-  auto median = [](std::vector<double> &v) {
-    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
   level = median(levels);
   slope = median(slopes);
   if (!(slope > 0.0))
@@ -349,10 +355,14 @@ bool edgeProfile(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy, const c
     pixel and interpolated linearly.
   Pixels without a clear gradient (under the local contrast / 16 per pixel) or without a crossing are skipped.
   \e blur, when given, receives the edge's blur from the whole steps' profiles (left unchanged without any).
+  \e own receives, per point, whether the edge from it to the next is the object's own edge: no chain pixel skipped
+  between them (a bridge, where there is no edge), and each point's own (vpMorphOwnEdges() on \e object, the object mask
+  of the box: beyond the edge's blur reach, 3 blur std, by a pixel and the patch's half diagonal).
 */
 std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy,
                                      const std::vector<cv::Point> &chain, const cv::Point &tl, const Level &fg,
-                                     const Level &bg, bool whole, double clippedLevel, double *blur)
+                                     const Level &bg, bool whole, double clippedLevel, const cv::Mat &object,
+                                     std::vector<bool> &own, double *blur)
 {
   // The object's share of pixel (c, r) of the box, from the levels there.
   auto weight = [&](int c, int r) {
@@ -390,26 +400,40 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
   // repeated vertex, an invalid outline.
   constexpr double kSamePoint = 1e-9; // px: far above the rounding of coordinates under 1e4 px, far below edge noise
   auto same = [](const cv::Point2d &a, const cv::Point2d &b) { return std::hypot(a.x - b.x, a.y - b.y) <= kSamePoint; };
-  auto add = [&](const cv::Point2d &q) {
-    if (out.empty() || !same(q, out.back()))
+  // Per point: its outward normal (towards the background), and whether chain pixels were skipped before it.
+  std::vector<cv::Point2d> outward;
+  std::vector<bool> gapBefore;
+  // A bridge's pixel skipped since the last point; the last pixel gave a point or is the object's.
+  bool gap = false, measured = true;
+  auto add = [&](const cv::Point2d &q, double nx, double ny) {
+    if (out.empty() || !same(q, out.back())) {
       out.push_back(q);
+      outward.emplace_back(nx, ny);
+      gapBefore.push_back(gap);
+    }
+    gap = false;
+    measured = true;
   };
   const int steps = 8;
   const double h = 0.25;
   std::vector<double> spreads; // each row's (or column's) edge spread, along the edge's normal
   for (const cv::Point &p0 : chain) {
     const cv::Point p = p0 - tl;
+    gap = gap || !measured;
+    measured = false;
     if (p.x < 0 || p.y < 0 || p.x >= g.cols || p.y >= g.rows)
       continue;
+    measured = object.at<unsigned char>(p.y, p.x) != 0; // an object pixel without a point (noise) is no bridge
     const double fgp = fg.at(p0.x, p0.y), bgp = bg.at(p0.x, p0.y);
     const double level = whole ? 0.5 * (fgp + bgp) : clippedLevel;
     const double ex = gx.at<float>(p.y, p.x), ey = gy.at<float>(p.y, p.x), m = std::hypot(ex, ey);
     if (!(m > std::fabs(fgp - bgp) / 16.0))
       continue;
+    const double out_ = bgp > fgp ? 1.0 / m : -1.0 / m; // the gradient rises towards the brighter side
     const bool alongRow = std::fabs(ex) >= std::fabs(ey);
     double pos, spread;
     if (whole && integral(p, alongRow, pos, spread)) {
-      add(alongRow ? cv::Point2d(pos + tl.x, p0.y) : cv::Point2d(p0.x, pos + tl.y));
+      add(alongRow ? cv::Point2d(pos + tl.x, p0.y) : cv::Point2d(p0.x, pos + tl.y), ex * out_, ey * out_);
       spreads.push_back(std::sqrt(M_PI) * spread * (alongRow ? std::fabs(ex) : std::fabs(ey)) / m);
       continue;
     }
@@ -427,16 +451,30 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
     }
     if (!std::isfinite(best))
       continue;
-    add(cv::Point2d(p0.x + best * nx, p0.y + best * ny));
+    add(cv::Point2d(p0.x + best * nx, p0.y + best * ny), ex * out_, ey * out_);
   }
-  while (out.size() > 1 && same(out.front(), out.back()))
+  const bool gapAtEnd = gap || !measured;
+  while (out.size() > 1 && same(out.front(), out.back())) {
     out.pop_back();
+    outward.pop_back();
+    gapBefore.pop_back();
+  }
   // The blur: the median spread. A Gaussian step of std s, integrated over pixels, has weights whose w (1 - w) sum to
   // sqrt(s^2 + 1/12) / sqrt(pi) along the normal (1 / cos of the row's angle to it along a row), and zero-mean noise
   // lowers the sum by only the weights' variance.
-  if (blur != nullptr && !spreads.empty()) {
+  double edgeBlur = 0.0;
+  if (!spreads.empty()) {
     std::nth_element(spreads.begin(), spreads.begin() + long(spreads.size() / 2), spreads.end());
-    *blur = std::max(0.0, spreads[spreads.size() / 2]);
+    edgeBlur = std::max(0.0, spreads[spreads.size() / 2]);
+    if (blur != nullptr)
+      *blur = edgeBlur;
+  }
+  const double reach = std::max(1.0, std::ceil(3.0 * edgeBlur));
+  const std::vector<bool> seen = vpMorphOwnEdges(g, object, tl, out, outward, reach + 2.5, reach);
+  own.assign(out.size(), false);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const std::size_t l = (k + 1) % out.size();
+    own[k] = seen[k] && seen[l] && !(l == 0 ? gapBefore[0] || gapAtEnd : gapBefore[l]);
   }
   return out;
 }
@@ -549,7 +587,8 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
   if (!(m00 > 0.0))
     return; // left unmeasured: the contour falls back to its polygon
   if (grades)
-    reg.outline = edgeOutline(g, gx, gy, reg.chain, box.tl(), fg, bg, !clipped, edgeLevel, &reg.edgeBlur);
+    reg.outline = edgeOutline(g, gx, gy, reg.chain, box.tl(), fg, bg, !clipped, edgeLevel, bin(box), reg.outlineOwn,
+                              &reg.edgeBlur);
   const double xc = m10 / m00, yc = m01 / m00;
   reg.subArea = m00;
   reg.cx = box.x + xc;

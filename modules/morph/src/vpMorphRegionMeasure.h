@@ -30,6 +30,8 @@ struct Region
   double subArea = 0.0, cx = 0.0, cy = 0.0, mu20 = 0.0, mu11 = 0.0, mu02 = 0.0;
   // The measured edge, one point per chain pixel (image coordinates), when the levels were measured.
   std::vector<cv::Point2d> outline{};
+  // Per outline point, whether the edge from it to the next is the object's own, not an occluder's edge nor a bridge.
+  std::vector<bool> outlineOwn{};
   // The edge's blur (px): the std of the Gaussian that spreads a sharp step as the image does, the pixel's own area
   // included; 0 when not measured (no clear step, or a level clipped by the sensor).
   double edgeBlur = 0.0;

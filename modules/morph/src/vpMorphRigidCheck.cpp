@@ -80,8 +80,11 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
   Mat8 A = Mat8::Zero();
   Vec8 b = Vec8::Zero();
   std::size_t used = 0;
-  // Input to target: r = m . (G u - nearest), in target sizes.
+  // Input to target: r = m . (G u - nearest), in target sizes. Only the input's own edges: an occluder's edge or a
+  // bridge is no part of the target's outline.
   for (std::size_t i = 0; i < in.fx.size(); i += kFitStride) {
+    if (in.marked && !in.fown[i])
+      continue;
     const double x = (in.fx[i] - f.ci_x) / f.si, y = (in.fy[i] - f.ci_y) / f.si;
     double X, Y, w;
     if (!project(G, x, y, X, Y, w))
@@ -99,7 +102,7 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
     b.noalias() -= wt * r * J;
     ++used;
   }
-  // Target to input through G^-1: d(G^-1 U) = -G^-1 dG G^-1 U; r in input sizes.
+  // Target to input through G^-1: d(G^-1 U) = -G^-1 dG G^-1 U; r in input sizes, onto the input's own edges.
   const Mat3 Gi = G.inverse();
   for (std::size_t i = 0; i < tg.fx.size(); i += kFitStride) {
     const Eigen::Vector3d U((tg.fx[i] - f.ct_x) / f.st, (tg.fy[i] - f.ct_y) / f.st, 1.0);
@@ -108,7 +111,7 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
       return false;
     const double x = v(0) / v(2), y = v(1) / v(2);
     double mx, my;
-    const double r = in.fineEdges.within(f.ci_x + x * f.si, f.ci_y + y * f.si, c * f.si, mx, my) / f.si;
+    const double r = in.ownEdges.within(f.ci_x + x * f.si, f.ci_y + y * f.si, c * f.si, mx, my) / f.si;
     const double wt = std::isfinite(r) ? tukey(r, c) : 0.0;
     if (wt <= 0.0)
       continue;
@@ -168,16 +171,18 @@ bool admissible(const Mat3 &G, const vpMorphRigidShapeData &in, const Frames &f)
 }
 
 /*
-  Share of \e side's fine samples within tol of the other curve once mapped by H (pixels), their mean truncated
-  quadratic distance, and (when \e outside is given) the share beyond 2 tol outside the other curve. With \e base (the
-  other side's mean, 0 for the first side) and \e abandonAbove >= 0: false as soon as the check's cost, 0.5 (base +
-  mean), is sure to exceed abandonAbove, \e cost then that bound (a partial sum of terms >= 0 never exceeds the sum,
-  rounding included, and the operations after it are monotone).
+  Share of \e side's fine samples within tol of \e edges (the other curve's) once mapped by H (pixels), their mean
+  truncated quadratic distance, (when \e outside is given) the share beyond 2 tol outside the other curve and (when \e
+  unexplained is given) the share on its own edge (vpMorphContour::ownEdge()) beyond tol. With \e base (the other side's
+  mean, 0 for the first side) and \e abandonAbove >= 0: false as soon as the check's cost, 0.5 (base + mean), is sure to
+  exceed abandonAbove, \e cost then that bound (a partial sum of terms >= 0 never exceeds the sum, rounding included,
+  and the operations after it are monotone).
 */
-bool measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &other, const Mat3 &H, double tol,
-             double &share, double &cost, double *outside = nullptr, double base = 0.0, double abandonAbove = -1.0)
+bool measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &other, const vpMorphNearestEdge &edges,
+             const Mat3 &H, double tol, double &share, double &cost, double *outside = nullptr,
+             double *unexplained = nullptr, double base = 0.0, double abandonAbove = -1.0)
 {
-  std::size_t on = 0, out = 0;
+  std::size_t on = 0, out = 0, own = 0;
   double sum = 0.0;
   const bool sign = outside != nullptr;
   const double n = static_cast<double>(side.fx.size());
@@ -186,9 +191,9 @@ bool measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &oth
       cost = 0.5 * (base + sum / n);
       return false;
     }
-    double X, Y, w, mx, my, d = tol;
+    double X, Y, w, mx, my, d = 2.0 * tol; // beyond tol: unexplained
     if (project(H, side.fx[i], side.fy[i], X, Y, w)) {
-      const double e = std::fabs(other.fineEdges.within(X, Y, 2.0 * tol, mx, my)); // +inf beyond 2 tol
+      const double e = std::fabs(edges.within(X, Y, 2.0 * tol, mx, my)); // +inf beyond 2 tol
       if (e <= tol) {
         d = e;
         ++on;
@@ -196,12 +201,16 @@ bool measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &oth
         ++out;
       }
     }
+    own += d > tol && side.fown[i];
+    d = std::min(d, tol);
     sum += (d * d) / (tol * tol);
   }
   share = static_cast<double>(on) / n;
   cost = sum / n;
   if (outside)
     *outside = static_cast<double>(out) / n;
+  if (unexplained)
+    *unexplained = static_cast<double>(own) / n;
   return true;
 }
 } // namespace
@@ -248,11 +257,12 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &
   // A silhouette joined across its occluder (no measured region) has bridges, which may pass outside the target.
   // Abandoned: the result is the bound on the cost that exceeds abandonAbove.
   Result abandoned;
-  if (!measure(in, tg, H, tol, r.inputShare, abandoned.cost, in.contour.hasRegion() ? &r.outsideShare : nullptr, 0.0,
-               abandonAbove))
+  if (!measure(in, tg, tg.fineEdges, H, tol, r.inputShare, abandoned.cost,
+               in.contour.hasRegion() ? &r.outsideShare : nullptr, &r.unexplainedShare, 0.0, abandonAbove))
     return abandoned;
   ci = abandoned.cost;
-  if (!measure(tg, in, H.inverse(), tol, r.targetShare, abandoned.cost, nullptr, ci, abandonAbove))
+  if (!measure(tg, in, in.fineEdges, H.inverse(), tol, r.targetShare, abandoned.cost, nullptr, nullptr, ci,
+               abandonAbove))
     return abandoned;
   ct = abandoned.cost;
   r.cost = 0.5 * (ci + ct);
@@ -410,12 +420,13 @@ double vpMorphRigidCheck::evidence(const vpMorphRigidShape &input, const vpMorph
   const double tolA = tolerance(in.contour, ta.contour), tolB = tolerance(in.contour, tb.contour);
   const Mat3 Ha = toMat3(ra.homography), Hb = toMat3(rb.homography);
   const std::vector<double> termsA = terms(in, ta, Ha, tolA), termsB = terms(in, tb, Hb, tolB);
-  // The view's outline that neither explains: an occluder's edge, behind which either may hide what it lacks.
+  // The view's outline that is no edge of its own (measured, else what neither explains): an occluder's edge, behind
+  // which either may hide what it lacks.
   std::vector<char> occluderEdge(termsA.size());
   double inputSide = 0.0;
   bool occluded = false;
   for (std::size_t i = 0; i < termsA.size(); ++i) {
-    occluderEdge[i] = termsA[i] >= 1.0 && termsB[i] >= 1.0;
+    occluderEdge[i] = in.marked ? !in.fown[i] : termsA[i] >= 1.0 && termsB[i] >= 1.0;
     occluded = occluded || occluderEdge[i];
     inputSide += termsB[i] - termsA[i];
   }

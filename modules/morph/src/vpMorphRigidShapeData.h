@@ -44,8 +44,11 @@ struct vpMorphRigidShapeData
   bool measured;                // the fine curve is a measured outline
   vpMorphContour fine;          // the fine curve, counter-clockwise
   vpMorphNearestEdge fineEdges; // on it
+  bool marked;                  // the fine curve tells its own edges (vpMorphContour::ownEdge())
+  vpMorphNearestEdge ownEdges;  // on its own edges when marked, else on all of it
   vpMorphInsideTest fineInside; // whether a point is inside it
   std::vector<double> fx, fy;   // kFineSamples samples along it, pixels
+  std::vector<char> fown;       // per sample, whether it lies on the object's own edge (vpMorphContour::ownEdge())
   std::vector<vpMorphRigidShape::Symmetry> symmetries; // its turns onto itself, least cost first
   // The blur ladder (vpMorphRigidShape::atBlur()): rung k is the shape at blur k x blurRung(), empty when the blur
   // erases the part; filled on first use under the mutex, never erased (references to rungs stay valid).
@@ -54,11 +57,23 @@ struct vpMorphRigidShapeData
 
   explicit vpMorphRigidShapeData(const vpMorphContour &c)
     : contour(c), polygon(c.counterClockwise()), edges(polygon), measured(c.hasOutline()),
-      fine(c.outline().counterClockwise()), fineEdges(fine), fineInside(fine)
+      fine(c.outline().counterClockwise()), fineEdges(fine), marked(fine.hasOwnEdges()), ownEdges(fine, ownMarks(fine)),
+      fineInside(fine)
   {
     const vpMorphContour s = fine.resampled(kFineSamples);
     fx = s.xs();
     fy = s.ys();
+    fown.resize(fx.size());
+    for (std::size_t k = 0; k < fown.size(); ++k)
+      fown[k] = s.ownEdge(k);
+  }
+
+  static std::vector<char> ownMarks(const vpMorphContour &c)
+  {
+    std::vector<char> m(c.hasOwnEdges() ? c.size() : 0);
+    for (std::size_t k = 0; k < m.size(); ++k)
+      m[k] = c.ownEdge(k);
+    return m;
   }
 
   // Signed distance (sizes) at normalised (X, Y) and its gradient; false outside the grid.

@@ -127,9 +127,9 @@ public:
   const vpMorphContour &outline() const { return m_outline ? *m_outline : *this; }
   /*!
     Sets the measured edge outline: a valid contour (at least 4 vertices) in this contour's units; its own outline
-    and region, if any, are dropped. \e blur: the edge's blur where it was measured, in the same units (the std of
-    the Gaussian that spreads a sharp step as the image did, the pixel's area included; 0: unknown). Throws
-    vpMorphException otherwise (and on a negative or non-finite blur).
+    and region, if any, are dropped, its ownEdge() marks kept. \e blur: the edge's blur where it was measured, in the
+    same units (the std of the Gaussian that spreads a sharp step as the image did, the pixel's area included; 0:
+    unknown). Throws vpMorphException otherwise (and on a negative or non-finite blur).
   */
   void setOutline(const vpMorphContour &outline, double blur = 0.0);
   /*!
@@ -138,6 +138,18 @@ public:
     (vpMorphOutlineBlur).
   */
   double outlineBlur() const { return m_outlineBlur; }
+  /*!
+    Whether the edge from vertex k to the next is the object's own edge, as the extractor measured it on the image
+    (vpMorphContourExtractor marks its edge outline's vertices): beyond it lies the background or the object itself,
+    not an occluder, and it is no bridge across a gap. Why: an occluder only hides, so a view of a part shows nothing
+    of its own edge that the part's template lacks, while an occluder's edge belongs to no template. false where not
+    measured; geometric operations carry the marks along.
+  */
+  bool ownEdge(std::size_t k) const { return k < m_ownEdges.size() && m_ownEdges[k] != 0; }
+  //! Whether ownEdge() was measured.
+  bool hasOwnEdges() const { return !m_ownEdges.empty(); }
+  //! Sets ownEdge() per vertex (size() marks; an empty vector clears them). Throws vpMorphException otherwise.
+  void setOwnEdges(const std::vector<bool> &marks);
   /*!
     Moves the measured region and edge outline (if any) by the affine map x' = A x + b, A = [a11 a12; a21 a22] (the
     outline's blur scaled by sqrt |det A|):
@@ -188,6 +200,7 @@ private:
   double m_regionMu20 = 0.0, m_regionMu11 = 0.0, m_regionMu02 = 0.0;
   std::shared_ptr<const vpMorphContour> m_outline; // shared: contours are copied often, the outline is not changed
   double m_outlineBlur = 0.0;
+  std::vector<char> m_ownEdges; // ownEdge() per vertex; empty: not measured
 };
 
 #endif

@@ -38,6 +38,10 @@
   - <b>Which region:</b> extract() takes the largest. Where a larger region may be in view (a distractor, the floor
     beyond the plane's edge), extractCandidates() lists the outlines the object may have for a template database to
     choose on a first image, and extractJoined(I, previous) follows the chosen one in the next images.
+  - <b>Own edges:</b> each point of the edge outline is marked (vpMorphContour::ownEdge()) as the object's own edge
+    when beyond it, past the edge's blur, lies the background (a grey level within 4 sigma of the background's, fitted
+    along the outline) or the object itself (a groove), and no bridge of a joined silhouette runs to the next point:
+    an occluder's edge and a bridge are not, so that a comparison with a template does not take them for the part's.
   - <b>Polygon:</b> vpMorphPolygonApproximation (parameterless, L1 vertex placement, counter-clockwise in
     the (x, y) axes).
 

@@ -29,15 +29,18 @@
   check(input, target, start): from the similarity \e start (input to target, vpMorphRigidShape::alignOn()), the
   homography is fitted by Gauss-Newton on point-to-edge distances both ways (64 points of each outline onto the
   other's edges, Tukey weights whose cut-off shrinks from a twentieth of the target's size to twice tolerance(): the
-  parts one outline lacks, hidden or an occluder's edge, drop out). A fit that no camera gives (a view tilted more than
-  45 deg, mirrored, or a perspective that changes the area scale by more than a factor 2 across the outline: a free
-  homography can squash one outline onto a few edges of another) is not fitted. Then 256 points spread evenly along
-  each outline
-  are mapped onto the other and their distance d to it measured. Each side gives the share of its points with
-  d <= tolerance() (the target's: how much of the template the view shows; the input's: how much of the view the
-  template explains, less than 1 where an occluder's edge runs) and the mean of min(d, tolerance)^2 / tolerance^2; the
-  cost is the mean of the two sides', 0 for outlines that coincide, 1 for nothing in common. The curves are the
-  measured (dense, sub-pixel) outlines when the contours have them (vpMorphContour::outline()), else the polygons.
+  parts one outline lacks, hidden or an occluder's edge, drop out). When the input's outline tells its own edges
+  (vpMorphContour::ownEdge(), the extractor's marks), only they are fitted, both ways: an occluder's edge or a bridge
+  is no part of any template, and left in, it pulls the fit where it runs near the target's outline. A fit that no
+  camera gives (a view tilted more than 45 deg, mirrored, or a perspective that changes the area scale by more than a
+  factor 2 across the outline: a free homography can squash one outline onto a few edges of another) is not fitted. Then
+  256 points spread evenly along each outline are mapped onto the other and their distance d to it measured. Each side
+  gives the share of its points with d <= tolerance() (the target's: how much of the template the view shows; the
+  input's: how much of the view the template explains, less than 1 where an occluder's edge runs) and the mean of min(d,
+  tolerance)^2 / tolerance^2; the cost is the mean of the two sides', 0 for outlines that coincide, 1 for nothing in
+  common. The input's own edge that the target leaves unexplained is counted apart (Result::unexplainedShare): an
+  occluder only hides, so a view of the target shows none. The curves are the measured (dense, sub-pixel) outlines when
+  the contours have them (vpMorphContour::outline()), else the polygons.
 
   \code
   const vpMorphRigidShape t(tmpl), q(view);
@@ -59,6 +62,9 @@ public:
     //! takes away, so a view of the target never sticks out of it (0 for an input without a measured region: a
     //! silhouette joined across its occluder, vpMorphContourExtractor::extractJoined(), has bridges that may)
     double outsideShare = 0.0;
+    //! share of the input's outline on its own edge (vpMorphContour::ownEdge()) and not within tolerance of the
+    //! target: the view's own boundary where the target has none (0 without marks)
+    double unexplainedShare = 0.0;
     vpMorphHomography homography; //!< input to target, pixels (identity when the fit failed)
     vpMorphRigidTransform start;  //!< the similarity the fit started from (of the hypotheses tried, the best's)
     bool fitted = false;          //!< the fit converged to a possible view (else the shares are 0 and the cost 1)
@@ -87,12 +93,12 @@ public:
   /*!
     How surely the view \e input is target \e a rather than target \e b, from their comparisons \e ra and \e rb
     (fitted): b's cost less a's, each with what of the target the view hides counted as neutral. A target's sample
-    that the view does not show counts 0 when its nearest sample of the view's outline is an occluder's edge (a
-    sample neither target explains), 1 otherwise: an occluder hides only behind its edge, and a part that the other
-    target's outline closes off is absent, not hidden. When the view shows an occluder's edge, the three samples' worth
-    by which its stretches' six ends (two on each outline) can tip either way are taken off. About 0 when the view
-    cannot tell the two apart, at most 1.
-    \throw vpMorphException::badParameterError when either comparison was not fitted.
+    that the view does not show counts 0 when its nearest sample of the view's outline is an occluder's edge (no own
+    edge of the view, vpMorphContour::ownEdge(); without marks, a sample neither target explains), 1 otherwise: an
+    occluder hides only behind its edge, and a part that the other target's outline closes off is absent, not hidden.
+    When the view shows an occluder's edge, the three samples' worth by which its stretches' six ends (two on each
+    outline) can tip either way are taken off. About 0 when the view cannot tell the two apart, at most 1. \throw
+    vpMorphException::badParameterError when either comparison was not fitted.
   */
   static double evidence(const vpMorphRigidShape &input, const vpMorphRigidShape &a, const Result &ra,
                          const vpMorphRigidShape &b, const Result &rb);

@@ -1,0 +1,57 @@
+/*
+  \file vpMorphLevelSpread.h
+  \brief Internal to the morph module (not installed): the spread of a surface's grey levels, robust to another surface
+  beside it (vpMorphRegionMeasure, vpMorphOwnEdges).
+*/
+#ifndef VP_MORPH_LEVEL_SPREAD_H
+#define VP_MORPH_LEVEL_SPREAD_H
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+namespace vpMorphLevelSpread
+{
+// The half-width of a surface's levels about their centre: 4 sigma of a normal noise (sigma = 1.4826 MAD), at least
+// half a grey level (the quantisation's).
+inline double fourSigma(double mad) { return std::max(0.5, 4.0 * 1.4826 * mad); }
+
+// The median of a histogram of deviations (0 when empty).
+inline double medianOf(const std::array<long, 256> &dev)
+{
+  long total = 0, acc = 0;
+  for (long c : dev)
+    total += c;
+  for (int d = 0; d < 256; ++d) {
+    acc += dev[d];
+    if (total > 0 && 2 * acc >= total)
+      return d;
+  }
+  return 0.0;
+}
+
+// The median of \e v (reordered; 0 when empty).
+inline double median(std::vector<double> &v)
+{
+  if (v.empty())
+    return 0.0;
+  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+/*
+  The median absolute deviation of a surface's levels, from the side of their centre that deviates less: \e below and
+  \e above the median deviations on each side. Why: a normal noise deviates alike on both sides, while another surface
+  in the mask lies on one side of the main one and inflates that side's only. A side that reaches the sensor's limit
+  (\e belowClipped, \e aboveClipped: pixels at 0 or 255 in the mask) is clipped and deviates less for that: it counts
+  only when both do.
+*/
+inline double oneSidedMad(double below, bool belowClipped, double above, bool aboveClipped)
+{
+  if (belowClipped != aboveClipped)
+    return belowClipped ? above : below;
+  return std::min(above, below);
+}
+} // namespace vpMorphLevelSpread
+
+#endif
