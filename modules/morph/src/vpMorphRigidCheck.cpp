@@ -171,16 +171,16 @@ bool admissible(const Mat3 &G, const vpMorphRigidShapeData &in, const Frames &f)
 }
 
 /*
-  Share of \e side's fine samples within tol of \e edges (the other curve's) once mapped by H (pixels), their mean
-  truncated quadratic distance, (when \e outside is given) the share beyond 2 tol outside the other curve and (when \e
+  Share of \e side's fine samples within tol of the other curve once mapped by H (pixels), their mean truncated
+  quadratic distance, (when \e outside is given) the share beyond 2 tol outside the other curve and (when \e
   unexplained is given) the share on its own edge (vpMorphContour::ownEdge()) beyond tol. With \e base (the other side's
   mean, 0 for the first side) and \e abandonAbove >= 0: false as soon as the check's cost, 0.5 (base + mean), is sure to
   exceed abandonAbove, \e cost then that bound (a partial sum of terms >= 0 never exceeds the sum, rounding included,
   and the operations after it are monotone).
 */
-bool measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &other, const vpMorphNearestEdge &edges,
-             const Mat3 &H, double tol, double &share, double &cost, double *outside = nullptr,
-             double *unexplained = nullptr, double base = 0.0, double abandonAbove = -1.0)
+bool measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &other, const Mat3 &H, double tol,
+             double &share, double &cost, double *outside = nullptr, double *unexplained = nullptr, double base = 0.0,
+             double abandonAbove = -1.0)
 {
   std::size_t on = 0, out = 0, own = 0;
   double sum = 0.0;
@@ -193,7 +193,7 @@ bool measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &oth
     }
     double X, Y, w, mx, my, d = 2.0 * tol; // beyond tol: unexplained
     if (project(H, side.fx[i], side.fy[i], X, Y, w)) {
-      const double e = std::fabs(edges.within(X, Y, 2.0 * tol, mx, my)); // +inf beyond 2 tol
+      const double e = std::fabs(other.fineEdges.within(X, Y, 2.0 * tol, mx, my)); // +inf beyond 2 tol
       if (e <= tol) {
         d = e;
         ++on;
@@ -227,8 +227,7 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &inpu
   return checkFrom(input, target, start, -1.0);
 }
 
-vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &input,
-                                                       const vpMorphRigidShape &target,
+vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                                                        const vpMorphRigidTransform &start, double abandonAbove)
 {
   if (input.empty() || target.empty())
@@ -257,12 +256,11 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &
   // A silhouette joined across its occluder (no measured region) has bridges, which may pass outside the target.
   // Abandoned: the result is the bound on the cost that exceeds abandonAbove.
   Result abandoned;
-  if (!measure(in, tg, tg.fineEdges, H, tol, r.inputShare, abandoned.cost,
-               in.contour.hasRegion() ? &r.outsideShare : nullptr, &r.unexplainedShare, 0.0, abandonAbove))
+  if (!measure(in, tg, H, tol, r.inputShare, abandoned.cost, in.contour.hasRegion() ? &r.outsideShare : nullptr,
+               &r.unexplainedShare, 0.0, abandonAbove))
     return abandoned;
   ci = abandoned.cost;
-  if (!measure(tg, in, in.fineEdges, H.inverse(), tol, r.targetShare, abandoned.cost, nullptr, nullptr, ci,
-               abandonAbove))
+  if (!measure(tg, in, H.inverse(), tol, r.targetShare, abandoned.cost, nullptr, nullptr, ci, abandonAbove))
     return abandoned;
   ct = abandoned.cost;
   r.cost = 0.5 * (ci + ct);
