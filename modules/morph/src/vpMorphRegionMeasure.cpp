@@ -429,11 +429,11 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
     const double ex = gx.at<float>(p.y, p.x), ey = gy.at<float>(p.y, p.x), m = std::hypot(ex, ey);
     if (!(m > std::fabs(fgp - bgp) / 16.0))
       continue;
-    const double out_ = bgp > fgp ? 1.0 / m : -1.0 / m; // the gradient rises towards the brighter side
+    const double outScale = bgp > fgp ? 1.0 / m : -1.0 / m; // the gradient rises towards the brighter side
     const bool alongRow = std::fabs(ex) >= std::fabs(ey);
     double pos, spread;
     if (whole && integral(p, alongRow, pos, spread)) {
-      add(alongRow ? cv::Point2d(pos + tl.x, p0.y) : cv::Point2d(p0.x, pos + tl.y), ex * out_, ey * out_);
+      add(alongRow ? cv::Point2d(pos + tl.x, p0.y) : cv::Point2d(p0.x, pos + tl.y), ex * outScale, ey * outScale);
       spreads.push_back(std::sqrt(M_PI) * spread * (alongRow ? std::fabs(ex) : std::fabs(ey)) / m);
       continue;
     }
@@ -451,7 +451,7 @@ std::vector<cv::Point2d> edgeOutline(const cv::Mat &g, const cv::Mat &gx, const 
     }
     if (!std::isfinite(best))
       continue;
-    add(cv::Point2d(p0.x + best * nx, p0.y + best * ny), ex * out_, ey * out_);
+    add(cv::Point2d(p0.x + best * nx, p0.y + best * ny), ex * outScale, ey * outScale);
   }
   const bool gapAtEnd = gap || !measured;
   while (out.size() > 1 && same(out.front(), out.back())) {

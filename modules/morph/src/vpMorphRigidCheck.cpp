@@ -111,7 +111,7 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
       return false;
     const double x = v(0) / v(2), y = v(1) / v(2);
     double mx, my;
-    const double r = in.ownEdges.within(f.ci_x + x * f.si, f.ci_y + y * f.si, c * f.si, mx, my) / f.si;
+    const double r = in.ownEdges().within(f.ci_x + x * f.si, f.ci_y + y * f.si, c * f.si, mx, my) / f.si;
     const double wt = std::isfinite(r) ? tukey(r, c) : 0.0;
     if (wt <= 0.0)
       continue;

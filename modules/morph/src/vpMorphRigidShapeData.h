@@ -5,9 +5,11 @@
 #ifndef VP_MORPH_RIGID_SHAPE_DATA_H
 #define VP_MORPH_RIGID_SHAPE_DATA_H
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <vector>
 
@@ -45,10 +47,10 @@ struct vpMorphRigidShapeData
   vpMorphContour fine;          // the fine curve, counter-clockwise
   vpMorphNearestEdge fineEdges; // on it
   bool marked;                  // the fine curve tells its own edges (vpMorphContour::ownEdge())
-  vpMorphNearestEdge ownEdges;  // on its own edges when marked, else on all of it
   vpMorphInsideTest fineInside; // whether a point is inside it
   std::vector<double> fx, fy;   // kFineSamples samples along it, pixels
   std::vector<char> fown;       // per sample, whether it lies on the object's own edge (vpMorphContour::ownEdge())
+  std::unique_ptr<const vpMorphNearestEdge> ownOnly;   // on its own edges, when some are not
   std::vector<vpMorphRigidShape::Symmetry> symmetries; // its turns onto itself, least cost first
   // The blur ladder (vpMorphRigidShape::atBlur()): rung k is the shape at blur k x blurRung(), empty when the blur
   // erases the part; filled on first use under the mutex, never erased (references to rungs stay valid).
@@ -57,8 +59,7 @@ struct vpMorphRigidShapeData
 
   explicit vpMorphRigidShapeData(const vpMorphContour &c)
     : contour(c), polygon(c.counterClockwise()), edges(polygon), measured(c.hasOutline()),
-      fine(c.outline().counterClockwise()), fineEdges(fine), marked(fine.hasOwnEdges()), ownEdges(fine, ownMarks(fine)),
-      fineInside(fine)
+      fine(c.outline().counterClockwise()), fineEdges(fine), marked(fine.hasOwnEdges()), fineInside(fine)
   {
     const vpMorphContour s = fine.resampled(kFineSamples);
     fx = s.xs();
@@ -66,15 +67,15 @@ struct vpMorphRigidShapeData
     fown.resize(fx.size());
     for (std::size_t k = 0; k < fown.size(); ++k)
       fown[k] = s.ownEdge(k);
+    std::vector<char> keep(fine.size());
+    for (std::size_t k = 0; k < keep.size(); ++k)
+      keep[k] = fine.ownEdge(k);
+    if (marked && std::find(keep.begin(), keep.end(), 0) != keep.end())
+      ownOnly.reset(new vpMorphNearestEdge(fine, keep));
   }
 
-  static std::vector<char> ownMarks(const vpMorphContour &c)
-  {
-    std::vector<char> m(c.hasOwnEdges() ? c.size() : 0);
-    for (std::size_t k = 0; k < m.size(); ++k)
-      m[k] = c.ownEdge(k);
-    return m;
-  }
+  // The fine curve's own edges (all of it when unmarked or all its own).
+  const vpMorphNearestEdge &ownEdges() const { return ownOnly ? *ownOnly : fineEdges; }
 
   // Signed distance (sizes) at normalised (X, Y) and its gradient; false outside the grid.
   bool distanceAt(double X, double Y, double &d, double &gx, double &gy) const
