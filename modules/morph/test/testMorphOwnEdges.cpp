@@ -118,7 +118,7 @@ TEST_CASE("contour: the own-edge marks follow their edges through the geometric 
   CHECK_FALSE(c.hasOwnEdges());
 }
 
-TEST_CASE("extractor: an occluder's edge is no edge of the object's own; the background and the object beyond are",
+TEST_CASE("extractor: an occluder's edge is no edge of the object's own, the background and the object beyond are",
           "[extract][own]")
 {
   int cards = 0; // views whose outline runs along the card
