@@ -228,7 +228,8 @@ TEST_CASE("extractor: a card beside the object, in noise, does not pull the back
     double sum = 0.0;
     std::size_t n = 0;
     for (unsigned int seed = 0; seed < 4; ++seed) {
-      const vpMorphContour &o = vpMorphContourExtractor().extract(noisy(m, 6.0, 20 + seed)).outline();
+      const vpMorphContour c = vpMorphContourExtractor().extract(noisy(m, 6.0, 20 + seed));
+      const vpMorphContour &o = c.outline();
       for (std::size_t k = 0; k < o.size(); ++k)
         if (o.x(k) > 240 && o.x(k) < 390) {
           sum += std::fabs(o.y(k) - 180.0) < 5.0 ? o.y(k) - 180.0 : 300.0 - o.y(k);
