@@ -1,6 +1,6 @@
-// Images shared by the morph unit tests: a test polygon rendered anti-aliased and blurred, distances to an outline, the
-// largest object's boundary and the benchmark scene's square occluder.
-// Include after catch.hpp.
+// Images shared by the morph unit tests: the six tools' images, a test polygon rendered anti-aliased and blurred,
+// distances to an outline, the largest object's boundary and the benchmark scene's square occluder. Include after
+// catch.hpp.
 #ifndef VP_MORPH_TEST_IMAGES_H
 #define VP_MORPH_TEST_IMAGES_H
 
@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <random>
+#include <string>
 #include <vector>
 
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <visp3/core/vpImage.h>
@@ -21,6 +23,14 @@ struct Poly
 {
   std::vector<double> x, y;
 };
+
+//! One of the six tools' images (data/objects/<name>.png), grey levels.
+inline cv::Mat readObject(const std::string &name)
+{
+  cv::Mat m = cv::imread(std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png", cv::IMREAD_GRAYSCALE);
+  REQUIRE_FALSE(m.empty());
+  return m;
+}
 
 // A ten-vertex, non-convex polygon (about 300 x 220 px) with acute and obtuse corners.
 inline Poly testPolygon(double cx = 320, double cy = 240, double theta = 0.0)

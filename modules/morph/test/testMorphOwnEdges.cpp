@@ -21,13 +21,6 @@
 
 namespace
 {
-cv::Mat readGray(const std::string &name)
-{
-  cv::Mat m = cv::imread(std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png", cv::IMREAD_GRAYSCALE);
-  REQUIRE_FALSE(m.empty());
-  return m;
-}
-
 // \e m with Gaussian noise of std \e sigma (seeded), as a ViSP image.
 vpImage<unsigned char> noisy(const cv::Mat &m, double sigma, unsigned int seed)
 {
@@ -123,7 +116,7 @@ TEST_CASE("extractor: an occluder's edge is no edge of the object's own, the bac
 {
   int cards = 0; // views whose outline runs along the card
   for (const char *name : {"key", "wrench", "hammer"}) {
-    const cv::Mat src = readGray(name);
+    const cv::Mat src = vpMorphTest::readObject(name);
     // The object's own outline: its pixels next to the background.
     cv::Mat nearBackground;
     cv::dilate(src == 255, nearBackground, cv::Mat());
@@ -248,7 +241,7 @@ TEST_CASE("rigid check: the view's own edge that the template lacks is unexplain
           "[rigid][own]")
 {
   // The key, the key with a tab 40 px long, and the key with a card over a fifth of its outline.
-  const cv::Mat key = readGray("key");
+  const cv::Mat key = vpMorphTest::readObject("key");
   cv::Mat tabbed = key.clone();
   cv::rectangle(tabbed, cv::Point(300, 190), cv::Point(308, 230), cv::Scalar(0), cv::FILLED);
   const std::vector<cv::Point> boundary = vpMorphTest::largestBoundary(key);

@@ -28,13 +28,6 @@ namespace
 {
 const char *kObjects[] = {"key", "pliers", "wedge", "wrench", "screwdriver", "hammer"};
 
-cv::Mat readGray(const std::string &name)
-{
-  cv::Mat m = cv::imread(std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png", cv::IMREAD_GRAYSCALE);
-  REQUIRE_FALSE(m.empty());
-  return m;
-}
-
 vpMorphContour extract(const cv::Mat &m, bool joined = false)
 {
   vpImage<unsigned char> I(static_cast<unsigned int>(m.rows), static_cast<unsigned int>(m.cols));
@@ -90,7 +83,7 @@ cv::Mat tilted(const cv::Mat &src, double deg, double roll)
 TEST_CASE("rigid shape: a view turned, shifted, scaled and noisy is laid on its template", "[rigid]")
 {
   for (const char *name : kObjects) {
-    const cv::Mat src = readGray(name);
+    const cv::Mat src = vpMorphTest::readObject(name);
     const vpMorphRigidShape t(extract(src));
     struct Case
     {
@@ -118,7 +111,7 @@ TEST_CASE("rigid shape: a fifth of the outline under a card still lies on its te
 {
   double least = 1.0;
   for (const char *name : kObjects) {
-    const cv::Mat src = readGray(name);
+    const cv::Mat src = vpMorphTest::readObject(name);
     const vpMorphRigidShape t(extract(src));
     for (double where : {0.1, 0.4, 0.7}) {
       const cv::Mat v =
@@ -150,7 +143,7 @@ TEST_CASE("rigid check: a star of alike lobes is laid lobe on lobe, each lobe tr
   // Nine turns onto itself, a tenth of a turn apart, each cheaper than any of the six tools' turns onto themselves.
   double tools = 2.0;
   for (const char *name : kObjects) {
-    const vpMorphRigidShape tool(extract(readGray(name)));
+    const vpMorphRigidShape tool(extract(vpMorphTest::readObject(name)));
     for (const vpMorphRigidShape::Symmetry &y : tool.symmetries())
       tools = std::min(tools, y.cost);
   }
@@ -173,7 +166,7 @@ TEST_CASE("rigid check: a star of alike lobes is laid lobe on lobe, each lobe tr
   vpMorphDatabase db(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
   db.add(vpMorphTemplate("star", t.contour()));
   for (const char *name : kObjects)
-    db.add(vpMorphTemplate(name, extract(readGray(name))));
+    db.add(vpMorphTemplate(name, extract(vpMorphTest::readObject(name))));
   for (bool prune : {true, false}) {
     const vpMorphRecognition g = db.recognize(q.contour(), prune);
     CAPTURE(prune, g.index, g.support);
@@ -186,8 +179,8 @@ TEST_CASE("rigid check: a tilted view coincides with its template through the ho
           "[rigid]")
 {
   for (const char *name : {"key", "wrench", "screwdriver"}) {
-    const cv::Mat src = readGray(name);
-    const vpMorphRigidShape t(extract(src)), bent(extract(readGray(std::string(name) + "-deformed")));
+    const cv::Mat src = vpMorphTest::readObject(name);
+    const vpMorphRigidShape t(extract(src)), bent(extract(vpMorphTest::readObject(std::string(name) + "-deformed")));
     const vpMorphRigidShape q(extract(warp(src, tilted(src, 10.0, 35.0), 6, 7)));
     const vpMorphRigidCheck::Result own = vpMorphRigidCheck::check(q, t, q.alignOn(t));
     const vpMorphRigidCheck::Result other = vpMorphRigidCheck::check(q, bent, q.alignOn(bent));
@@ -201,10 +194,10 @@ TEST_CASE("rigid check: a tilted view coincides with its template through the ho
 
 TEST_CASE("rigid check: one shape at two sizes, and bad input", "[rigid][safety]")
 {
-  const cv::Mat key = readGray("key");
+  const cv::Mat key = vpMorphTest::readObject("key");
   cv::Mat half;
   cv::resize(key, half, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
-  const vpMorphContour k = extract(key), h = extract(half), w = extract(readGray("wrench"));
+  const vpMorphContour k = extract(key), h = extract(half), w = extract(vpMorphTest::readObject("wrench"));
   CHECK(vpMorphRigidCheck::similarityDeviation(h, k) <= std::sqrt(2.0));
   CHECK(vpMorphRigidCheck::similarityDeviation(k, h) <= std::sqrt(2.0));
   CHECK(vpMorphRigidCheck::similarityDeviation(w, k) > 5.0);
@@ -236,9 +229,10 @@ vpMorphDatabase toolsAndBentDrawings(std::vector<cv::Mat> &images)
 {
   vpMorphDatabase db(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
   for (const char *n : kObjects) {
-    images.push_back(readGray(n));
+    images.push_back(vpMorphTest::readObject(n));
     db.add(vpMorphTemplate(n, extract(images.back())));
-    db.add(vpMorphTemplate(std::string(n) + "-deformed", extract(readGray(std::string(n) + "-deformed"))));
+    db.add(
+        vpMorphTemplate(std::string(n) + "-deformed", extract(vpMorphTest::readObject(std::string(n) + "-deformed"))));
   }
   return db;
 }
@@ -499,7 +493,7 @@ TEST_CASE("rigid recognition: two look-alikes that differ only under the card ar
   // The key, and the key with a tab 40 px long sticking out of one side. Seen whole, each is named. With the tab
   // under a card, the view's own outline is explained alike by both: a rejection, although the plain key, with less
   // outline under the card, costs less (the template's side of the cost counts what the card hides against it).
-  const cv::Mat key = readGray("key");
+  const cv::Mat key = vpMorphTest::readObject("key");
   const std::vector<cv::Point> boundary = vpMorphTest::largestBoundary(key);
   const std::size_t i = boundary.size() * 3 / 10;
   const cv::Point at = boundary[i],
@@ -558,7 +552,7 @@ TEST_CASE("vpMorphInsideTest answers as the even-odd scan of every edge", "[rigi
   };
   std::mt19937 rng(21);
   for (const char *name : kObjects) {
-    const vpMorphContour c = extract(readGray(name)).outline();
+    const vpMorphContour c = extract(vpMorphTest::readObject(name)).outline();
     REQUIRE(c.size() > 100);
     const vpMorphInsideTest inside(c);
     const auto bx = std::minmax_element(c.xs().begin(), c.xs().end());
