@@ -232,6 +232,11 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &
 {
   if (input.empty() || target.empty())
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck: empty shape");
+  // A start off the sizes a view of the target can have (as the coarse stage's: vpMorphRigidShape) is no view of it,
+  // and laying either at the other's blur through it would blur a part out of all measure.
+  const double sizes = start.scale() * input.m_data->size / target.m_data->size;
+  if (!(sizes >= 0.5 && sizes <= 2.0))
+    return Result();
   const vpMorphRigidShapeData &in = *laidInput(input, target, start).m_data,
                               &tg = *laidTarget(input, target, start).m_data;
   if (in.contour.units() != tg.contour.units())

@@ -113,9 +113,11 @@ vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &que
                                   [&l](const View &x) { return x.index == l.index && x.pose == npos; });
       if (v == views.end())
         continue; // not among the views searched
-      vpMorphRigidShape::Alignment carried;
-      carried.transform = l.transform * fitted;
-      compare(static_cast<std::size_t>(v - views.begin()), carried);
+      // As a shortlisted template is compared, and from the best's fit carried over.
+      vpMorphRigidShape::Alignment a = query.alignOn(*v->shape, true);
+      const vpMorphRigidTransform carried = l.transform * fitted;
+      a.symmetric.push_back(vpMorphRigidShape::Hypothesis{carried, query.cost(*v->shape, carried)});
+      compare(static_cast<std::size_t>(v - views.begin()), a);
     }
     ranked();
   }

@@ -31,8 +31,9 @@ struct vpMorphRigidView
   checks they agree). An articulated template has several views (its taught one and its poses): its coarsely best
   view is the one compared.
   Given \e lookAlikes (per template, vpMorphDatabase::lookAlikes()), the look-alikes of a best that is \e acceptable (a
-  taught view) are then compared exactly too, from the best's fitted start carried over by the look-alike's transform;
-  and so on for a new best. An acceptable answer is then compared with every template a view of it could be taken
+  taught view) are then compared exactly too, as a shortlisted template is and from the best's fitted start carried
+  over by the look-alike's transform (a start at a wrong turn of the best carries the same wrong turn over); and so
+  on for a new best. An acceptable answer is then compared with every template a view of it could be taken
   for, whatever the coarse stage ranked.
 */
 class vpMorphRigidSearch

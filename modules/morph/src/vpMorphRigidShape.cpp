@@ -22,6 +22,7 @@ constexpr int kVoteCells = 32; // shift accumulator cells a side, over [-kVoteRa
 constexpr double kVoteRange = 1.2;
 constexpr int kIterations = 6;      // Gauss-Newton steps on the grid at most
 constexpr int kFirstIterations = 2; // of them, for every turn before the two best go on
+constexpr int kSweepTurns = 18;     // the sweep's turns, 20 deg apart: within a refinement's reach (class description)
 constexpr double kTwoPi = 2.0 * M_PI;
 // Scale of the coarse stage (fraction of the perimeter): the finest of the multiscale distance's, several times the
 // largest documented blur (1.5 px) on a part's outline of some hundreds of pixels.
@@ -497,6 +498,28 @@ void vpMorphRigidShape::addSymmetric(const vpMorphRigidShape &target, Alignment 
     const Sim turned = compose(Sim{y.a, y.b, y.tx, y.ty}, best);
     if (!a.hasAlternative || turnsApart(turned, other))
       a.symmetric.push_back(Hypothesis{toPixels(in, t, turned), hypothesisCost(in, t, turned)});
+  }
+  // The sweep: the winner turned about the target's centre and refined on this view, two steps each and the rest for
+  // those still within the bound, as alignOn()'s turns are.
+  const double bound = 2.0 * a.cost;
+  std::vector<Sim> kept{best};
+  if (a.hasAlternative)
+    kept.push_back(other);
+  for (const Hypothesis &h : a.symmetric)
+    kept.push_back(toSim(in, t, h.transform));
+  for (int k = 1; k < kSweepTurns; ++k) {
+    const double turn = kTwoPi * k / kSweepTurns;
+    Sim s = refine(in, t, compose(Sim{std::cos(turn), std::sin(turn), 0.0, 0.0}, best), tau(), kFirstIterations);
+    double cost = hypothesisCost(in, t, s);
+    if (!(cost < 2.0) || cost > bound)
+      continue; // off the plausible scales, or ruled out
+    s = refine(in, t, s, tau(), kIterations - kFirstIterations);
+    cost = hypothesisCost(in, t, s);
+    if (!(cost < 2.0) || cost > bound ||
+        std::any_of(kept.begin(), kept.end(), [&s](const Sim &q) { return !turnsApart(s, q); }))
+      continue;
+    kept.push_back(s);
+    a.symmetric.push_back(Hypothesis{toPixels(in, t, s), cost});
   }
 }
 

@@ -54,10 +54,11 @@ struct vpMorphRigidView; // a template view of the RIGID search (internal)
   runner-up, if acceptable too, is told from it by at least ambiguity() (vpMorphRigidCheck::evidence(): outline that
   one explains and the other not, on the view's side, and on the templates' side what the view says is absent rather
   than hidden; look-alikes that differ only where the view is hidden are not told apart: rejected).
-  Before that, when the best template would accept the view, its lookAlikes() are compared exactly too, each from the
-  best's fitted start carried over by the two templates' own alignment (and so on, should one of them become the best):
-  a view is accepted only against every template whose views could be taken for it, not only against those the coarse
-  stage happened to rank (calibrate() finds the look-alikes; an uncalibrated database compares the shortlist only).
+  Before that, when the best template would accept the view, its lookAlikes() are compared exactly too, each as a
+  shortlisted template is and from the best's fitted start carried over by the two templates' own alignment (and so
+  on, should one of them become the best): a view is accepted only against every template whose views could be taken
+  for it, not only against those the coarse stage happened to rank (calibrate() finds the look-alikes; an
+  uncalibrated database compares the shortlist only).
 
   <b>Search.</b> recognize() visits the templates by increasing lower bound of their distance and stops when the bound
   exceeds the runner-up's distance: the result is exactly that of recognize(c, false). An articulated template is also

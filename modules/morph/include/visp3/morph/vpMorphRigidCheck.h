@@ -26,7 +26,9 @@
   sharper of the two is first laid at the other's blur (vpMorphRigidShape::atBlur(), the start's scale converting
   between their pixels), so that the two are compared as one image would show them.
 
-  check(input, target, start): from the similarity \e start (input to target, vpMorphRigidShape::alignOn()), the
+  check(input, target, start): a start that scales the input's size (square root of its area) to less than half or
+  more than twice the target's is no view of it (as vpMorphRigidShape's hypotheses) and is not fitted. From the
+  similarity \e start (input to target, vpMorphRigidShape::alignOn()), the
   homography is fitted by Gauss-Newton on point-to-edge distances both ways (64 points of each outline onto the
   other's edges, Tukey weights whose cut-off shrinks from a twentieth of the target's size to twice tolerance(): the
   parts one outline lacks, hidden or an occluder's edge, drop out). When the input's outline tells its own edges

@@ -47,6 +47,12 @@ struct vpMorphRigidShapeData; // the prepared data (internal)
   -# The winner turned by each of the target's symmetries (symmetries(), found once when it is prepared) that its
      cost cannot rule out (Alignment::symmetric): four candidate turns cannot cover a star's ten alike lobes, and the
      smoothed outlines rank them by chance, so the outlines decide (vpMorphRigidCheck tries each).
+  -# The winner turned by every eighteenth of a turn about the target's centre, each refined on this input, and kept
+     (Alignment::symmetric) when its cost is at most twice the winner's: a near-isotropic outline (an apple, a watch)
+     has no orientation peak to turn on, and an occluder can rank a wrong turn of it first, which no symmetry of the
+     target's whole outline describes. 18 turns: the refinement pulls the samples within tau() of the target's edges,
+     and a turn of 10 deg moves the outline of a disc of unit area by 0.56 x 0.17 = 0.098 sizes, so every turn lies
+     within reach of one of them.
   The cost of the result is the mean distance, truncated at tau() and divided by it, of the input's samples to the
   target plus that of the target's samples to the input (each on the other's grid): 0 for outlines that coincide, 2
   for none in common. It ranks templates; it does not decide (vpMorphRigidCheck does, on the outlines).
@@ -78,7 +84,9 @@ public:
       \e transform followed by each of the target's turns onto itself (symmetries()) that the cost cannot rule out, and
       other than \e alternative: a turn whose own cost is at most twice this alignment's (were the turned hypothesis
       the true one at no more than that cost, the triangle inequality on the truncated distances would bound the
-      turn's cost by the sum of the two). Each with its cost, unrefined.
+      turn's cost by the sum of the two). Each with its cost, unrefined. Then the turns of the sweep (see the class
+      description) that cost at most twice this alignment's, refined, each more than 10 deg from every hypothesis
+      before it.
     */
     std::vector<Hypothesis> symmetric;
   };
