@@ -178,10 +178,10 @@ TEST_CASE("rigid check: a star of alike lobes is laid lobe on lobe, each lobe tr
 TEST_CASE("rigid check: a near-isotropic part under a card is laid at the turn its outline shows, not the coarse one",
           "[rigid][symmetry]")
 {
-  // An MPEG-7 apple as the bench renders it from 0.5 m, a light-grey card over its stem and leaf, and the database of
-  // it and a look-alike apple (data/apple-goals.json). Without its stem the apple is nearly a disc: the orientation
-  // histograms give no turn to go by, and the coarse stage's best turn lays the view's bottom dimple on the
-  // template's stem socket, about half a turn off.
+  // A view of an MPEG-7 apple as vispmorph-reid renders it (development seed 104), a light-grey card over its stem
+  // and leaf, and the database of it and a look-alike apple taught at 0.5 m (data/apple-goals.json). Without its stem
+  // the apple is nearly a disc: the orientation histograms give no turn to go by, and the coarse stage's best turn
+  // lays the view's bottom dimple on the template's stem socket, about half a turn off.
   const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
   vpImage<unsigned char> V;
   vpImageIo::read(V, (data / "apple-under-card-view.png").string());
