@@ -77,15 +77,7 @@ struct LevelHistogram
   */
   void window(int &med, double &halfWidth) const
   {
-    long acc = 0;
-    med = 255;
-    for (int v = 0; v < 256; ++v) {
-      acc += h[v];
-      if (2 * acc >= n) {
-        med = v;
-        break;
-      }
-    }
+    med = static_cast<int>(medianOf(h));
     std::array<long, 256> below{}, above{}; // histograms of the deviations on each side, the median's own in both
     for (int v = 0; v < 256; ++v)
       (v <= med ? below : above)[std::abs(v - med)] += h[v];
@@ -493,9 +485,8 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
   box &= cv::Rect(0, 0, grey.cols, grey.rows);
   const cv::Mat g = grey(box);
   cv::Mat region = cv::Mat::zeros(box.size(), CV_8UC1);
-  const std::vector<std::vector<cv::Point> > polys{reg.chain};
-  cv::drawContours(region, polys, 0, cv::Scalar(255), cv::FILLED, cv::LINE_8, cv::noArray(), INT_MAX,
-                   -box.tl());
+  const std::vector<std::vector<cv::Point>> polys{reg.chain};
+  cv::drawContours(region, polys, 0, cv::Scalar(255), cv::FILLED, cv::LINE_8, cv::noArray(), INT_MAX, -box.tl());
   const cv::Mat k3 = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
   cv::Mat others, inner, outer, outerMore, band, ring;
   cv::bitwise_and(bin(box), ~region, others);

@@ -170,6 +170,18 @@ bool admissible(const Mat3 &G, const vpMorphRigidShapeData &in, const Frames &f)
   return true;
 }
 
+// \e side's fine sample \e i mapped by H to (X, Y), and \e e its distance to \e other's outline (+inf beyond 2 tol);
+// false when it maps to infinity.
+inline bool mapped(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &other, const Mat3 &H, double tol,
+                   std::size_t i, double &X, double &Y, double &e)
+{
+  double w, mx, my;
+  if (!project(H, side.fx[i], side.fy[i], X, Y, w))
+    return false;
+  e = std::fabs(other.fineEdges.within(X, Y, 2.0 * tol, mx, my));
+  return true;
+}
+
 /*
   Share of \e side's fine samples within tol of the other curve once mapped by H (pixels), their mean truncated
   quadratic distance, (when \e outside is given) the share beyond 2 tol outside the other curve and (when \e
@@ -191,9 +203,8 @@ bool measure(const vpMorphRigidShapeData &side, const vpMorphRigidShapeData &oth
       cost = 0.5 * (base + sum / n);
       return false;
     }
-    double X, Y, w, mx, my, d = 2.0 * tol; // beyond tol: unexplained
-    if (project(H, side.fx[i], side.fy[i], X, Y, w)) {
-      const double e = std::fabs(other.fineEdges.within(X, Y, 2.0 * tol, mx, my)); // +inf beyond 2 tol
+    double X, Y, e, d = 2.0 * tol; // beyond tol: unexplained
+    if (mapped(side, other, H, tol, i, X, Y, e)) {
       if (e <= tol) {
         d = e;
         ++on;
@@ -373,13 +384,10 @@ Mat3 toMat3(const vpMorphHomography &h)
 std::vector<double> terms(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, const Mat3 &H, double tol)
 {
   std::vector<double> t(in.fx.size(), 1.0);
-  double X, Y, w, mx, my;
+  double X, Y, d;
   for (std::size_t i = 0; i < t.size(); ++i)
-    if (project(H, in.fx[i], in.fy[i], X, Y, w)) {
-      const double d = std::fabs(tg.fineEdges.within(X, Y, 2.0 * tol, mx, my));
-      if (d <= tol)
-        t[i] = d * d / (tol * tol);
-    }
+    if (mapped(in, tg, H, tol, i, X, Y, d) && d <= tol)
+      t[i] = d * d / (tol * tol);
   return t;
 }
 
