@@ -240,6 +240,17 @@ TEST_CASE("rigid check: one shape at two sizes, and bad input", "[rigid][safety]
   CHECK_THROWS_AS(empty.alignOn(a), vpMorphException);
   CHECK_THROWS_AS(a.alignOn(empty), vpMorphException);
   CHECK_THROWS_AS(vpMorphRigidCheck::check(empty, a, vpMorphRigidTransform()), vpMorphException);
+  // A start that no view of the part is (the view scaled to a hundredth or a hundred times the template's size): not
+  // fitted, and not laid at the blur such a scale would ask for.
+  double kx, ky;
+  k.centroid(kx, ky);
+  CHECK(vpMorphRigidCheck::check(a, a, vpMorphRigidTransform()).fitted);
+  for (double scale : {0.01, 100.0}) {
+    const vpMorphRigidCheck::Result r =
+        vpMorphRigidCheck::check(a, a, vpMorphRigidTransform(0.0, 0.0, 0.0, scale, kx, ky));
+    CHECK_FALSE(r.fitted);
+    CHECK(r.cost == 1.0);
+  }
   const vpMorphContour normalized(k.xs(), k.ys(), vpMorphContour::NORMALIZED);
   CHECK_THROWS_AS(vpMorphRigidCheck::check(normalized, k, vpMorphRigidTransform()), vpMorphException);
   CHECK_THROWS_AS(vpMorphRigidCheck::similarityDeviation(k, k, 1.5), vpMorphException);
