@@ -5,6 +5,10 @@
 #include <cmath>
 #include <cstdint>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 #include <visp3/morph/vpMorphException.h>
 
 #include "vpMorphRigidShapeData.h"
@@ -145,6 +149,7 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
     r = kGridMargin * r / d->size;
     d->lo = -r;
     d->step = 2.0 * r / (kGrid - 1);
+    d->invStep = 1.0 / d->step;
     d->grid.resize(static_cast<std::size_t>(kGrid * kGrid));
     std::vector<double> xs;
     for (int j = 0; j < kGrid; ++j) {
@@ -278,6 +283,7 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
   constexpr double cell = 2.0 * kVoteRange / kVoteCells;
   constexpr int W = kVoteCells + 2; // a cell of margin all round: the 3 x 3 sums need no bounds
   constexpr int kOut = W * W;       // where a shift off the accumulator votes (never read): no branch to mispredict
+  static_assert(W == 34, "the vectorised cell index below multiplies by 34 as 32 + 2");
   std::array<std::array<std::uint8_t, W * W + 1>, kNScales> acc{};
   std::array<std::array<int, kVoteCells * kVoteCells>, kNScales> seeds; // cells that reached two votes
   int nSeeds[kNScales] = {};
@@ -299,6 +305,30 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
     const int b1 = b0 + 2 * kVoteTolerance + 1; // one past the last bin, unwrapped: up to kBins + 2 kVoteTolerance
     const int ranges[2][2] = {{t.bucketStart[b0], t.bucketStart[std::min(b1, kBins)]},
                               {t.bucketStart[0], t.bucketStart[std::max(b1 - kBins, 0)]}};
+#ifdef __SSE2__
+    // The three scales' cells at once, in the lanes of one register (the fourth lane repeats the third and is unused):
+    // the same float differences and truncations as the scalar loop below.
+    const __m128 OX = _mm_setr_ps(ox[0], ox[1], ox[2], ox[2]), OY = _mm_setr_ps(oy[0], oy[1], oy[2], oy[2]);
+    const __m128 zero = _mm_setzero_ps(), side = _mm_set1_ps(static_cast<float>(kVoteCells));
+    const __m128i first = _mm_set1_epi32(W + 1), out = _mm_set1_epi32(kOut);
+    for (const auto &range : ranges)
+      for (int k = range[0]; k < range[1]; ++k) {
+        const __m128 fx = _mm_sub_ps(_mm_set1_ps(vx[k]), OX), fy = _mm_sub_ps(_mm_set1_ps(vy[k]), OY);
+        const __m128 on = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(fx, zero), _mm_cmpge_ps(fy, zero)),
+                                     _mm_and_ps(_mm_cmplt_ps(fx, side), _mm_cmplt_ps(fy, side)));
+        const __m128i ix = _mm_cvttps_epi32(fx), iy = _mm_cvttps_epi32(fy);
+        // (iy + 1) W + ix + 1 with W = 34 = 32 + 2
+        const __m128i cell =
+            _mm_add_epi32(_mm_add_epi32(_mm_slli_epi32(iy, 5), _mm_slli_epi32(iy, 1)), _mm_add_epi32(ix, first));
+        const __m128i mask = _mm_castps_si128(on);
+        alignas(16) int g[4];
+        _mm_store_si128(reinterpret_cast<__m128i *>(g),
+                        _mm_or_si128(_mm_and_si128(mask, cell), _mm_andnot_si128(mask, out)));
+        for (int s = 0; s < kNScales; ++s)
+          if (++acc[s][g[s]] == 2 && g[s] != kOut) // one vote per input sample and direction bin at most: < 255
+            seeds[s][nSeeds[s]++] = g[s];
+      }
+#else
     for (const auto &range : ranges)
       for (int k = range[0]; k < range[1]; ++k) {
         for (int s = 0; s < kNScales; ++s) {
@@ -309,6 +339,7 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
             seeds[s][nSeeds[s]++] = g;
         }
       }
+#endif
   }
   for (int s = 0; s < kNScales; ++s) {
     out[s] = Vote();
