@@ -45,8 +45,9 @@ inline bool project(const Mat3 &H, double x, double y, double &X, double &Y, dou
   w = H(2, 0) * x + H(2, 1) * y + H(2, 2);
   if (!(std::fabs(w) > 1e-12))
     return false;
-  X = (H(0, 0) * x + H(0, 1) * y + H(0, 2)) / w;
-  Y = (H(1, 0) * x + H(1, 1) * y + H(1, 2)) / w;
+  const double iw = 1.0 / w;
+  X = (H(0, 0) * x + H(0, 1) * y + H(0, 2)) * iw;
+  Y = (H(1, 0) * x + H(1, 1) * y + H(1, 2)) * iw;
   return std::isfinite(X) && std::isfinite(Y);
 }
 
@@ -80,24 +81,24 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
   Mat8 A = Mat8::Zero();
   Vec8 b = Vec8::Zero();
   std::size_t used = 0;
+  const double isi = 1.0 / f.si, ist = 1.0 / f.st;
   // Input to target: r = m . (G u - nearest), in target sizes. Only the input's own edges: an occluder's edge or a
   // bridge is no part of the target's outline.
   for (std::size_t i = 0; i < in.fx.size(); i += kFitStride) {
     if (in.marked && !in.fown[i])
       continue;
-    const double x = (in.fx[i] - f.ci_x) / f.si, y = (in.fy[i] - f.ci_y) / f.si;
+    const double x = (in.fx[i] - f.ci_x) * isi, y = (in.fy[i] - f.ci_y) * isi;
     double X, Y, w;
     if (!project(G, x, y, X, Y, w))
       return false;
     double mx, my;
-    const double r = tg.fineEdges.within(f.ct_x + X * f.st, f.ct_y + Y * f.st, c * f.st, mx, my) / f.st;
+    const double r = tg.fineEdges.within(f.ct_x + X * f.st, f.ct_y + Y * f.st, c * f.st, mx, my) * ist;
     const double wt = std::isfinite(r) ? tukey(r, c) : 0.0;
     if (wt <= 0.0)
       continue;
     // d(X, Y) / d(h11 h12 h13 h21 h22 h23 h31 h32)
-    const Vec8 J = (Vec8() << mx * x / w, mx * y / w, mx / w, my * x / w, my * y / w, my / w,
-                    -(mx * X + my * Y) * x / w, -(mx * X + my * Y) * y / w)
-                       .finished();
+    const double ax = mx / w, ay = my / w, az = -(mx * X + my * Y) / w;
+    const Vec8 J = (Vec8() << ax * x, ax * y, ax, ay * x, ay * y, ay, az * x, az * y).finished();
     A.noalias() += wt * J * J.transpose();
     b.noalias() -= wt * r * J;
     ++used;
@@ -105,13 +106,13 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
   // Target to input through G^-1: d(G^-1 U) = -G^-1 dG G^-1 U; r in input sizes, onto the input's own edges.
   const Mat3 Gi = G.inverse();
   for (std::size_t i = 0; i < tg.fx.size(); i += kFitStride) {
-    const Eigen::Vector3d U((tg.fx[i] - f.ct_x) / f.st, (tg.fy[i] - f.ct_y) / f.st, 1.0);
+    const Eigen::Vector3d U((tg.fx[i] - f.ct_x) * ist, (tg.fy[i] - f.ct_y) * ist, 1.0);
     const Eigen::Vector3d v = Gi * U;
     if (!(std::fabs(v(2)) > 1e-12))
       return false;
-    const double x = v(0) / v(2), y = v(1) / v(2);
+    const double iz = 1.0 / v(2), x = v(0) * iz, y = v(1) * iz;
     double mx, my;
-    const double r = in.ownEdges().within(f.ci_x + x * f.si, f.ci_y + y * f.si, c * f.si, mx, my) / f.si;
+    const double r = in.ownEdges().within(f.ci_x + x * f.si, f.ci_y + y * f.si, c * f.si, mx, my) * isi;
     const double wt = std::isfinite(r) ? tukey(r, c) : 0.0;
     if (wt <= 0.0)
       continue;
@@ -119,7 +120,7 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
     for (int k = 0; k < 8; ++k) {
       const int row = k / 3, col = k % 3; // parameter k is G(row, col)
       const Eigen::Vector3d dv = -Gi.col(row) * v(col);
-      J(k) = (mx * (dv(0) - x * dv(2)) + my * (dv(1) - y * dv(2))) / v(2);
+      J(k) = (mx * (dv(0) - x * dv(2)) + my * (dv(1) - y * dv(2))) * iz;
     }
     A.noalias() += wt * J * J.transpose();
     b.noalias() -= wt * r * J;

@@ -193,9 +193,9 @@ double inputCost(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t
     double d = tau, gx, gy;
     if (t.distanceAt(X, Y, d, gx, gy))
       d = std::min(std::fabs(d), tau);
-    sum += d / tau;
+    sum += d;
   }
-  return sum / static_cast<double>(n);
+  return sum / (tau * static_cast<double>(n));
 }
 
 // Mean truncated distance of the target's samples (every other one), mapped back by \e s, to the input's polygon,
@@ -205,16 +205,17 @@ double targetCost(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &
   const double s2 = s.a * s.a + s.b * s.b, scale = std::sqrt(s2);
   if (!(s2 > 0.0) || !std::isfinite(s2))
     return 1.0;
+  const double a = s.a / s2, b = s.b / s2; // the inverse's turn and scale
   double sum = 0.0;
   std::size_t n = 0;
   for (std::size_t i = 0; i < t.x.size(); i += 2, ++n) {
     const double X = t.x[i] - s.tx, Y = t.y[i] - s.ty;
     double d = tau, gx, gy;
-    if (in.distanceAt((s.a * X + s.b * Y) / s2, (-s.b * X + s.a * Y) / s2, d, gx, gy))
+    if (in.distanceAt(a * X + b * Y, -b * X + a * Y, d, gx, gy))
       d = std::min(std::fabs(d) * scale, tau); // input sizes to the target's
-    sum += d / tau;
+    sum += d;
   }
-  return sum / static_cast<double>(n);
+  return sum / (tau * static_cast<double>(n));
 }
 
 /*
@@ -292,10 +293,10 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
   for (std::size_t i = 0; i < in.x.size(); i += 2) {
     const float rx = static_cast<float>((c * in.x[i] - sn * in.y[i]) / cell),
                 ry = static_cast<float>((sn * in.x[i] + c * in.y[i]) / cell);
-    float ox[kNScales], oy[kNScales];
-    for (int s = 0; s < kNScales; ++s) {
-      ox[s] = static_cast<float>(kScales[s]) * rx;
-      oy[s] = static_cast<float>(kScales[s]) * ry;
+    float ox[4], oy[4]; // a lane past the scales repeats the last (unused)
+    for (int s = 0; s < 4; ++s) {
+      ox[s] = static_cast<float>(kScales[std::min(s, kNScales - 1)]) * rx;
+      oy[s] = static_cast<float>(kScales[std::min(s, kNScales - 1)]) * ry;
     }
     // The target's samples whose bins lie within kVoteTolerance of this sample's turned bin (mod kBins), in bucket
     // order (voteX, voteY: their cells, cast once at preparation): the buckets lie one after the other, so one range,
@@ -306,9 +307,10 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
     const int ranges[2][2] = {{t.bucketStart[b0], t.bucketStart[std::min(b1, kBins)]},
                               {t.bucketStart[0], t.bucketStart[std::max(b1 - kBins, 0)]}};
 #ifdef __SSE2__
-    // The three scales' cells at once, in the lanes of one register (the fourth lane repeats the third and is unused):
-    // the same float differences and truncations as the scalar loop below.
-    const __m128 OX = _mm_setr_ps(ox[0], ox[1], ox[2], ox[2]), OY = _mm_setr_ps(oy[0], oy[1], oy[2], oy[2]);
+    // The scales' cells at once, in the lanes of one register: the same float differences and truncations as the
+    // scalar loop below.
+    static_assert(kNScales <= 4, "one lane a scale");
+    const __m128 OX = _mm_loadu_ps(ox), OY = _mm_loadu_ps(oy);
     const __m128 zero = _mm_setzero_ps(), side = _mm_set1_ps(static_cast<float>(kVoteCells));
     const __m128i first = _mm_set1_epi32(W + 1), out = _mm_set1_epi32(kOut);
     for (const auto &range : ranges)
@@ -463,7 +465,9 @@ vpMorphRigidShape::Alignment vpMorphRigidShape::alignOn(const vpMorphRigidShape 
   // Turns: the highest local maxima of the circular correlation of the orientation histograms.
   Peaks peaks;
   const int nPeaks = turnPeaks(in, t, peaks);
-  // Shifts: per turn, the votes at both scales; the better-voted scale of each turn is refined.
+  // Per turn, two starts: the shift by the votes at the best-voted scale, and the whole view's (the centroids and
+  // sizes laid on each other, exact for a view that hides nothing); the turn keeps the one that costs less after the
+  // first steps.
   Alignment best;
   Sim sims[kTurns];
   double costs[kTurns];
@@ -475,14 +479,21 @@ vpMorphRigidShape::Alignment vpMorphRigidShape::alignOn(const vpMorphRigidShape 
     for (int k = 1; k < kNScales; ++k)
       if (v[k].votes > w->votes)
         w = &v[k];
-    if (w->votes == 0)
-      continue;
-    sims[n] = refine(in, t, w->sim, tau(), kFirstIterations);
+    const double turn = kTwoPi * peaks[p].second / kBins;
+    sims[n] = refine(in, t, Sim{std::cos(turn), std::sin(turn), 0.0, 0.0}, tau(), kFirstIterations);
     costs[n] = hypothesisCost(in, t, sims[n]);
+    if (w->votes > 0) {
+      const Sim voted = refine(in, t, w->sim, tau(), kFirstIterations);
+      const double cost = hypothesisCost(in, t, voted);
+      if (cost < costs[n]) {
+        sims[n] = voted;
+        costs[n] = cost;
+      }
+    }
     ++n;
   }
   if (n == 0)
-    return best; // no vote: nothing in common
+    return best; // no turn: nothing in common
   // The two best go on to convergence (the others stay where their first steps left them).
   for (int round = 0; round < std::min(n, 2); ++round) {
     int k = round;

@@ -39,11 +39,16 @@ struct vpMorphRigidShapeData; // the prepared data (internal)
      votes are cast at scales 1.05, 0.92 and 0.8 (the true ratio of the two sizes, in [0.75, 1.1] for up to 40 % of
      the area hidden or a thin outline's width off by a tenth, is within 0.07 of one of them), and each turn keeps
      its best-voted scale.
+  -# Per candidate turn, a second start: the whole view's, no shift and the sizes' ratio as the scale (a similarity
+     lays a whole view's centroid and area on the template's exactly). A scale 0.07 off moves a long or thin
+     outline's far end (a snake, a fork) by more than the refinement can pull back, and a view that hides nothing
+     needs no vote.
   -# Each is refined by Gauss-Newton on the target's signed distance grid (bilinear, 64 x 64 cells over 1.25 times
-     its largest radius), the input's samples with a distance beyond tau() left out: two steps each, then up to four
-     more for the two best. The one that costs least (below) wins; the best that turns elsewhere is kept as the
-     alternative (a nearly symmetric outline). A hypothesis whose scale leaves [0.5, 2] sizes is discarded (a fit
-     that shrinks the input to a point lays all its samples on one edge).
+     its largest radius), the input's samples with a distance beyond tau() left out: two steps each, after which each
+     turn keeps the start that costs less, then up to four more for the two best turns. The one that costs least
+     (below) wins; the best that turns elsewhere is kept as the alternative (a nearly symmetric outline). A
+     hypothesis whose scale leaves [0.5, 2] sizes is discarded (a fit that shrinks the input to a point lays all its
+     samples on one edge).
   -# The winner turned by each of the target's symmetries (symmetries(), found once when it is prepared) that its
      cost cannot rule out (Alignment::symmetric): four candidate turns cannot cover a star's ten alike lobes, and the
      smoothed outlines rank them by chance, so the outlines decide (vpMorphRigidCheck tries each).
