@@ -35,21 +35,22 @@ struct vpMorphRigidShapeData
 
   vpMorphContour contour, polygon; // as given; its polygon, counter-clockwise
   double cx = 0.0, cy = 0.0, size = 1.0;
-  std::array<float, 2 * kBins> hist{};        // orientation histogram, twice over (for the circular correlation)
-  std::vector<double> x, y;                   // kSamples samples, normalised
-  std::vector<int> bin;                       // their tangent directions' bins
-  std::vector<int> bucketStart, bucket;       // samples per direction bin (bucketStart[kBins] = kSamples)
-  std::vector<float> voteX, voteY;            // the samples in bucket order, in shift-vote cells (vpMorphRigidShape)
-  vpMorphNearestEdge edges;                   // on the polygon, pixels
-  std::vector<float> grid;                    // signed distance, normalised, kGrid x kGrid (empty: none)
-  double lo = 0.0, step = 1.0, invStep = 1.0; // the grid's first node and spacing (sizes), and 1 / step
-  bool measured;                              // the fine curve is a measured outline
-  vpMorphContour fine;                        // the fine curve, counter-clockwise
-  vpMorphNearestEdge fineEdges;               // on it
-  bool marked;                                // the fine curve tells its own edges (vpMorphContour::ownEdge())
-  vpMorphInsideTest fineInside;               // whether a point is inside it
-  std::vector<double> fx, fy;                 // kFineSamples samples along it, pixels
-  std::vector<char> fown; // per sample, whether it lies on the object's own edge (vpMorphContour::ownEdge())
+  std::array<float, 2 * kBins> hist{};  // orientation histogram, twice over (for the circular correlation)
+  std::vector<double> x, y;             // kSamples samples, normalised
+  std::vector<int> bin;                 // their tangent directions' bins
+  std::vector<int> bucketStart, bucket; // samples per direction bin (bucketStart[kBins] = kSamples)
+  std::vector<float> voteX, voteY;      // the samples in bucket order, in shift-vote cells (vpMorphRigidShape)
+  vpMorphNearestEdge edges;             // on the polygon, pixels
+  std::vector<float> grid;              // signed distance, normalised, kGrid x kGrid (empty: none)
+  double lo = 0.0, step = 1.0;
+  double invStep = 1.0;         // 1 / step
+  bool measured;                // the fine curve is a measured outline
+  vpMorphContour fine;          // the fine curve, counter-clockwise
+  vpMorphNearestEdge fineEdges; // on it
+  bool marked;                  // the fine curve tells its own edges (vpMorphContour::ownEdge())
+  vpMorphInsideTest fineInside; // whether a point is inside it
+  std::vector<double> fx, fy;   // kFineSamples samples along it, pixels
+  std::vector<char> fown;       // per sample, whether it lies on the object's own edge (vpMorphContour::ownEdge())
   std::unique_ptr<const vpMorphNearestEdge> ownOnly;   // on its own edges, when some are not
   std::vector<vpMorphRigidShape::Symmetry> symmetries; // its turns onto itself, least cost first
   // The blur ladder (vpMorphRigidShape::atBlur()): rung k is the shape at blur k x blurRung(), empty when the blur
