@@ -78,6 +78,17 @@ cv::Mat tilted(const cv::Mat &src, double deg, double roll)
                         cy - c.at<double>(1) / c.at<double>(2), 0, 0, 1);
   return similarity(src, roll, 1.0, 0, 0) * back * H;
 }
+
+// A bench view saved in data/ (as vispmorph-reid or the servo bench renders it, cropped) and a database of goals saved
+// beside it.
+const std::filesystem::path kData = std::filesystem::path(__FILE__).parent_path() / "data";
+vpImage<unsigned char> readView(const char *name)
+{
+  vpImage<unsigned char> V;
+  vpImageIo::read(V, (kData / name).string());
+  return V;
+}
+vpMorphDatabase readGoals(const char *name) { return vpMorphDatabase::load((kData / name).string(), false); }
 } // namespace
 
 TEST_CASE("rigid shape: a view turned, shifted, scaled and noisy is laid on its template", "[rigid]")
@@ -135,11 +146,9 @@ TEST_CASE("rigid check: a star of alike lobes is laid lobe on lobe, each lobe tr
   // An MPEG-7 device (ten pointed lobes, their serrations differ) as the bench renders it at its goal (a database of
   // one template), and a first view of it: the smoothed outlines the coarse stage compares cannot tell the lobes
   // apart, and its best turn and alternative laid the view off by lobes (0.39 and 0.43 of the outline shown).
-  const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
-  vpImage<unsigned char> V;
-  vpImageIo::read(V, (data / "ten-lobed-star-view.png").string());
-  const vpMorphDatabase goal = vpMorphDatabase::load((data / "ten-lobed-star-goal.json").string(), false);
-  const vpMorphRigidShape t(goal[0].contour()), q(vpMorphContourExtractor().extract(V));
+  const vpMorphDatabase goal = readGoals("ten-lobed-star-goal.json");
+  const vpMorphRigidShape t(goal[0].contour()),
+      q(vpMorphContourExtractor().extract(readView("ten-lobed-star-view.png")));
   // Nine turns onto itself, a tenth of a turn apart, each cheaper than any of the six tools' turns onto themselves.
   double tools = 2.0;
   for (const char *name : kObjects) {
@@ -182,12 +191,10 @@ TEST_CASE("rigid check: a near-isotropic part under a card is laid at the turn i
   // and leaf, and the database of it and a look-alike apple taught at 0.5 m (data/apple-goals.json). Without its stem
   // the apple is nearly a disc: the orientation histograms give no turn to go by, and the coarse stage's best turn
   // lays the view's bottom dimple on the template's stem socket, about half a turn off.
-  const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
-  vpImage<unsigned char> V;
-  vpImageIo::read(V, (data / "apple-under-card-view.png").string());
-  const vpMorphDatabase db = vpMorphDatabase::load((data / "apple-goals.json").string(), false);
+  const vpMorphDatabase db = readGoals("apple-goals.json");
   REQUIRE(db.size() == 2);
-  const vpMorphRigidShape t(db[0].contour()), q(vpMorphContourExtractor().extractJoined(V));
+  const vpMorphRigidShape t(db[0].contour()),
+      q(vpMorphContourExtractor().extractJoined(readView("apple-under-card-view.png")));
   const vpMorphRigidShape::Alignment a = q.alignOn(t);
   const vpMorphRigidCheck::Result coarse = vpMorphRigidCheck::check(q, t, a.transform),
                                   swept = vpMorphRigidCheck::check(q, t, a);
@@ -209,12 +216,9 @@ TEST_CASE("rigid shape: a whole view of a long curled part is laid by its centro
   // A whole view of an MPEG-7 sea snake, curled into a thin loop, as vispmorph-reid renders it (development seed 103,
   // pose view 0, cropped), and its template taught at 0.5 m (data/sea-snake-goal.json). The best-voted scale, 8 % off,
   // moves the loop's far side by more than the band is wide, and the refinement from it settles on the wrong edges.
-  const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
-  vpImage<unsigned char> V;
-  vpImageIo::read(V, (data / "sea-snake-view.png").string());
-  const vpMorphDatabase db = vpMorphDatabase::load((data / "sea-snake-goal.json").string(), false);
+  const vpMorphDatabase db = readGoals("sea-snake-goal.json");
   REQUIRE(db.size() == 1);
-  const vpMorphContour view = vpMorphContourExtractor().extractJoined(V);
+  const vpMorphContour view = vpMorphContourExtractor().extractJoined(readView("sea-snake-view.png"));
   const vpMorphRigidShape t(db[0].contour()), q(view);
   const vpMorphRigidShape::Alignment a = q.alignOn(t, false);
   const double sizes = std::sqrt(db[0].contour().regionArea() / view.regionArea());
