@@ -48,7 +48,8 @@ public:
       e.ay = c.y(k);
       e.dx = c.x(l) - e.ax;
       e.dy = c.y(l) - e.ay;
-      e.l2 = e.dx * e.dx + e.dy * e.dy;
+      const double l2 = e.dx * e.dx + e.dy * e.dy;
+      e.il2 = l2 > 0 ? 1.0 / l2 : 0.0;
       const double len = std::hypot(e.dx, e.dy);
       e.nx = len > 0 ? -e.dy / len : 0.0;
       e.ny = len > 0 ? e.dx / len : 1.0;
@@ -106,6 +107,58 @@ public:
   double within(double px, double py, double reach, double &mx, double &my, double *along = nullptr) const
   {
     return query(px, py, mx, my, along, reach);
+  }
+
+  /*
+    operator()'s distance at each point (xs[i], y) of a row, in \e out (resized): a raster, most of whose points lie
+    far from a polygon of long edges, where the rings spread over the grid's few crowded cells. Each point visits the
+    point before's nearest edge, then the edges in order of their distance in y, skipping those whose box lies beyond
+    the best found and stopping at the first whose distance in y does: every edge left is farther, so the result is
+    the scan's.
+  */
+  void alongRow(double y, const std::vector<double> &xs, std::vector<double> &out) const
+  {
+    // Per edge: its squared distance in y and its extent in x (as visit() reaches its end: a + t d at t = 1).
+    struct Near
+    {
+      double y2, x0, x1;
+      std::size_t k;
+      bool operator<(const Near &o) const { return y2 < o.y2; }
+    };
+    std::vector<Near> byY;
+    byY.reserve(m_kept.size());
+    for (std::size_t k : m_kept) {
+      const Edge &e = m_edges[k];
+      const double x1 = e.ax + e.dx, y1 = e.ay + e.dy;
+      const double dy = std::max(0.0, std::max(std::min(e.ay, y1) - y, y - std::max(e.ay, y1)));
+      byY.push_back(Near{dy * dy, std::min(e.ax, x1), std::max(e.ax, x1), k});
+    }
+    std::sort(byY.begin(), byY.end());
+    out.resize(xs.size());
+    std::size_t previous = m_edges.size();
+    double mx, my;
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      const double px = xs[i];
+      Best b;
+      if (!std::isfinite(px) || !std::isfinite(y)) {
+        out[i] = finish(b, px, y, mx, my, nullptr);
+        continue;
+      }
+      if (previous < m_edges.size())
+        visit(previous, px, y, b);
+      // An edge's squared distance is at least the sum of its squared distances in x and y, rounding included (a + t d
+      // lies between the edge's ends and each operation is monotone): the edges left once that in y exceeds the best
+      // are farther still.
+      for (const Near &e : byY) {
+        if (e.y2 > b.d2)
+          break;
+        const double dx = std::max(0.0, std::max(e.x0 - px, px - e.x1));
+        if (dx * dx + e.y2 <= b.d2)
+          visit(e.k, px, y, b);
+      }
+      out[i] = b.k < m_edges.size() ? finish(b, px, y, mx, my, nullptr) : beyond(mx, my, nullptr);
+      previous = b.k;
+    }
   }
 
   /*
@@ -249,8 +302,8 @@ private:
   void visit(std::size_t k, double px, double py, Best &b) const
   {
     const Edge &e = m_edges[k];
-    const double ax = e.ax, ay = e.ay, dx = e.dx, dy = e.dy, l2 = e.l2;
-    double t = l2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / l2 : 0.0;
+    const double ax = e.ax, ay = e.ay, dx = e.dx, dy = e.dy;
+    double t = ((px - ax) * dx + (py - ay) * dy) * e.il2;
     bool in = true;
     if (t <= 0.0) {
       t = 0.0;
@@ -295,7 +348,8 @@ private:
 
   struct Edge
   {
-    double ax, ay, dx, dy, l2;
+    double ax, ay, dx, dy;
+    double il2;    // 1 / (dx^2 + dy^2), 0 for a null edge: a product where a division was a visit's longest step
     double nx, ny; // the unit normal (0, 1 for a null edge), computed once: a query used to take two hypot()s
   };
   std::vector<Edge> m_edges;

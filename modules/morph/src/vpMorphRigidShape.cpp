@@ -151,7 +151,9 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
     d->step = 2.0 * r / (kGrid - 1);
     d->invStep = 1.0 / d->step;
     d->grid.resize(static_cast<std::size_t>(kGrid * kGrid));
-    std::vector<double> xs;
+    std::vector<double> xs, px(kGrid), dist;
+    for (int i = 0; i < kGrid; ++i)
+      px[static_cast<std::size_t>(i)] = d->cx + (d->lo + i * d->step) * d->size;
     for (int j = 0; j < kGrid; ++j) {
       const double py = d->cy + (d->lo + j * d->step) * d->size;
       xs.clear();
@@ -162,12 +164,11 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
           xs.push_back(P.x(k) + (py - y0) / (y1 - y0) * (P.x(l) - P.x(k)));
       }
       std::sort(xs.begin(), xs.end());
-      for (int i = 0; i < kGrid; ++i) {
-        const double px = d->cx + (d->lo + i * d->step) * d->size;
-        double mx, my;
-        const double dist = std::fabs(d->edges(px, py, mx, my)) / d->size;
-        const bool inside = (std::upper_bound(xs.begin(), xs.end(), px) - xs.begin()) % 2 == 1;
-        d->grid[static_cast<std::size_t>(j * kGrid + i)] = static_cast<float>(inside ? -dist : dist);
+      d->edges.alongRow(py, px, dist);
+      for (std::size_t i = 0; i < px.size(); ++i) {
+        const bool inside = (std::upper_bound(xs.begin(), xs.end(), px[i]) - xs.begin()) % 2 == 1;
+        const double e = std::fabs(dist[i]) / d->size;
+        d->grid[static_cast<std::size_t>(j * kGrid) + i] = static_cast<float>(inside ? -e : e);
       }
     }
   }

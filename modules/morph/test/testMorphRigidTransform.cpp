@@ -709,3 +709,43 @@ TEST_CASE(
     CHECK(nearPoly.within(px, py, 0.9 * d, wx, wy) == std::numeric_limits<double>::infinity());
   }
 }
+
+// vpMorphNearestEdge::alongRow() (the coarse stage's distance grid) against single queries: a raster over and around
+// polygons of long edges and a dense outline, with a subset of edges kept, a point repeated and a non-finite one.
+TEST_CASE("vpMorphNearestEdge gives a raster's rows the distances of single queries, bit for bit", "[rigid][nearest]")
+{
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 4; ++trial) {
+    const vpMorphContour c =
+        trial < 2 ? starPolygon(rng, 20 + 10 * trial, 1.5) : starPolygon(rng, 24, 3.0).resampled(500);
+    std::vector<char> keep(c.size(), 1);
+    if (trial % 2)
+      for (std::size_t k = 0; k < keep.size(); k += 3)
+        keep[k] = 0; // a third of the edges are not the object's own
+    const vpMorphNearestEdge nearest(c, keep);
+    const auto bx = std::minmax_element(c.xs().begin(), c.xs().end());
+    const auto by = std::minmax_element(c.ys().begin(), c.ys().end());
+    const double x0 = *bx.first, w = *bx.second - x0, y0 = *by.first, h = *by.second - y0;
+    std::vector<double> xs, row;
+    for (int i = 0; i < 40; ++i)
+      xs.push_back(x0 - 0.5 * w + 2.0 * w * i / 39.0);
+    xs.push_back(xs[7]); // a point again, after a far one
+    for (int j = 0; j < 40; ++j) {
+      const double y = y0 - 0.5 * h + 2.0 * h * j / 39.0;
+      nearest.alongRow(y, xs, row);
+      REQUIRE(row.size() == xs.size());
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        double mx, my;
+        INFO("trial " << trial << ", point (" << xs[i] << ", " << y << ")");
+        CHECK(row[i] == nearest(xs[i], y, mx, my));
+      }
+    }
+  }
+  const vpMorphContour poly = starPolygon(rng, 12, 1.2);
+  std::vector<double> row;
+  vpMorphNearestEdge(poly).alongRow(0.0, {std::numeric_limits<double>::quiet_NaN(), 0.0}, row);
+  CHECK(std::isnan(row[0]));
+  CHECK(std::isfinite(row[1]));
+  vpMorphNearestEdge(poly, std::vector<char>(poly.size(), 0)).alongRow(0.0, {0.0, 1.0}, row);
+  CHECK(row == std::vector<double>(2, std::numeric_limits<double>::infinity()));
+}
