@@ -287,7 +287,9 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
   constexpr int kOut = W * W;       // where a shift off the accumulator votes (never read): no branch to mispredict
   static_assert(W == 34, "the vectorised cell index below multiplies by 34 as 32 + 2");
   std::array<std::array<std::uint8_t, W * W + 1>, kNScales> acc{};
-  std::array<std::array<int, kVoteCells * kVoteCells>, kNScales> seeds; // cells that reached two votes
+  // The cells that reached two votes. Every vote writes its cell after the last and counts it only then: no branch
+  // to mispredict (hence one slot more than cells).
+  std::array<std::array<int, kVoteCells * kVoteCells + 1>, kNScales> seeds;
   int nSeeds[kNScales] = {};
   const double th = bins * kTwoPi / kBins, c = std::cos(th), sn = std::sin(th);
   const float *vx = t.voteX.data(), *vy = t.voteY.data();
@@ -327,9 +329,11 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
         alignas(16) int g[4];
         _mm_store_si128(reinterpret_cast<__m128i *>(g),
                         _mm_or_si128(_mm_and_si128(mask, cell), _mm_andnot_si128(mask, out)));
-        for (int s = 0; s < kNScales; ++s)
-          if (++acc[s][g[s]] == 2 && g[s] != kOut) // one vote per input sample and direction bin at most: < 255
-            seeds[s][nSeeds[s]++] = g[s];
+        for (int s = 0; s < kNScales; ++s) { // one vote per input sample and direction bin at most: < 255
+          const int votes = ++acc[s][g[s]];
+          seeds[s][nSeeds[s]] = g[s];
+          nSeeds[s] += (votes == 2) & (g[s] != kOut);
+        }
       }
 #else
     for (const auto &range : ranges)
@@ -338,8 +342,9 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
           const float fx = vx[k] - ox[s], fy = vy[k] - oy[s];
           const bool on = (fx >= 0.0f) & (fy >= 0.0f) & (fx < kVoteCells) & (fy < kVoteCells);
           const int g = on ? (static_cast<int>(fy) + 1) * W + static_cast<int>(fx) + 1 : kOut;
-          if (++acc[s][g] == 2 && on) // a cell gets one vote per input sample and direction bin at most: < 255
-            seeds[s][nSeeds[s]++] = g;
+          const int votes = ++acc[s][g]; // one vote per input sample and direction bin at most: < 255
+          seeds[s][nSeeds[s]] = g;
+          nSeeds[s] += (votes == 2) & on;
         }
       }
 #endif
