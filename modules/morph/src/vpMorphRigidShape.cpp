@@ -151,6 +151,7 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
     d->step = 2.0 * r / (kGrid - 1);
     d->invStep = 1.0 / d->step;
     d->grid.resize(static_cast<std::size_t>(kGrid * kGrid));
+    const vpMorphNearestEdge edges(P); // only the grid reads it
     std::vector<double> xs, px(kGrid), dist;
     for (int i = 0; i < kGrid; ++i)
       px[static_cast<std::size_t>(i)] = d->cx + (d->lo + i * d->step) * d->size;
@@ -164,7 +165,7 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
           xs.push_back(P.x(k) + (py - y0) / (y1 - y0) * (P.x(l) - P.x(k)));
       }
       std::sort(xs.begin(), xs.end());
-      d->edges.alongRow(py, px, dist);
+      edges.alongRow(py, px, dist);
       for (std::size_t i = 0; i < px.size(); ++i) {
         const bool inside = (std::upper_bound(xs.begin(), xs.end(), px[i]) - xs.begin()) % 2 == 1;
         const double e = std::fabs(dist[i]) / d->size;

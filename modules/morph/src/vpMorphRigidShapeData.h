@@ -22,7 +22,7 @@
 /*
   A contour prepared for alignment. The coarse stage (vpMorphRigidShape) uses the normalised frame (region centroid,
   size = square root of the region's area), the orientation histogram, the samples with their tangent directions
-  bucketed by direction, the polygon's edges and, for a target, the signed distance grid. The fine stage
+  bucketed by direction and, for a target, the signed distance grid to the polygon. The fine stage
   (vpMorphRigidCheck) uses the fine curve (the measured outline when there is one, else the polygon), its edges and
   samples along it.
 */
@@ -40,7 +40,6 @@ struct vpMorphRigidShapeData
   std::vector<int> bin;                 // their tangent directions' bins
   std::vector<int> bucketStart, bucket; // samples per direction bin (bucketStart[kBins] = kSamples)
   std::vector<float> voteX, voteY;      // the samples in bucket order, in shift-vote cells (vpMorphRigidShape)
-  vpMorphNearestEdge edges;             // on the polygon, pixels
   std::vector<float> grid;              // signed distance, normalised, kGrid x kGrid (empty: none)
   double lo = 0.0, step = 1.0;
   double invStep = 1.0;         // 1 / step
@@ -59,8 +58,8 @@ struct vpMorphRigidShapeData
   mutable std::map<int, vpMorphRigidShape> ladder;
 
   explicit vpMorphRigidShapeData(const vpMorphContour &c)
-    : contour(c), polygon(c.counterClockwise()), edges(polygon), measured(c.hasOutline()),
-      fine(c.outline().counterClockwise()), fineEdges(fine), marked(fine.hasOwnEdges()), fineInside(fine)
+    : contour(c), polygon(c.counterClockwise()), measured(c.hasOutline()), fine(c.outline().counterClockwise()),
+      fineEdges(fine), marked(fine.hasOwnEdges()), fineInside(fine)
   {
     const vpMorphContour s = fine.resampled(kFineSamples);
     fx = s.xs();
