@@ -99,11 +99,26 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
   // The turn and shift are estimated on the outline smoothed at kTurnScale, where the details that blur and depth
   // change alter (teeth of a few pixels) are gone from every view alike.
   const vpMorphContour S = vpMorphSmoothed(c.outline().counterClockwise(), kTurnScale, 4 * kSamples);
-  // Orientation histogram: each edge's length split between the two bins nearest its direction, smoothed by
-  // [1 2 1] / 4 (a direction measured within a bin's width of another votes for both).
+  // Samples evenly along the smoothed outline; as an input, every other one votes and is fitted, those on the
+  // object's own edges only when the outline tells them and they are enough to fit a similarity (4 parameters).
+  const vpMorphContour s = S.resampled(kSamples);
+  const std::size_t n = s.size();
+  for (std::size_t i = 0; i < n; i += 2)
+    if (!S.hasOwnEdges() || s.ownEdge(i))
+      d->inputs.push_back(static_cast<int>(i));
+  const bool ownOnly = S.hasOwnEdges() && d->inputs.size() >= 4;
+  if (!ownOnly) {
+    d->inputs.clear();
+    for (std::size_t i = 0; i < n; i += 2)
+      d->inputs.push_back(static_cast<int>(i));
+  }
+  // Orientation histogram of the same edges: each edge's length split between the two bins nearest its direction,
+  // smoothed by [1 2 1] / 4 (a direction measured within a bin's width of another votes for both).
   std::array<double, kBins> h{};
   double total = 0.0;
   for (std::size_t k = 0; k < S.size(); ++k) {
+    if (ownOnly && !S.ownEdge(k))
+      continue;
     const std::size_t l = (k + 1) % S.size();
     const double dx = S.x(l) - S.x(k), dy = S.y(l) - S.y(k), len = std::hypot(dx, dy);
     double f = std::atan2(dy, dx) / kTwoPi * kBins;
@@ -118,9 +133,7 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
     const float v = static_cast<float>((h[(k + kBins - 1) % kBins] + 2.0 * h[k] + h[(k + 1) % kBins]) / (4.0 * total));
     d->hist[k] = d->hist[k + kBins] = v;
   }
-  // Samples evenly along the smoothed outline, with their tangent directions.
-  const vpMorphContour s = S.resampled(kSamples);
-  const std::size_t n = s.size();
+  // The samples' tangent directions.
   std::vector<int> count(kBins, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t a = (i + n - 1) % n, b = (i + 1) % n;
@@ -185,12 +198,14 @@ const vpMorphContour &vpMorphRigidShape::contour() const
 
 namespace
 {
-// Mean truncated distance of the input's samples (every other one) to the target's grid, for \e s.
+// Mean truncated distance of the input's samples that vote (vpMorphRigidShapeData::inputs) to the target's grid, for \e
+// s.
 double inputCost(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const Sim &s, double tau)
 {
   double sum = 0.0;
   std::size_t n = 0;
-  for (std::size_t i = 0; i < in.x.size(); i += 2, ++n) {
+  for (const int i : in.inputs) {
+    ++n;
     const double X = s.a * in.x[i] - s.b * in.y[i] + s.tx, Y = s.b * in.x[i] + s.a * in.y[i] + s.ty;
     double d = tau, gx, gy;
     if (t.distanceAt(X, Y, d, gx, gy))
@@ -239,7 +254,7 @@ Sim refine(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, Sim 
   for (int it = 0; it < iterations; ++it) {
     double A[4][4] = {}, b[4] = {};
     std::size_t used = 0;
-    for (std::size_t i = 0; i < in.x.size(); i += 2) {
+    for (const int i : in.inputs) {
       const double x = in.x[i], y = in.y[i];
       const double X = s.a * x - s.b * y + s.tx, Y = s.b * x + s.a * y + s.ty;
       double r, gx, gy;
@@ -294,7 +309,7 @@ void houghShift(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t,
   int nSeeds[kNScales] = {};
   const double th = bins * kTwoPi / kBins, c = std::cos(th), sn = std::sin(th);
   const float *vx = t.voteX.data(), *vy = t.voteY.data();
-  for (std::size_t i = 0; i < in.x.size(); i += 2) {
+  for (const int i : in.inputs) {
     const float rx = static_cast<float>((c * in.x[i] - sn * in.y[i]) / cell),
                 ry = static_cast<float>((sn * in.x[i] + c * in.y[i]) / cell);
     float ox[4], oy[4]; // a lane past the scales repeats the last (unused)

@@ -35,9 +35,12 @@ struct vpMorphRigidShapeData
 
   vpMorphContour contour, polygon; // as given; its polygon, counter-clockwise
   double cx = 0.0, cy = 0.0, size = 1.0;
-  std::array<float, 2 * kBins> hist{};  // orientation histogram, twice over (for the circular correlation)
-  std::vector<double> x, y;             // kSamples samples, normalised
-  std::vector<int> bin;                 // their tangent directions' bins
+  std::array<float, 2 * kBins> hist{}; // orientation histogram, twice over (for the circular correlation)
+  std::vector<double> x, y;            // kSamples samples, normalised
+  std::vector<int> bin;                // their tangent directions' bins
+  // The samples that vote and are fitted when this shape is the input: every other one, on its own edges only when
+  // the outline tells them (vpMorphContour::ownEdge(): an occluder's edge belongs to no template)
+  std::vector<int> inputs;
   std::vector<int> bucketStart, bucket; // samples per direction bin (bucketStart[kBins] = kSamples)
   std::vector<float> voteX, voteY;      // the samples in bucket order, in shift-vote cells (vpMorphRigidShape)
   std::vector<float> grid;              // signed distance, normalised, kGrid x kGrid (empty: none)

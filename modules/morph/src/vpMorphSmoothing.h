@@ -14,7 +14,8 @@
 
 /*
   Dense resampling by arc length, circular Gaussian smoothing (sigma as a fraction of the perimeter), then
-  resampling to n points: the outline at one scale (sigma <= 0: resampled only).
+  resampling to n points: the outline at one scale (sigma <= 0: resampled only). The ownEdge() marks are carried
+  along.
 */
 inline vpMorphContour vpMorphSmoothed(const vpMorphContour &c, double sigma, std::size_t n)
 {
@@ -47,7 +48,14 @@ inline vpMorphContour vpMorphSmoothed(const vpMorphContour &c, double sigma, std
     x[i] = ax / sum;
     y[i] = ay / sum;
   }
-  return vpMorphContour(x, y, c.units()).resampled(n);
+  vpMorphContour out(x, y, c.units());
+  if (d.hasOwnEdges()) { // each smoothed edge keeps the mark of the edge it was smoothed from
+    std::vector<bool> marks(dense);
+    for (std::size_t i = 0; i < dense; ++i)
+      marks[i] = d.ownEdge(i);
+    out.setOwnEdges(marks);
+  }
+  return out.resampled(n);
 }
 
 #endif

@@ -29,16 +29,19 @@ struct vpMorphRigidShapeData; // the prepared data (internal)
 
   <b>Alignment of an input on a target</b> (alignOn()), on the outlines smoothed along their length by a Gaussian of
   1 % of the perimeter (the details of a few pixels that blur and a change of depth alter differ from view to view;
-  the smoothed outlines do not):
+  the smoothed outlines do not). When the input's outline tells its own edges (vpMorphContour::ownEdge()), its
+  histogram, votes, refinement and input-side cost use those only (as long as at least 4 samples, a similarity's
+  parameters, remain): an occluder's edge belongs to no template, and left in, its long straight run is the
+  histogram's highest peak and pulls the votes and the fit to the template's straight edges.
   -# Turns: the circular correlation of the two orientation histograms (the outline's length per tangent direction,
      72 bins: a turn moves it round, a shift and a scale do not); its four highest peaks are the candidate turns.
-  -# Shifts: per candidate turn, each input sample votes, with every target sample whose tangent direction agrees
-     within 12.5 deg, for the shift that lays the one on the other (a generalised Hough transform); the part an
-     occluder hides casts no vote and the occluder's edge votes at random. A hidden part also shrinks the input's
-     area, so the input's size overstates the scale, and the area of a thin part varies with its edges' blur: the
-     votes are cast at scales 1.05, 0.92 and 0.8 (the true ratio of the two sizes, in [0.75, 1.1] for up to 40 % of
-     the area hidden or a thin outline's width off by a tenth, is within 0.07 of one of them), and each turn keeps
-     its best-voted scale.
+  -# Shifts: per candidate turn, each input sample (every other one) votes, with every target sample whose tangent
+     direction agrees within 12.5 deg, for the shift that lays the one on the other (a generalised Hough transform); the
+     part an occluder hides casts no vote and an occluder's edge left unmarked votes at random. A hidden part also
+     shrinks the input's area, so the input's size overstates the scale, and the area of a thin part varies with its
+     edges' blur: the votes are cast at scales 1.05, 0.92 and 0.8 (the true ratio of the two sizes, in [0.75, 1.1] for
+     up to 40 % of the area hidden or a thin outline's width off by a tenth, is within 0.07 of one of them), and each
+     turn keeps its best-voted scale.
   -# Per candidate turn, a second start: the whole view's, no shift and the sizes' ratio as the scale (a similarity
      lays a whole view's centroid and area on the template's exactly). A scale 0.07 off moves a long or thin
      outline's far end (a snake, a fork) by more than the refinement can pull back, and a view that hides nothing
