@@ -19,7 +19,10 @@
   the measured means within 4 sigma (1.4826 MAD of the side that deviates less, at least half a grey level) of their
   median, then of that fit: the background is what most of an object's outline borders, so an occluder's few means
   do not pull it. A mean within 4 sigma of the fit is the background's; one off it, an occluder's. Points whose patch
-  leaves the image are not own edges (the image's border cuts the object there).
+  leaves the image are not own edges (the image's border cuts the object there). \e g and \e object are views of one
+  box (at \e tl) of the image and of its object mask: when they are cut from those images (cv::Mat regions of
+  interest), the patches and the object pixels near them are read past the box, so that the box's margin need not
+  cover the patches (only the image's border cuts them).
 */
 std::vector<bool> vpMorphOwnEdges(const cv::Mat &g, const cv::Mat &object, const cv::Point &tl,
                                   const std::vector<cv::Point2d> &points, const std::vector<cv::Point2d> &outward,
