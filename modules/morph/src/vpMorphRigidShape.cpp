@@ -103,15 +103,13 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
   // object's own edges only when the outline tells them and they are enough to fit a similarity (4 parameters).
   const vpMorphContour s = S.resampled(kSamples);
   const std::size_t n = s.size();
+  std::size_t own = 0;
   for (std::size_t i = 0; i < n; i += 2)
-    if (!S.hasOwnEdges() || s.ownEdge(i))
+    own += s.ownEdge(i);
+  const bool ownOnly = S.hasOwnEdges() && own >= 4;
+  for (std::size_t i = 0; i < n; i += 2)
+    if (!ownOnly || s.ownEdge(i))
       d->inputs.push_back(static_cast<int>(i));
-  const bool ownOnly = S.hasOwnEdges() && d->inputs.size() >= 4;
-  if (!ownOnly) {
-    d->inputs.clear();
-    for (std::size_t i = 0; i < n; i += 2)
-      d->inputs.push_back(static_cast<int>(i));
-  }
   // Orientation histogram of the same edges: each edge's length split between the two bins nearest its direction,
   // smoothed by [1 2 1] / 4 (a direction measured within a bin's width of another votes for both).
   std::array<double, kBins> h{};
@@ -198,21 +196,18 @@ const vpMorphContour &vpMorphRigidShape::contour() const
 
 namespace
 {
-// Mean truncated distance of the input's samples that vote (vpMorphRigidShapeData::inputs) to the target's grid, for \e
-// s.
+// Mean truncated distance of the input's voting samples (vpMorphRigidShapeData::inputs) to the target's grid, for \e s.
 double inputCost(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const Sim &s, double tau)
 {
   double sum = 0.0;
-  std::size_t n = 0;
   for (const int i : in.inputs) {
-    ++n;
     const double X = s.a * in.x[i] - s.b * in.y[i] + s.tx, Y = s.b * in.x[i] + s.a * in.y[i] + s.ty;
     double d = tau, gx, gy;
     if (t.distanceAt(X, Y, d, gx, gy))
       d = std::min(std::fabs(d), tau);
     sum += d;
   }
-  return sum / (tau * static_cast<double>(n));
+  return sum / (tau * static_cast<double>(in.inputs.size()));
 }
 
 // Mean truncated distance of the target's samples (every other one), mapped back by \e s, to the input's polygon,
