@@ -17,6 +17,7 @@
 #include <visp3/morph/vpMorphRigidCheck.h>
 #include <visp3/morph/vpMorphRigidShape.h>
 
+#include "../src/vpMorphOwnEdges.h"
 #include "testMorphImages.h"
 
 namespace
@@ -185,6 +186,41 @@ TEST_CASE("extractor: a blurred object's outermost edges are its own, wherever t
       // about a pixel inside the tip, and with it the patch towards the tip's spread.
       CHECK(own >= o.size() - o.size() / 100);
     }
+}
+
+TEST_CASE("own edges: views of a box read past it into their image, standalone copies stop at its border", "[own]")
+{
+  // A disc of radius 40 px blurred 1.5 px, its edge points every 5 deg, a box 6 px about it: the patches (reach 5 px,
+  // 7.5 px out) of the points nearest the box's sides lie past it.
+  cv::Mat image(200, 200, CV_8UC1, cv::Scalar(210)), mask(200, 200, CV_8UC1, cv::Scalar(0));
+  cv::circle(image, cv::Point(100, 100), 40, cv::Scalar(40), cv::FILLED);
+  cv::circle(mask, cv::Point(100, 100), 40, cv::Scalar(255), cv::FILLED);
+  cv::GaussianBlur(image, image, cv::Size(), 1.5);
+  std::vector<cv::Point2d> points, outward;
+  for (int k = 0; k < 72; ++k) {
+    const double a = k * M_PI / 36.0;
+    outward.emplace_back(std::cos(a), std::sin(a));
+    points.emplace_back(100.0 + 40.0 * std::cos(a), 100.0 + 40.0 * std::sin(a));
+  }
+  const cv::Rect box(54, 54, 93, 93);
+  const std::vector<bool> views = vpMorphOwnEdges(image(box), mask(box), box.tl(), points, outward, 7.5, 5.0),
+                          copies = vpMorphOwnEdges(image(box).clone(), mask(box).clone(), box.tl(), points, outward,
+                                                   7.5, 5.0),
+                          whole = vpMorphOwnEdges(image, mask, cv::Point(0, 0), points, outward, 7.5, 5.0);
+  std::size_t cut = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    CAPTURE(k);
+    CHECK(views[k]);
+    CHECK(views[k] == whole[k]);
+    const cv::Point2d p = points[k] + 7.5 * outward[k];
+    const bool inside = p.x - 1.5 > box.x && p.y - 1.5 > box.y && p.x + 1.5 < box.x + box.width - 1 &&
+                        p.y + 1.5 < box.y + box.height - 1;
+    if (inside)
+      CHECK(copies[k]);
+    else
+      cut += !copies[k];
+  }
+  CHECK(cut >= 4); // the four sides' nearest points at least: cut off where the copy ends
 }
 
 TEST_CASE("extractor: a comb's narrow grooves are its own edges, a bridge across a gap is not", "[extract][own]")
