@@ -39,7 +39,7 @@ struct vpMorphRigidShapeData
   std::vector<double> x, y;            // kSamples samples, normalised
   std::vector<int> bin;                // their tangent directions' bins
   // The samples that vote and are fitted when this shape is the input: every other one, on its own edges only when
-  // the outline tells them (vpMorphContour::ownEdge(): an occluder's edge belongs to no template)
+  // the outline tells them and at least 4 are (vpMorphContour::ownEdge(): an occluder's edge belongs to no template)
   std::vector<int> inputs;
   std::vector<int> bucketStart, bucket; // samples per direction bin (bucketStart[kBins] = kSamples)
   std::vector<float> voteX, voteY;      // the samples in bucket order, in shift-vote cells (vpMorphRigidShape)
