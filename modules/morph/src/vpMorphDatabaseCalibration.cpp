@@ -109,7 +109,7 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
   std::vector<double> within(T, 0.0);
   const std::size_t perRow = T > 1 ? T : 0;
   const bool rigid = m_distance.model() == vpMorphShapeDistance::RIGID;
-  std::vector<double> D(T * T, rigid ? kInf : 0.0); // RIGID fills only each row's nearest other template
+  std::vector<double> D(T * T, rigid ? kInf : 0.0);     // RIGID fills only each row's nearest other template
   std::vector<std::vector<Found>> found(rigid ? T : 0); // RIGID: the look-alikes each row finds
   // Jobs 0..T-1: within(t); jobs T..2T-1: row t of the between-template matrix.
   m_distance.parallelFor(
@@ -119,7 +119,7 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
           for (const vpMorphContour &p : perturbations(m_templates[k].contour()))
             within[k] = std::max(within[k], m_distance.distance(m_distance.prepare(p), m_shapes[k], matcher));
         } else if (rigid) {
-          // The nearest other template by the two-stage search (the full matrix would take T^2 exact comparisons).
+          // The nearest other template and the look-alikes: every other one compared exactly.
           const std::size_t i = k - T;
           std::size_t nearest;
           const double d = rigidRow(i, found[i], nearest);
@@ -145,8 +145,10 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
 
 double vpMorphDatabase::rigidRow(std::size_t i, std::vector<Found> &found, std::size_t &nearest) const
 {
+  // Every other template, not a shortlist: the coarse cost ranks whole outlines, and a template that i's outline
+  // only partly coincides with, as a view of i under a card can be taken for, may rank anywhere.
   const vpMorphRigidSearch::Outcome o =
-      vpMorphRigidSearch::run(m_shapes[i].rigid[0], rigidViews(false, i), rigidShortlist(), nullptr, {}, false);
+      vpMorphRigidSearch::run(m_shapes[i].rigid[0], rigidViews(false, i), 0, nullptr, {}, false);
   // Template i is a look-alike of j when its whole outline shows at least the minimum support of j's.
   for (const vpMorphRigidSearch::Exact &e : o.exact)
     if (e.result.fitted && e.result.targetShare >= m_minSupport)

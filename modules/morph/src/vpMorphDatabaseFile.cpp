@@ -26,6 +26,9 @@ namespace
 constexpr double kInf = std::numeric_limits<double>::infinity();
 const char *kFormat = "vispmorph-template-database";
 constexpr int kVersion = 1;
+// How the calibration's look-alikes were sought: lists sought otherwise (a shortlist) may miss some, and are sought
+// anew.
+const char *kLookAlikesOf = "every pair";
 
 vpMorphException ioError(const std::string &msg) { return vpMorphException(vpMorphException::ioError, msg); }
 json poseToJson(const vpHomogeneousMatrix &M)
@@ -264,6 +267,7 @@ std::string vpMorphDatabase::toJson(const std::string &relativeTo) const
       all.push_back(a);
     }
     cal["look_alikes"] = all;
+    cal["look_alikes_of"] = kLookAlikesOf;
   }
   cal["support"] = std::isfinite(m_minSupport) ? json(m_minSupport) : json(nullptr);
   cal["support_floor"] = m_supportFloor;
@@ -466,8 +470,10 @@ vpMorphDatabase vpMorphDatabase::fromJson(const std::string &text, bool checkIma
     }
     if (cal.contains("look_alikes"))
       db.m_lookAlikes = lookAlikesFromJson(cal["look_alikes"], db.size());
-    else if (calibrated && db.m_distance.model() == vpMorphShapeDistance::RIGID)
-      db.findLookAlikes(0); // a file written before look-alikes were kept
+    // A file written before look-alikes were kept, or when they were sought among a shortlist: found anew.
+    if (calibrated && db.m_distance.model() == vpMorphShapeDistance::RIGID &&
+        !(cal.contains("look_alikes") && cal.contains("look_alikes_of") && cal["look_alikes_of"] == kLookAlikesOf))
+      db.findLookAlikes(0);
   }
   return db;
 }

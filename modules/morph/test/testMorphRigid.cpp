@@ -525,6 +525,40 @@ TEST_CASE("rigid database: look-alikes are the templates whose outline shows eno
   CHECK_THROWS_AS(db.lookAlikes(db.size()), vpMorphException);
 }
 
+TEST_CASE("rigid database: every template that shows enough of another's is its look-alike, however many",
+          "[rigid][lookalike]")
+{
+  // Ten bars, each with one notch at its own place along the top: each bar shows most of every other's outline, so
+  // each has nine look-alikes, more than the coarse stage's shortlist holds.
+  vpMorphDatabase db(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
+  const int bars = 10;
+  for (int k = 0; k < bars; ++k) {
+    cv::Mat m(320, 320, CV_8UC1, cv::Scalar(255));
+    cv::rectangle(m, cv::Point(70, 125), cv::Point(249, 194), cv::Scalar(0), cv::FILLED);
+    cv::rectangle(m, cv::Point(80 + 16 * k, 125), cv::Point(91 + 16 * k, 140), cv::Scalar(255), cv::FILLED);
+    db.add(vpMorphTemplate("bar-" + std::to_string(k), extract(m)));
+  }
+  db.calibrate(0);
+  std::vector<vpMorphRigidShape> shapes;
+  for (std::size_t k = 0; k < db.size(); ++k)
+    shapes.emplace_back(db[k].contour());
+  std::size_t pairs = 0;
+  for (std::size_t i = 0; i < db.size(); ++i)
+    for (std::size_t k = 0; k < db.size(); ++k) {
+      if (i == k)
+        continue;
+      // Laid on k on its own, i's outline shows clearly more than the minimum support of k's: i must be listed.
+      const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(shapes[i], shapes[k], shapes[i].alignOn(shapes[k]));
+      if (!r.fitted || r.targetShare < db.minimumSupport() + 0.1)
+        continue;
+      ++pairs;
+      const std::vector<vpMorphDatabase::LookAlike> &l = db.lookAlikes(k);
+      CAPTURE(db[i].name(), db[k].name(), r.targetShare);
+      CHECK(std::any_of(l.begin(), l.end(), [i](const vpMorphDatabase::LookAlike &x) { return x.index == i; }));
+    }
+  CHECK(pairs >= 80); // most of the 90 ordered pairs
+}
+
 TEST_CASE("rigid recognition: the best template's look-alikes are compared whatever the coarse stage ranked",
           "[rigid][lookalike]")
 {
