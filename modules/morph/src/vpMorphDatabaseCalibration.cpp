@@ -146,9 +146,10 @@ void vpMorphDatabase::calibrate(unsigned int threads, const Progress &progress)
 double vpMorphDatabase::rigidRow(std::size_t i, std::vector<Found> &found, std::size_t &nearest) const
 {
   // Every other template, not a shortlist: the coarse cost ranks whole outlines, and a template that i's outline
-  // only partly coincides with, as a view of i under a card can be taken for, may rank anywhere.
+  // only partly coincides with, as a view of i under a card can be taken for, may rank anywhere. Its hypotheses
+  // beyond the alignment and its alternative are bounded as a query's search bounds them (the shortlist's cost).
   const vpMorphRigidSearch::Outcome o =
-      vpMorphRigidSearch::run(m_shapes[i].rigid[0], rigidViews(false, i), 0, nullptr, {}, false);
+      vpMorphRigidSearch::run(m_shapes[i].rigid[0], rigidViews(false, i), rigidShortlist(), nullptr, {}, false, true);
   // Template i is a look-alike of j when its whole outline shows at least the minimum support of j's.
   for (const vpMorphRigidSearch::Exact &e : o.exact)
     if (e.result.fitted && e.result.targetShare >= m_minSupport)

@@ -31,7 +31,7 @@ void prefetch(const vpMorphRigidShapeData &d)
 
 vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &query, const std::vector<View> &views,
                                                     std::size_t shortlist, const LookAlikes *lookAlikes,
-                                                    const Acceptable &acceptable, bool abandon)
+                                                    const Acceptable &acceptable, bool abandon, bool every)
 {
   // Coarse stage: each template's coarsely best view.
   struct Coarse
@@ -57,7 +57,8 @@ vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &que
   // the shortlist's when it left templates out, all of them otherwise.
   const std::size_t listed = shortlist > 0 && best.size() > shortlist ? shortlist : best.size();
   const double bar = listed < best.size() ? best[listed - 1].cost : std::numeric_limits<double>::infinity();
-  best.resize(listed);
+  if (!every)
+    best.resize(listed);
   for (Coarse &c : best) {
     query.addSymmetric(*views[c.view].shape, c.alignment);
     std::vector<vpMorphRigidShape::Hypothesis> &h = c.alignment.symmetric;

@@ -28,13 +28,14 @@ struct vpMorphRigidView
   (vpMorphRigidShape::Alignment::symmetric) whose coarse cost is within the shortlist's: the rule that admits templates.
   Once two are compared, one whose cost is sure to exceed the runner-up's is measured no further (it can be neither).
   With shortlist 0 every template is compared exactly: the exhaustive search that the two stages stand for (a test
-  checks they agree). An articulated template has several views (its taught one and its poses): its coarsely best
-  view is the one compared.
-  Given \e lookAlikes (per template, vpMorphDatabase::lookAlikes()), the look-alikes of a best that is \e acceptable (a
-  taught view) are then compared exactly too, as a shortlisted template is and from the best's fitted start carried
-  over by the look-alike's transform (a start at a wrong turn of the best carries the same wrong turn over); and so
-  on for a new best. An acceptable answer is then compared with every template a view of it could be taken
-  for, whatever the coarse stage ranked.
+  checks they agree). With \e every, every template is compared exactly from its alignment and alternative, and the
+  shortlist bounds only the symmetric hypotheses tried (a calibration's search for look-alikes). An articulated template
+  has several views (its taught one and its poses): its coarsely best view is the one compared. Given \e lookAlikes (per
+  template, vpMorphDatabase::lookAlikes()), the look-alikes of a best that is \e acceptable (a taught view) are then
+  compared exactly too, as a shortlisted template is and from the best's fitted start carried over by the look-alike's
+  transform (a start at a wrong turn of the best carries the same wrong turn over); and so on for a new best. An
+  acceptable answer is then compared with every template a view of it could be taken for, whatever the coarse stage
+  ranked.
 */
 class vpMorphRigidSearch
 {
@@ -51,12 +52,12 @@ public:
   };
   struct Outcome
   {
-    std::size_t index = npos, pose = npos; // the best template and its view
-    vpMorphRigidCheck::Result best;        // its exact comparison
+    std::size_t index = npos, pose = npos;        // the best template and its view
+    vpMorphRigidCheck::Result best;               // its exact comparison
     std::size_t second = npos, secondPose = npos; // the runner-up among those compared exactly, and its view
-    vpMorphRigidCheck::Result runnerUp;    // its exact comparison
-    std::size_t compared = 0;              // exact comparisons made
-    std::vector<Exact> exact;              // every template compared exactly
+    vpMorphRigidCheck::Result runnerUp;           // its exact comparison
+    std::size_t compared = 0;                     // exact comparisons made
+    std::vector<Exact> exact;                     // every template compared exactly
   };
 
   /*!
@@ -64,10 +65,11 @@ public:
     \param acceptable whether a result would accept the view: only such a best's look-alikes are compared.
     \param abandon with a shortlist, measure no further a template that can be neither the best nor the runner-up
     (false: every result in Outcome::exact is measured in full).
+    \param every compare every template exactly, the shortlist bounding only the symmetric hypotheses.
   */
   static Outcome run(const vpMorphRigidShape &query, const std::vector<View> &views, std::size_t shortlist,
                      const LookAlikes *lookAlikes = nullptr, const Acceptable &acceptable = Acceptable(),
-                     bool abandon = true);
+                     bool abandon = true, bool every = false);
 };
 
 #endif

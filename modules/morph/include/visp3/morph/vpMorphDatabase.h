@@ -225,8 +225,10 @@ public:
     RIGID, calibrated: the templates some view of which the search could accept as template \e k. A view of \e i is
     accepted as \e k only if it shows at least minimumSupport() of k's outline, and an occluder only hides: so \e i is
     a look-alike of \e k when i's whole outline, laid on k's (vpMorphRigidCheck), shows at least minimumSupport() of
-    it. calibrate() compares every ordered pair of templates exactly (T (T - 1) comparisons): the coarse alignment
-    ranks whole outlines, and may rank anywhere a template that shows enough of another's only in part.
+    it. calibrate() compares every ordered pair of templates exactly, from the coarse alignment and its alternative
+    (T (T - 1) comparisons; the other hypotheses, turns by a symmetry or the sweep, as a query's search bounds them):
+    the coarse alignment ranks whole outlines, and may rank anywhere a template that shows enough of another's only in
+    part.
     Empty for an uncalibrated database or another distance.
     \throw vpMorphException::notFoundError on an index out of range.
   */
@@ -290,8 +292,8 @@ private:
     LookAlike lookAlike;
   };
   /*!
-    RIGID: template \e i compared exactly with every other, each in full; appends to \e found the templates it is a
-    look-alike of, sets \e nearest (npos: none) and returns its cost.
+    RIGID: template \e i compared exactly with every other (vpMorphRigidSearch::run()'s \e every), each in full;
+    appends to \e found the templates it is a look-alike of, sets \e nearest (npos: none) and returns its cost.
   */
   double rigidRow(std::size_t i, std::vector<Found> &found, std::size_t &nearest) const;
   //! The per-template look-alike lists from the rows' findings.
