@@ -29,13 +29,13 @@ struct vpMorphRigidView
   Once two are compared, one whose cost is sure to exceed the runner-up's is measured no further (it can be neither).
   With shortlist 0 every template is compared exactly: the exhaustive search that the two stages stand for (a test
   checks they agree). With \e every, every template is compared exactly from its alignment and alternative, and the
-  shortlist bounds only the symmetric hypotheses tried (a calibration's search for look-alikes). An articulated template
-  has several views (its taught one and its poses): its coarsely best view is the one compared. Given \e lookAlikes (per
-  template, vpMorphDatabase::lookAlikes()), the look-alikes of a best that is \e acceptable (a taught view) are then
-  compared exactly too, as a shortlisted template is and from the best's fitted start carried over by the look-alike's
-  transform (a start at a wrong turn of the best carries the same wrong turn over); and so on for a new best. An
-  acceptable answer is then compared with every template a view of it could be taken for, whatever the coarse stage
-  ranked.
+  shortlist bounds only the symmetric hypotheses tried (a calibration's search for look-alikes).
+  An articulated template has several views (its taught one and its poses): its coarsely best view is the one compared.
+  Given \e lookAlikes (per template, vpMorphDatabase::lookAlikes()), the look-alikes of a best that is \e acceptable (a
+  taught view) are then compared exactly too, as a shortlisted template is and from the best's fitted start carried
+  over by the look-alike's transform (a start at a wrong turn of the best carries the same wrong turn over); and so
+  on for a new best. An acceptable answer is then compared with every template a view of it could be taken
+  for, whatever the coarse stage ranked.
 */
 class vpMorphRigidSearch
 {
