@@ -200,6 +200,8 @@ vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const s
   vpMorphBenchController::Context ctx;
   ctx.cam = sc.estimatedCamera(camTrue);
   ctx.eMc = robot.eMcTrue() * sc.eMcError;
+  ctx.eMcRotationTolerance = sc.eMcRotationTolerance;
+  ctx.eMcTranslationTolerance = sc.eMcTranslationTolerance;
   ctx.cdMo = sc.cdMo;
   {
     // The tag controllers' taught view: this scene (its object, so its tag placement) at the desired pose, without

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include <visp3/core/vpExponentialMap.h>
 #include <visp3/core/vpVelocityTwistMatrix.h>
@@ -219,6 +220,7 @@ public:
                           true, gain, cMct, Zp))
         vc += gain * vpExponentialMap::inverse(cMct, m_ctx.samplingTime);
       cmd.v = vpVelocityTwistMatrix(m_ctx.eMc) * vc;
+      allowForHandEye(vc);
       // Stop rule: s - s* = (centroid, angle, log scale) as the outline's RMS displacement in pixels, and the tilt.
       const double r = radiusPx(c);
       const bool atGoal = settled(std::sqrt(e[0] * e[0] * m_ctx.cam.get_px() * m_ctx.cam.get_px() +
@@ -247,9 +249,9 @@ private:
     displaced, another shape taken for the object) would drag it anywhere. Its law makes each component of the error
     e = s - s* (centroid, angle, log scale) decrease by lambda dt of itself per period (L L+ = I for four features on
     four motions); a change of a component beyond twice that, plus 15 px, 2 deg or 5 % in scale (the bump the adapter
-    detects), is a jump, and the adapter stops ("feature-jump") before sending the command. On the error, where the
-    law's prediction holds, rather than on the fit's parameters, whose translation about the view's centroid moves
-    with the rotation.
+    detects), plus what the hand-eye error may add (allowForHandEye()), is a jump, and the adapter stops
+    ("feature-jump") before sending the command. On the error, where the law's prediction holds, rather than on the
+    fit's parameters, whose translation about the view's centroid moves with the rotation.
   */
   bool errorJumped(const vpColVector &e)
   {
@@ -259,16 +261,39 @@ private:
     if (m_havePrev)
       for (unsigned int i = 0; i < 4 && !jump; ++i) {
         const double change = i == 2 ? std::remainder(e[i] - m_prevError[i], 2.0 * M_PI) : e[i] - m_prevError[i];
-        jump = std::fabs(change + g * m_prevError[i]) > g * std::fabs(m_prevError[i]) + bump[i];
+        jump = std::fabs(change + g * m_prevError[i]) > g * std::fabs(m_prevError[i]) + bump[i] + m_allowance[i];
       }
     m_prevError = e;
     m_havePrev = true;
     return jump;
   }
+  /*!
+    The law's prediction holds for the camera the twist \e vc was commanded to; the camera that moves differs from it
+    by the hand-eye error, within the tolerance the context states (rotation phi, translation t). The executed twist
+    is then V (v, w) with V the error's twist transform: its linear part differs from v by at most 2 sin(phi / 2) |v|
+    + t |w|, its angular part from w by at most 2 sin(phi / 2) |w|. Through |L| (the feature's interaction, per
+    component), this bounds how far the next change of each error component may stray from the prediction: zero for a
+    calibrated arm, large while a wrong hand-eye turns a large rotation about the wrong point.
+  */
+  void allowForHandEye(const vpColVector &vc)
+  {
+    const double chord = 2.0 * std::sin(0.5 * std::min(M_PI, m_ctx.eMcRotationTolerance));
+    const double v = std::sqrt(vc[0] * vc[0] + vc[1] * vc[1] + vc[2] * vc[2]);
+    const double w = std::sqrt(vc[3] * vc[3] + vc[4] * vc[4] + vc[5] * vc[5]);
+    const double dv = chord * v + m_ctx.eMcTranslationTolerance * w, dw = chord * w;
+    const vpMatrix L = m_s.interaction();
+    for (unsigned int i = 0; i < 4; ++i) {
+      double a = 0.0;
+      for (unsigned int j = 0; j < 6; ++j)
+        a += std::fabs(L[i][j]) * (j < 3 ? dv : dw);
+      m_allowance[i] = std::isfinite(a) ? a * m_ctx.samplingTime : 0.0;
+    }
+  }
   void reset() override
   {
     vpMorphBenchMorphAdapter::reset();
     m_havePrev = false;
+    std::fill(std::begin(m_allowance), std::end(m_allowance), 0.0);
     m_task.reset();
     m_s = vpFeatureMorph();
     m_sd = vpFeatureMorph();
@@ -283,7 +308,8 @@ private:
   bool m_built = false;
   unsigned int m_measured = 0;
   bool m_havePrev = false;
-  vpColVector m_prevError; // the task's error at the last period
+  vpColVector m_prevError;              // the task's error at the last period
+  double m_allowance[4] = {0, 0, 0, 0}; // what the hand-eye error may add to the next change (allowForHandEye())
 };
 } // namespace
 

@@ -375,6 +375,8 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
       const vpThetaUVector tu(tilt * dr * std::cos(el2) * std::cos(az2), tilt * dr * std::cos(el2) * std::sin(az2),
                               dr * std::sin(el2));
       sc.eMcError = vpHomogeneousMatrix(t, tu);
+      sc.eMcRotationTolerance = vpMath::rad(10); // the ranges drawn above: what a calibration states it is within
+      sc.eMcTranslationTolerance = 0.02;
     } else if (set == "calib-wide") {
       const double f = uni(0.7, 1.3); // px and py together
       sc.focalScaleX = sc.focalScaleY = f;
@@ -384,6 +386,8 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
       const vpTranslationVector t(dt * std::cos(el) * std::cos(az), dt * std::cos(el) * std::sin(az),
                                   dt * std::sin(el));
       sc.eMcError = vpHomogeneousMatrix(t, vpThetaUVector(0, 0, vpMath::rad(uni(-90, 90))));
+      sc.eMcRotationTolerance = vpMath::rad(90); // the ranges drawn above
+      sc.eMcTranslationTolerance = 0.05;
     } else if (set == "noise") {
       sc.faults.noiseSigma = uni(1, 6);
       sc.faults.blurSigma = uni(0, 1.5);

@@ -80,6 +80,7 @@ json toObject(const vpMorphBenchScenario &s, const std::string &base)
   j["tag"] = {{"size", s.tagSize}, {"x", s.tagX}, {"y", s.tagY}, {"auto", s.tagAuto}};
   j["calibration"] = {s.focalScaleX, s.focalScaleY, s.principalShiftU, s.principalShiftV};
   j["eMc_error"] = matrix(s.eMcError);
+  j["eMc_tolerance"] = {s.eMcRotationTolerance, s.eMcTranslationTolerance};
   j["events"] = json::array();
   for (const vpMorphBenchEvent &e : s.events)
     j["events"].push_back({{"kind", vpMorphBenchEvent::kindName(e.kind)},
@@ -151,6 +152,10 @@ vpMorphBenchScenario fromObject(const json &j, const std::string &base)
   s.principalShiftU = k.at(2).get<double>();
   s.principalShiftV = k.at(3).get<double>();
   s.eMcError = matrix(j.at("eMc_error"));
+  if (j.contains("eMc_tolerance")) { // a file written before the tolerance was stated: none
+    s.eMcRotationTolerance = j.at("eMc_tolerance").at(0).get<double>();
+    s.eMcTranslationTolerance = j.at("eMc_tolerance").at(1).get<double>();
+  }
   for (const json &e : j.at("events")) {
     vpMorphBenchEvent ev;
     ev.kind = vpMorphBenchEvent::kindFromName(e.at("kind").get<std::string>());

@@ -316,6 +316,9 @@ TEST_CASE("bench scenario sets follow the protocol's ranges and show object and 
         CHECK(s.focalScaleX == 1.0);
         CHECK(samePose(s.eMcError, vpHomogeneousMatrix()));
       }
+      // The hand-eye error drawn lies within the tolerance the controllers are told.
+      CHECK(s.eMcError.getTranslationVector().frobeniusNorm() <= s.eMcTranslationTolerance + 1e-12);
+      CHECK(vpThetaUVector(s.eMcError.getRotationMatrix()).getTheta() <= s.eMcRotationTolerance + 1e-9);
       if (set == "noise")
         CHECK(s.faults.noiseSigma >= 1.0);
       else if (set != "low-contrast")

@@ -66,9 +66,11 @@ public:
   //! What a controller is told at the start of a run.
   struct Context
   {
-    vpCameraParameters cam;   //!< estimated intrinsics
-    vpHomogeneousMatrix eMc;  //!< estimated hand-eye transform
-    vpHomogeneousMatrix cdMo; //!< desired object pose (taught with the template)
+    vpCameraParameters cam;             //!< estimated intrinsics
+    vpHomogeneousMatrix eMc;            //!< estimated hand-eye transform
+    double eMcRotationTolerance = 0;    //!< the stated bound on eMc's rotation error (rad; 0: calibrated)
+    double eMcTranslationTolerance = 0; //!< the stated bound on eMc's translation error (m; 0: calibrated)
+    vpHomogeneousMatrix cdMo;           //!< desired object pose (taught with the template)
     //! The tag as the detector saw it in the taught view (rendered at cdMo): the stock controllers' desired
     //! features, measured like their current ones (teach by showing), so that the detector's own bias cancels.
     std::vector<vpImagePoint> taughtTagCorners; //!< pixels, detector order

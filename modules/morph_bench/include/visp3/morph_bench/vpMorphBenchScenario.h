@@ -85,6 +85,8 @@ public:
   double principalShiftU = 0;            //!< and u0 shifted by this (px)
   double principalShiftV = 0;            //!< and v0 shifted by this (px)
   vpHomogeneousMatrix eMcError;          //!< hand-eye estimate given to the controllers: eMcTrue * eMcError
+  double eMcRotationTolerance = 0;       //!< the bound on eMcError's rotation the controllers are told (rad)
+  double eMcTranslationTolerance = 0;    //!< the bound on eMcError's translation the controllers are told (m)
   std::vector<vpMorphBenchEvent> events; //!< timed faults of the run (set "faults")
 
   /*!
