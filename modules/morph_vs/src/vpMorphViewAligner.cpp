@@ -215,69 +215,81 @@ vpMorphRigidTransform procrustes(const std::vector<double> &x, const std::vector
 bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, const vpMorphContour &goalN,
                                      vpMorphViewAlignment &a, bool warmOnly)
 {
-  // A view that no similarity explains may be the goal seen tilted: a homography (refined on the outlines, from the
-  // similarity, else from the correspondence's polygon fit) that lays the larger part of it on the goal within the
-  // edges' noise says so. The similarity is then the homography's own, over the view's outline.
+  // A view that no similarity explains may be the goal seen tilted: a homography (refined on the outlines) that lays
+  // the larger part of it on the goal within the edges' noise says so. The similarity is then the homography's own,
+  // over the view's outline.
   const bool measured = currentN.hasOutline() && goalN.hasOutline();
   const double limit = normalisedPixels(measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx());
   const double floor = normalisedPixels(measured ? outlineSigmaFloorPx() : polygonSigmaFloorPx());
   const bool offset = edgesMayBeOffset(currentN, goalN);
-  auto explains = [&](const vpMorphHomography &G) { return G.inlierShare() >= kBreakdown && G.residual() <= limit; };
-  vpMorphHomography G;
-  bool ok = false;
-  // From the last period's homography when the view was already seen tilted, else from the similarity.
-  for (int start = m_haveHomography ? 0 : 1; start < (warmOnly ? 1 : 2) && !ok; ++start) {
+  // One start's homography and the tests a similarity's fit passes, on the view it lays: the larger part of it on the
+  // goal and of the goal on it (eight parameters bend many an outline onto part of another), and its model.
+  struct Candidate
+  {
+    vpMorphHomography G;
+    vpMorphViewAlignment::Model model = vpMorphViewAlignment::UNEXPLAINED;
+    double outside = 0.0, inside = 0.0, coverage = 0.0, sigma = 0.0;
+    vpMatrix covariance;
+    std::vector<double> residuals;
+  };
+  auto tryStart = [&](const vpMorphHomography &G0, bool fromPolygons, Candidate &c) {
     try {
-      const vpMorphHomography G0 = start == 0 ? m_homography : vpMorphHomography(a.transform.toMatrix());
-      G = vpMorphHomography::refine(currentN.outline(), goalN.outline(), G0, floor, vpMorphHomography::kDefaultSamples,
+      c.G = fromPolygons ? vpMorphHomography::fit(currentN, m_goalN, m_tracker.update(currentN, m_goalN), floor) : G0;
+      c.G =
+          vpMorphHomography::refine(currentN.outline(), goalN.outline(), c.G, floor, vpMorphHomography::kDefaultSamples,
                                     vpMorphHomography::kDefaultIterations, offset);
-      ok = explains(G);
+      if (!(c.G.inlierShare() >= kBreakdown && c.G.residual() <= limit))
+        return false;
+      const vpMorphContour laid = c.G.apply(currentN.outline());
+      vpMorphOutlineFit check(goalN);
+      check.setMinimumSigma(floor);
+      check.setMaxIterations(1);
+      check.setEdgeOffset(outlineFitOffset(currentN, goalN));
+      check.fit(laid, vpMorphRigidTransform());
+      const vpMorphContour region = laid.size() > kRegionPoints ? laid.resampled(kRegionPoints) : laid;
+      const double area = region.area();
+      const double overlap = area > 0.0 ? region.overlapArea(m_goalRegion) / area : 0.0;
+      if (!(check.getGoalCoverage() >= kBreakdown) || !(overlap >= kBreakdown) || !(check.getSigma() <= limit))
+        return false;
+      c.outside = check.getOutsideShare();
+      c.inside = check.getInsideShare();
+      c.model = modelOf(c.outside, c.inside);
+      c.coverage = check.getGoalCoverage();
+      // How well the goal pins the laid view's similarity: the uncertainty of the homography's similarity part.
+      c.covariance = check.getCovariance();
+      c.residuals = check.getResiduals();
+      c.sigma = check.getSigma();
+      return true;
     } catch (const vpException &) {
-    }
-  }
-  if (!ok && !warmOnly && !a.explained()) { // from the correspondence's polygon fit, for a view no other start explains
-    try {
-      const vpMorphCorrespondence &corr = m_tracker.update(currentN, m_goalN);
-      G = vpMorphHomography::fit(currentN, m_goalN, corr, floor);
-      G = vpMorphHomography::refine(currentN.outline(), goalN.outline(), G, floor, vpMorphHomography::kDefaultSamples,
-                                    vpMorphHomography::kDefaultIterations, offset);
-      ok = explains(G);
-    } catch (const vpException &) {
-    }
-  }
-  if (!ok)
-    return false;
-  // The same tests as a similarity's, on the view laid by the homography: the larger part of it on the goal and of the
-  // goal on it (eight parameters bend many an outline onto part of another). The simpler model first: a part hidden
-  // or bent is read under the homography only where no similarity reads the view at all (a similarity's part model
-  // is not traded for a tilt that bends the part onto the goal).
-  const bool partAllowed = !warmOnly && !a.explained();
-  vpMorphViewAlignment::Model model = vpMorphViewAlignment::RIGID;
-  double outside = 0.0, inside = 0.0; // shares of the laid view in runs of outliers off and on the goal
-  try {
-    const vpMorphContour laid = G.apply(currentN.outline());
-    vpMorphOutlineFit check(goalN);
-    check.setMinimumSigma(floor);
-    check.setMaxIterations(1);
-    check.setEdgeOffset(outlineFitOffset(currentN, goalN));
-    check.fit(laid, vpMorphRigidTransform());
-    const vpMorphContour region = laid.size() > kRegionPoints ? laid.resampled(kRegionPoints) : laid;
-    const double area = region.area();
-    const double overlap = area > 0.0 ? region.overlapArea(m_goalRegion) / area : 0.0;
-    if (!(check.getGoalCoverage() >= kBreakdown) || !(overlap >= kBreakdown) || !(check.getSigma() <= limit))
       return false;
-    // The same model test as a similarity's, up to the homography.
-    outside = check.getOutsideShare();
-    inside = check.getInsideShare();
-    model = modelOf(outside, inside);
-    if (model != vpMorphViewAlignment::RIGID && !partAllowed)
-      return false;
-    a.goalCoverage = check.getGoalCoverage();
-    // How well the goal pins the laid view's similarity: the uncertainty of the homography's similarity part.
-    a.covariance = check.getCovariance();
-  } catch (const vpException &) {
+    }
+  };
+  // From the last period's homography when the view was already seen tilted. The motion since is unknown: where that
+  // start leaves part of the view off the goal it may have settled in the wrong place (as a similarity's warm fit may),
+  // and the start from the similarity competes; from the correspondence's polygon fit only for a view no similarity
+  // explains and no other start does. When two stand, the lower robust cost at one scale (the better fit's noise) wins.
+  std::vector<Candidate> found;
+  Candidate c;
+  if (m_haveHomography && tryStart(m_homography, false, c))
+    found.push_back(c);
+  const bool warmWhole = !found.empty() && found.front().model == vpMorphViewAlignment::RIGID;
+  if (!warmOnly && !warmWhole && tryStart(vpMorphHomography(a.transform.toMatrix()), false, c))
+    found.push_back(c);
+  if (!warmOnly && found.empty() && !a.explained() && tryStart(vpMorphHomography(), true, c))
+    found.push_back(c);
+  if (found.empty())
     return false;
+  const Candidate *best = &found.front();
+  if (found.size() == 2) {
+    const double sigma = std::min(found[0].sigma, found[1].sigma);
+    if (vpMorphOutlineFit::cost(found[1].residuals, sigma) < vpMorphOutlineFit::cost(found[0].residuals, sigma))
+      best = &found[1];
   }
+  // The simpler model first: a part hidden or bent is read under the homography only where no similarity reads the
+  // view at all (a similarity's part model is not traded for a tilt that bends the part onto the goal).
+  if (best->model != vpMorphViewAlignment::RIGID && (warmOnly || a.explained()))
+    return false;
+  const vpMorphHomography &G = best->G;
   const vpMorphContour o =
       currentN.outline().size() > kRegionPoints ? currentN.outline().resampled(kRegionPoints) : currentN.outline();
   std::vector<double> X(o.size()), Y(o.size());
@@ -285,12 +297,14 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, const vpMor
     if (!G.apply(o.x(k), o.y(k), X[k], Y[k]))
       return false;
   a.transform = procrustes(o.xs(), o.ys(), X, Y);
+  a.goalCoverage = best->coverage;
+  a.covariance = best->covariance;
   m_homography = G;
   m_haveHomography = true;
-  a.model = model;
+  a.model = best->model;
   a.perspective = true;
-  a.outsideShare = outside;
-  a.insideShare = inside;
+  a.outsideShare = best->outside;
+  a.insideShare = best->inside;
   a.inlierShare = G.inlierShare();
   a.sigmaPx = G.residual() * std::max(m_cam.get_px(), m_cam.get_py());
   a.overlapShare = overlapShare(a.transform, currentN);

@@ -36,12 +36,14 @@
   vpMorphViewAlignment::model says which model explains the residuals. A view that a similarity explains only with a
   part hidden or bent, but a homography explains whole, is the goal seen tilted: RIGID, its similarity the homography's
   own over the view (vpMorphViewAlignment::perspective). A view that no similarity explains at all is read under the
-  homography with the same model test (a tilted view whose narrow gap the foreshortening closed: a part bent). Measured
-  outlines (vpMorphContourExtractor) are compared at one blur: the sharper of the two, view or goal, is laid at the
-  other's blur (vpMorphOutlineBlur; their blurs from vpMorphContour::outlineBlur(), the view's seen at the goal's scale)
-  where the difference can move the finest edge the pixel grid draws by more than the outlines' floor, as a blur rounds
-  every detail of an edge finer than itself; polygons without them are fitted edge to edge, their robust scale
-  floored at half a pixel (vertices on the pixel grid).
+  homography with the same model test (a tilted view whose narrow gap the foreshortening closed: a part bent). The
+  homography starts from the last period's when the view was seen tilted; where that start leaves part of the view off
+  the goal, the start from the similarity competes, the lower robust cost at one scale winning, as for the
+  similarity's own warm fit. Measured outlines (vpMorphContourExtractor) are compared at one blur: the sharper of the
+  two, view or goal, is laid at the other's blur (vpMorphOutlineBlur; their blurs from vpMorphContour::outlineBlur(),
+  the view's seen at the goal's scale) where the difference can move the finest edge the pixel grid draws by more than
+  the outlines' floor, as a blur rounds every detail of an edge finer than itself; polygons without them are fitted
+  edge to edge, their robust scale floored at half a pixel (vertices on the pixel grid).
 
   <b>Method (PAPER).</b> The paper's rectification: the rotation and translation between the elongation vectors of the
   corresponded vertex sets (vpMorphRigidTransform::fitElongation) over the correspondence of every period, and the
