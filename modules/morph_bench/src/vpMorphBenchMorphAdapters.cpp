@@ -277,6 +277,8 @@ private:
   */
   void allowForHandEye(const vpColVector &vc)
   {
+    if (m_ctx.eMcRotationTolerance == 0.0 && m_ctx.eMcTranslationTolerance == 0.0)
+      return; // a calibrated arm: the allowance stays 0, and no interaction matrix is computed on the control path
     const double chord = 2.0 * std::sin(0.5 * std::min(M_PI, m_ctx.eMcRotationTolerance));
     const double v = std::sqrt(vc[0] * vc[0] + vc[1] * vc[1] + vc[2] * vc[2]);
     const double w = std::sqrt(vc[3] * vc[3] + vc[4] * vc[4] + vc[5] * vc[5]);

@@ -362,11 +362,15 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
 
     // Faults and calibration errors first (they do not depend on the start).
     if (set == "calib" || set == "calib-no-tilt") {
+      // The hand-eye error is drawn within the tolerance the calibration states (and the controllers are told).
+      const double rotationDeg = 10.0;
+      sc.eMcRotationTolerance = vpMath::rad(rotationDeg);
+      sc.eMcTranslationTolerance = 0.02;
       sc.focalScaleX = uni(0.8, 1.2);
       sc.focalScaleY = uni(0.8, 1.2);
       sc.principalShiftU = uni(-16, 16);
       sc.principalShiftV = uni(-16, 16);
-      const double dt = uni(0, 0.02), dr = vpMath::rad(uni(0, 10));
+      const double dt = uni(0, sc.eMcTranslationTolerance), dr = vpMath::rad(uni(0, rotationDeg));
       const double az = uni(-M_PI, M_PI), el = std::asin(uni(-1, 1));
       const double az2 = uni(-M_PI, M_PI), el2 = std::asin(uni(-1, 1));
       const vpTranslationVector t(dt * std::cos(el) * std::cos(az), dt * std::cos(el) * std::sin(az),
@@ -375,19 +379,18 @@ std::vector<vpMorphBenchScenario> vpMorphBenchScenario::generate(const std::stri
       const vpThetaUVector tu(tilt * dr * std::cos(el2) * std::cos(az2), tilt * dr * std::cos(el2) * std::sin(az2),
                               dr * std::sin(el2));
       sc.eMcError = vpHomogeneousMatrix(t, tu);
-      sc.eMcRotationTolerance = vpMath::rad(10); // the ranges drawn above: what a calibration states it is within
-      sc.eMcTranslationTolerance = 0.02;
     } else if (set == "calib-wide") {
+      const double rotationDeg = 90.0; // about the optical axis, either way
+      sc.eMcRotationTolerance = vpMath::rad(rotationDeg);
+      sc.eMcTranslationTolerance = 0.05;
       const double f = uni(0.7, 1.3); // px and py together
       sc.focalScaleX = sc.focalScaleY = f;
       sc.principalShiftU = uni(-10, 10);
       sc.principalShiftV = uni(-10, 10);
-      const double dt = uni(0, 0.05), az = uni(-M_PI, M_PI), el = std::asin(uni(-1, 1));
+      const double dt = uni(0, sc.eMcTranslationTolerance), az = uni(-M_PI, M_PI), el = std::asin(uni(-1, 1));
       const vpTranslationVector t(dt * std::cos(el) * std::cos(az), dt * std::cos(el) * std::sin(az),
                                   dt * std::sin(el));
-      sc.eMcError = vpHomogeneousMatrix(t, vpThetaUVector(0, 0, vpMath::rad(uni(-90, 90))));
-      sc.eMcRotationTolerance = vpMath::rad(90); // the ranges drawn above
-      sc.eMcTranslationTolerance = 0.05;
+      sc.eMcError = vpHomogeneousMatrix(t, vpThetaUVector(0, 0, vpMath::rad(uni(-rotationDeg, rotationDeg))));
     } else if (set == "noise") {
       sc.faults.noiseSigma = uni(1, 6);
       sc.faults.blurSigma = uni(0, 1.5);
