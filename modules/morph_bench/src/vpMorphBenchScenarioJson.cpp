@@ -155,6 +155,9 @@ vpMorphBenchScenario fromObject(const json &j, const std::string &base)
   if (j.contains("eMc_tolerance")) { // a file written before the tolerance was stated: none
     s.eMcRotationTolerance = j.at("eMc_tolerance").at(0).get<double>();
     s.eMcTranslationTolerance = j.at("eMc_tolerance").at(1).get<double>();
+    if (!(s.eMcRotationTolerance >= 0.0) || !(s.eMcTranslationTolerance >= 0.0))
+      throw vpMorphException(vpMorphException::ioError,
+                             "vpMorphBenchScenario: the hand-eye tolerance (eMc_tolerance) must be >= 0");
   }
   for (const json &e : j.at("events")) {
     vpMorphBenchEvent ev;

@@ -345,6 +345,17 @@ TEST_CASE("a scenario replays from its JSON to the bit", "[bench]")
   }
   CHECK_THROWS_AS(vpMorphBenchScenario::fromJson("{\"set\": 3"), vpMorphException);
   CHECK_THROWS_AS(vpMorphBenchScenario::fromJson("{\"set\": \"planar\"}"), vpMorphException);
+  // A negative hand-eye tolerance is no tolerance: a clear error.
+  std::string text = vpMorphBenchScenario::generate("calib-wide", 1, 106, tools())[0].toJson(kData);
+  const std::size_t at = text.find("\"eMc_tolerance\":[");
+  REQUIRE(at != std::string::npos);
+  text.insert(at + std::string("\"eMc_tolerance\":[").size(), "-");
+  try {
+    vpMorphBenchScenario::fromJson(text, kData);
+    FAIL("a negative tolerance was read");
+  } catch (const vpMorphException &e) {
+    CHECK(e.getStringMessage().find("eMc_tolerance") != std::string::npos);
+  }
 }
 
 TEST_CASE("bench scenario bad input gives clear errors", "[bench]")
