@@ -188,7 +188,7 @@ int recognizeStarts(const vpMorphBench &bench, const std::vector<vpMorphBenchSce
   std::map<const vpMorphDatabase *, vpMorphDatabase> alone; // each database without the support, for comparison
   std::ofstream f(out + "/recognition.csv");
   f << "set,scenario,seed,object,recognized,accepted,correct,distance,threshold,support,reranked,runner_up,"
-       "distance_alone_recognized,distance_alone_accepted\n";
+       "distance_alone_recognized,distance_alone_accepted,stage,ambiguous\n";
   struct Counts
   {
     int views = 0, right = 0, wrong = 0, rejected = 0, reranked = 0, empty = 0, aloneRight = 0, aloneWrong = 0;
@@ -203,7 +203,8 @@ int recognizeStarts(const vpMorphBench &bench, const std::vector<vpMorphBenchSce
     }
     const vpMorphDatabase &distanceAlone = alone[&db];
     vpMorphContour c;
-    const vpMorphRecognition r = bench.recognizeStart(sc, &c);
+    vpMorphPartRecognizer::Stage stage = vpMorphPartRecognizer::RIGID_STAGE;
+    const vpMorphRecognition r = bench.recognizeStart(sc, &c, &stage);
     const vpMorphRecognition a = c.empty() ? vpMorphRecognition() : distanceAlone.recognize(c);
     const std::string aloneName = c.empty() ? std::string() : db[a.index].name();
     if (perSet.empty() || perSet.back().first != sc.set)
@@ -223,7 +224,11 @@ int recognizeStarts(const vpMorphBench &bench, const std::vector<vpMorphBenchSce
       << r.accepted << ',' << (r.accepted && name == sc.object) << ',' << r.distance << ',' << r.threshold << ','
       << r.support << ',' << r.reranked << ','
       << (r.secondIndex == vpMorphRecognition::npos ? std::string() : db[r.secondIndex].name()) << ',' << aloneName
-      << ',' << a.accepted << "\n";
+      << ',' << a.accepted << ','
+      << (none                                          ? std::string()
+          : stage == vpMorphPartRecognizer::RIGID_STAGE ? "rigid"
+                                                        : db.distance().name())
+      << ',' << r.ambiguous << "\n";
     if ((k + 1) % 10 == 0 || k + 1 == scenarios.size())
       std::cerr << "[" << k + 1 << "/" << scenarios.size() << "] first views recognised" << std::endl;
   }

@@ -75,10 +75,11 @@ vpMorphRecognition vpMorphDatabase::rigidSearch(const vpMorphContour &c, const v
     a.evaluated = o.compared;
     // Two acceptable templates that the view's outline does not tell apart: no telling which. Weighed only when the
     // best would be accepted.
-    a.accepted = rigidAccepted(o.best) &&
-                 !(o.second != vpMorphRecognition::npos && rigidAccepted(o.runnerUp) &&
-                   vpMorphRigidCheck::evidence(q.rigid[m], rigidView(o.index, o.pose), o.best,
-                                               rigidView(o.second, o.secondPose), o.runnerUp) < ambiguity());
+    const bool acceptable = rigidAccepted(o.best);
+    a.ambiguous = acceptable && o.second != vpMorphRecognition::npos && rigidAccepted(o.runnerUp) &&
+                  vpMorphRigidCheck::evidence(q.rigid[m], rigidView(o.index, o.pose), o.best,
+                                              rigidView(o.second, o.secondPose), o.runnerUp) < ambiguity();
+    a.accepted = acceptable && !a.ambiguous;
     if (m == 0 || a.accepted) {
       r = a;
       r.correspondence = matcher.match(c, templateView(r.index, o.pose));

@@ -1,6 +1,6 @@
 // Images shared by the morph unit tests: the six tools' images, a test polygon rendered anti-aliased and blurred,
-// distances to an outline, the largest object's boundary and the benchmark scene's square occluder. Include after
-// catch.hpp.
+// distances to an outline, the largest object's boundary, the benchmark scene's square occluder, and views seen
+// through a map (turned, shifted, scaled), blurred and noisy, and their objects extracted. Include after catch.hpp.
 #ifndef VP_MORPH_TEST_IMAGES_H
 #define VP_MORPH_TEST_IMAGES_H
 
@@ -15,6 +15,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <visp3/core/vpImage.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
 
 namespace vpMorphTest
 {
@@ -30,6 +31,45 @@ inline cv::Mat readObject(const std::string &name)
   cv::Mat m = cv::imread(std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png", cv::IMREAD_GRAYSCALE);
   REQUIRE_FALSE(m.empty());
   return m;
+}
+
+//! The object of \e m (vpMorphContourExtractor::extract()); \e joined: across an occluder (extractJoined(), as the
+//! benchmark extracts).
+inline vpMorphContour extract(const cv::Mat &m, bool joined = false)
+{
+  vpImage<unsigned char> I(static_cast<unsigned int>(m.rows), static_cast<unsigned int>(m.cols));
+  for (int v = 0; v < m.rows; ++v)
+    for (int u = 0; u < m.cols; ++u)
+      I[v][u] = m.at<unsigned char>(v, u);
+  return joined ? vpMorphContourExtractor().extractJoined(I) : vpMorphContourExtractor().extract(I);
+}
+
+//! \e src seen through the 3x3 map M (white comes in from the borders), blurred by sigma 0.7 px as a lens does and
+//! with Gaussian noise of std \e noise.
+inline cv::Mat warp(const cv::Mat &src, const cv::Mat &M, double noise, unsigned int seed)
+{
+  cv::Mat out;
+  cv::warpPerspective(src, out, M, src.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(255));
+  cv::GaussianBlur(out, out, cv::Size(0, 0), 0.7);
+  if (noise > 0) {
+    cv::Mat n(out.size(), CV_32F), f;
+    cv::RNG rng(seed);
+    rng.fill(n, cv::RNG::NORMAL, 0.0, noise);
+    out.convertTo(f, CV_32F);
+    f += n;
+    f.convertTo(out, CV_8U);
+  }
+  return out;
+}
+
+//! The 3x3 map that turns by \e deg about the image centre, scales, and shifts by (tx, ty) px.
+inline cv::Mat similarity(const cv::Mat &src, double deg, double scale, double tx, double ty)
+{
+  cv::Mat R = cv::getRotationMatrix2D(cv::Point2f(src.cols / 2.f, src.rows / 2.f), deg, scale), M;
+  R.at<double>(0, 2) += tx;
+  R.at<double>(1, 2) += ty;
+  cv::vconcat(R, cv::Mat((cv::Mat_<double>(1, 3) << 0, 0, 1)), M);
+  return M;
 }
 
 // A ten-vertex, non-convex polygon (about 300 x 220 px) with acute and obtuse corners.
@@ -134,6 +174,28 @@ inline cv::Mat squareOccluder(const cv::Mat &src, double where, double share)
   cv::rectangle(out, cv::Point(o.x - h, o.y - h), cv::Point(o.x + h, o.y + h), cv::Scalar(170), cv::FILLED);
   return out;
 }
+//! \e src with a tab 40 px long and 8 px wide sticking out of its outline three tenths of the way round (a look-alike
+//! that differs in one place), and the tab's middle in \e centre.
+inline cv::Mat withTab(const cv::Mat &src, cv::Point &centre)
+{
+  const std::vector<cv::Point> boundary = largestBoundary(src);
+  const std::size_t i = boundary.size() * 3 / 10;
+  const cv::Point at = boundary[i],
+                  t = boundary[(i + 5) % boundary.size()] - boundary[(i + boundary.size() - 5) % boundary.size()];
+  cv::Point2d n(-t.y, t.x);
+  n /= cv::norm(n);
+  if (src.at<unsigned char>(cv::Point(at + cv::Point(cvRound(4 * n.x), cvRound(4 * n.y)))) == 0)
+    n = -n; // outward
+  auto along = [&](double s, double w) {
+    return cv::Point(cvRound(at.x + s * n.x - w * n.y), cvRound(at.y + s * n.y + w * n.x));
+  };
+  cv::Mat out = src.clone();
+  const std::vector<cv::Point> tab{along(-3, -4), along(40, -4), along(40, 4), along(-3, 4)};
+  cv::fillConvexPoly(out, tab, cv::Scalar(0));
+  centre = along(20, 0);
+  return out;
+}
+
 } // namespace vpMorphTest
 
 #endif

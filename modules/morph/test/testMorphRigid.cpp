@@ -28,42 +28,9 @@ namespace
 {
 const char *kObjects[] = {"key", "pliers", "wedge", "wrench", "screwdriver", "hammer"};
 
-vpMorphContour extract(const cv::Mat &m, bool joined = false)
-{
-  vpImage<unsigned char> I(static_cast<unsigned int>(m.rows), static_cast<unsigned int>(m.cols));
-  for (int v = 0; v < m.rows; ++v)
-    for (int u = 0; u < m.cols; ++u)
-      I[v][u] = m.at<unsigned char>(v, u);
-  return joined ? vpMorphContourExtractor().extractJoined(I) : vpMorphContourExtractor().extract(I);
-}
-
-// The image seen through the 3x3 map M (white comes in from the borders), blurred by sigma 0.7 px as a lens does and
-// with Gaussian noise of std \e noise.
-cv::Mat warp(const cv::Mat &src, const cv::Mat &M, double noise, unsigned int seed)
-{
-  cv::Mat out;
-  cv::warpPerspective(src, out, M, src.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(255));
-  cv::GaussianBlur(out, out, cv::Size(0, 0), 0.7);
-  if (noise > 0) {
-    cv::Mat n(out.size(), CV_32F), f;
-    cv::RNG rng(seed);
-    rng.fill(n, cv::RNG::NORMAL, 0.0, noise);
-    out.convertTo(f, CV_32F);
-    f += n;
-    f.convertTo(out, CV_8U);
-  }
-  return out;
-}
-
-// Turned by deg about the image centre, scaled, shifted by (tx, ty) px.
-cv::Mat similarity(const cv::Mat &src, double deg, double scale, double tx, double ty)
-{
-  cv::Mat R = cv::getRotationMatrix2D(cv::Point2f(src.cols / 2.f, src.rows / 2.f), deg, scale), M;
-  R.at<double>(0, 2) += tx;
-  R.at<double>(1, 2) += ty;
-  cv::vconcat(R, cv::Mat((cv::Mat_<double>(1, 3) << 0, 0, 1)), M);
-  return M;
-}
+using vpMorphTest::extract;
+using vpMorphTest::similarity;
+using vpMorphTest::warp;
 
 // The view of a camera of focal 800 px turned by \e deg about its vertical axis (the plane seen tilted by as much),
 // shifted back so that the image centre stays put, then turned in the image by \e roll degrees.
@@ -610,26 +577,13 @@ TEST_CASE("rigid recognition: two look-alikes that differ only under the card ar
   // under a card, the view's own outline is explained alike by both: a rejection, although the plain key, with less
   // outline under the card, costs less (the template's side of the cost counts what the card hides against it).
   const cv::Mat key = vpMorphTest::readObject("key");
-  const std::vector<cv::Point> boundary = vpMorphTest::largestBoundary(key);
-  const std::size_t i = boundary.size() * 3 / 10;
-  const cv::Point at = boundary[i],
-                  t = boundary[(i + 5) % boundary.size()] - boundary[(i + boundary.size() - 5) % boundary.size()];
-  cv::Point2d n(-t.y, t.x);
-  n /= cv::norm(n);
-  if (key.at<unsigned char>(cv::Point(at + cv::Point(cvRound(4 * n.x), cvRound(4 * n.y)))) == 0)
-    n = -n; // outward
-  auto along = [&](double s, double w) {
-    return cv::Point(cvRound(at.x + s * n.x - w * n.y), cvRound(at.y + s * n.y + w * n.x));
-  };
-  cv::Mat tabbed = key.clone();
-  const std::vector<cv::Point> tab{along(-3, -4), along(40, -4), along(40, 4), along(-3, 4)};
-  cv::fillConvexPoly(tabbed, tab, cv::Scalar(0));
+  cv::Point centre;
+  const cv::Mat tabbed = vpMorphTest::withTab(key, centre);
   vpMorphDatabase db(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
   db.add(vpMorphTemplate("key", extract(key)));
   db.add(vpMorphTemplate("key-tab", extract(tabbed)));
   db.calibrate(0);
   cv::Mat hidden = tabbed.clone();
-  const cv::Point centre = along(20, 0);
   cv::rectangle(hidden, centre - cv::Point(28, 28), centre + cv::Point(28, 28), cv::Scalar(170), cv::FILLED);
   for (int k = 0; k < 4; ++k) {
     const double deg = 40.0 + 75.0 * k, scale = 0.9 + 0.05 * k;

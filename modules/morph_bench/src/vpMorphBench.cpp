@@ -43,6 +43,7 @@ void commandSpeed(const vpColVector &v, vpRobot::vpControlFrameType frame, const
 struct vpMorphBench::Taught
 {
   vpMorphDatabase db;
+  std::unique_ptr<vpMorphPartRecognizer> recognizer;              // over db (none when db is empty)
   std::map<std::string, std::string> untaught;                    // object -> why
   std::map<std::string, vpMorphBenchObservability> observability; // object -> its taught view's
 };
@@ -101,8 +102,10 @@ const vpMorphBench::Taught &vpMorphBench::taught(const std::string &variant, con
       t->untaught[o.name] = e.getStringMessage();
     }
   }
-  if (!t->db.empty())
+  if (!t->db.empty()) {
     t->db.calibrate(1);
+    t->recognizer.reset(new vpMorphPartRecognizer(t->db, 1));
+  }
   return *t;
 }
 
@@ -126,7 +129,8 @@ void vpMorphBench::prepare(const std::vector<vpMorphBenchScenario> &scenarios) c
       taught(sc.variant, sc.set);
 }
 
-vpMorphRecognition vpMorphBench::recognizeStart(const vpMorphBenchScenario &sc, vpMorphContour *shown) const
+vpMorphRecognition vpMorphBench::recognizeStart(const vpMorphBenchScenario &sc, vpMorphContour *shown,
+                                                vpMorphPartRecognizer::Stage *stage) const
 {
   if (shown)
     *shown = vpMorphContour();
@@ -140,11 +144,11 @@ vpMorphRecognition vpMorphBench::recognizeStart(const vpMorphBenchScenario &sc, 
   if (!scene.tagPoseEstimator().estimate(I, cMt, &corners))
     corners.clear(); // nothing to mask
   const std::vector<vpMorphContour> candidates = vpMorphTagPoseEstimator::silhouetteCandidates(I, corners);
-  const vpMorphDatabase &db = database(sc.variant, sc.set);
-  if (candidates.empty() || db.empty())
+  const Taught &t = taught(sc.variant, sc.set);
+  if (candidates.empty() || !t.recognizer)
     return vpMorphRecognition();
   std::size_t chosen = 0;
-  const vpMorphRecognition r = db.recognize(candidates, chosen);
+  const vpMorphRecognition r = t.recognizer->recognize(candidates, chosen, stage);
   if (shown)
     *shown = candidates[chosen];
   return r;
@@ -221,6 +225,7 @@ vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const s
   ctx.tagSize = scene.tagSize();
   ctx.oMt = scene.oMt();
   ctx.database = &taughtViews.db;
+  ctx.recognizer = taughtViews.recognizer.get();
   ctx.expectedObject = sc.object;
   ctx.lambda = m_settings.lambda;
   ctx.samplingTime = m_settings.samplingTime;

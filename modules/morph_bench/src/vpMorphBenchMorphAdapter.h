@@ -38,7 +38,7 @@ protected:
 
   /*!
     The silhouette of image \e I. On the first one, the database tells which region is the object
-    (vpMorphTagPoseEstimator::silhouetteCandidates(), vpMorphDatabase::recognize() on the list); afterwards the
+    (vpMorphTagPoseEstimator::silhouetteCandidates(), the context's vpMorphPartRecognizer on the list); afterwards the
     silhouette is the one that continues the last (a larger region elsewhere is not the object). False when the caller
     must return \e cmd as it is (hold: no silhouette; stop: rejected); true with cmd.measureMs set.
   */
@@ -81,7 +81,8 @@ protected:
       return true;
     }
     std::size_t chosen = 0;
-    const vpMorphRecognition r = m_ctx.database->recognize(candidates, chosen);
+    const vpMorphRecognition r = m_ctx.recognizer ? m_ctx.recognizer->recognize(candidates, chosen)
+                                                  : m_ctx.database->recognize(candidates, chosen);
     c = candidates[chosen];
     if (r.index == vpMorphRecognition::npos || !r.accepted) {
       reason = "recognition";
@@ -103,6 +104,11 @@ protected:
   {
     const vpMorphDatabase &db = *m_ctx.database;
     const std::size_t cur = db.find(m_template->name());
+    if (m_ctx.recognizer) { // its rigid stage first, as vpMorphServoGuard's check with a recognizer
+      const vpMorphPartRecognizer::Naming n = m_ctx.recognizer->namedAs(c, cur);
+      if (n != vpMorphPartRecognizer::UNDECIDED)
+        return n == vpMorphPartRecognizer::NAMED_OTHER;
+    }
     const vpMorphRecognition r = db.recognize(c);
     if (r.index == vpMorphRecognition::npos || r.index == cur)
       return false;

@@ -90,7 +90,10 @@ private:
   void setTarget()
   {
     m_servo->setTarget(*m_template);
-    m_servo->getGuard().setTargetCheck(*m_ctx.database, m_template->name(), kCheckSlack);
+    if (m_ctx.recognizer)
+      m_servo->getGuard().setTargetCheck(*m_ctx.recognizer, m_template->name(), kCheckSlack);
+    else
+      m_servo->getGuard().setTargetCheck(*m_ctx.database, m_template->name(), kCheckSlack);
     m_targetSet = true;
   }
   Command fromStatus(Command cmd) const

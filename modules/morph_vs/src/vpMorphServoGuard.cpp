@@ -29,11 +29,22 @@ void vpMorphServoGuard::setTargetCheck(const vpMorphDatabase &db, const std::str
     throw vpMorphException(vpMorphException::notFoundError,
                            "vpMorphServoGuard::setTargetCheck: no template '" + name + "' in the database");
   m_db = db;
+  m_recognizer.reset();
   m_index = k;
   m_slack = slack;
 }
 
-void vpMorphServoGuard::clearTargetCheck() { m_db = vpMorphDatabase(); }
+void vpMorphServoGuard::setTargetCheck(const vpMorphPartRecognizer &recognizer, const std::string &name, double slack)
+{
+  setTargetCheck(recognizer.getDatabase(), name, slack);
+  m_recognizer = std::make_shared<const vpMorphPartRecognizer>(recognizer);
+}
+
+void vpMorphServoGuard::clearTargetCheck()
+{
+  m_db = vpMorphDatabase();
+  m_recognizer.reset();
+}
 
 void vpMorphServoGuard::reset()
 {
@@ -81,6 +92,11 @@ bool vpMorphServoGuard::targetMismatch(const vpMorphContour &current, const vpMo
 {
   if (m_db.empty())
     return false;
+  if (m_recognizer) {
+    const vpMorphPartRecognizer::Naming n = m_recognizer->namedAs(current, m_index);
+    if (n != vpMorphPartRecognizer::UNDECIDED)
+      return n == vpMorphPartRecognizer::NAMED_OTHER;
+  }
   const vpMorphRecognition r = m_db.recognize(current);
   if (articulated) {
     // Its distance to the target posed at one opening varies from one view to the next: the database's, over its

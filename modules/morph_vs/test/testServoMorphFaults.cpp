@@ -1,6 +1,7 @@
 // Faults in a vpServoMorph loop on the free-flying camera (vpSimulatorCamera) and the projected bracket of
 // testMorphVsScene.h: frames without a contour (hold, resume on the same plan, stop after too long), a jump of
-// the camera (re-plan, bounded, then convergence), and a wrong target (stop instead of a false convergence).
+// the camera (re-plan, bounded, then convergence), a wrong target (stop instead of a false convergence), and the target
+// check with a vpMorphPartRecognizer (a card over the target, rendered from the six tools' images).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -9,9 +10,11 @@
 #include <visp3/core/vpVelocityTwistMatrix.h>
 #include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph/vpMorphException.h>
+#include <visp3/morph/vpMorphPartRecognizer.h>
 #include <visp3/morph_vs/vpServoMorph.h>
 #include <visp3/robot/vpSimulatorCamera.h>
 
+#include "../../morph/test/testMorphImages.h"
 #include "testMorphVsScene.h"
 
 using namespace vpMorphVsTest;
@@ -247,4 +250,43 @@ TEST_CASE("vpServoMorph faults: a wrong target is reported (TARGET_MISMATCH), ne
     CHECK(l.run());
     CHECK(l.servo.getGuard().getTargetDistance() <= db.threshold(bracket));
   }
+}
+
+TEST_CASE("vpMorphServoGuard: with a recognizer, a view its rigid stage names as the target passes the target check",
+          "[servo][faults][recognizer]")
+{
+  using vpMorphTest::extract;
+  vpMorphDatabase db;
+  for (const char *name : {"key", "pliers", "wedge", "wrench", "screwdriver", "hammer"})
+    db.add(vpMorphTemplate(name, extract(vpMorphTest::readObject(name), false)));
+  db.calibrate(0);
+  const vpMorphPartRecognizer recognizer(db);
+  // A card over a fifth (a quarter) of the wedge's (the key's) outline: the view shows less of it than the distance's
+  // support asks, and the distance's rules alone take the target's own view for another.
+  const struct
+  {
+    const char *name;
+    double share, where;
+    unsigned int seed;
+  } cards[] = {{"wedge", 0.2, 0.95, 16}, {"key", 0.25, 0.25, 9}};
+  for (const auto &card : cards) {
+    const cv::Mat hidden = vpMorphTest::squareOccluder(vpMorphTest::readObject(card.name), card.where, card.share);
+    const vpMorphContour c = extract(
+        vpMorphTest::warp(hidden, vpMorphTest::similarity(hidden, 30.0 + 100.0 * card.where, 1.0, 0, 0), 3, card.seed),
+        true);
+    const vpMorphContour &target = db[card.name].contour();
+    CAPTURE(card.name);
+    vpMorphServoGuard alone, withRecognizer, other;
+    alone.setTargetCheck(db, card.name);
+    withRecognizer.setTargetCheck(recognizer, card.name);
+    other.setTargetCheck(recognizer, "hammer");
+    REQUIRE(recognizer.namedAs(c, db.find(card.name)) == vpMorphPartRecognizer::NAMED_TEMPLATE);
+    CHECK(alone.targetMismatch(c, target, false));
+    CHECK_FALSE(withRecognizer.targetMismatch(c, target, false));
+    CHECK(other.targetMismatch(c, db["hammer"].contour(), false)); // named as another part: not the hammer
+    withRecognizer.clearTargetCheck();
+    CHECK_FALSE(withRecognizer.hasTargetCheck());
+    CHECK_FALSE(withRecognizer.targetMismatch(c, target, false));
+  }
+  CHECK_THROWS_AS(vpMorphServoGuard().setTargetCheck(recognizer, "saw"), vpMorphException);
 }

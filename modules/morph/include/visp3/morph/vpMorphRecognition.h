@@ -50,6 +50,11 @@ public:
   //! (vpMorphDatabase, re-ranking); then secondIndex is the distance's choice and margin is 0.
   bool reranked = false;
   bool mirrored = false; //!< the template's mirror image matched best
+  /*!
+    RIGID: the best template would accept the view, but a runner-up would too and the view does not tell them apart
+    (vpMorphDatabase::ambiguity()): rejected because what differs is not in the view, not because no template fits.
+  */
+  bool ambiguous = false;
   //! An articulated template's opening that matched best (radians, vpMorphArticulation; 0: the taught view).
   double articulation = 0.0;
   /*!

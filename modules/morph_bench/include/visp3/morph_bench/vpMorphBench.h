@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/morph/vpMorphPartRecognizer.h>
 #include <visp3/morph_bench/vpMorphBenchController.h>
 #include <visp3/morph_bench/vpMorphBenchObjectSet.h>
 #include <visp3/morph_bench/vpMorphBenchObservability.h>
@@ -108,11 +109,13 @@ public:
 
   /*!
     The recognition of a scenario's first view, as the controllers see it before they move: its scene rendered from
-    the start pose (the free camera's), the tag found and masked, the candidate silhouettes extracted and the one
-    its database recognises best chosen. \e shown, if not null, receives the silhouette (empty when there is none; then the recognition
-    has no template, index npos). A check of the recognition on many starts without servoing them.
+    the start pose (the free camera's), the tag found and masked, the candidate silhouettes extracted and the one its
+    database's vpMorphPartRecognizer recognises best chosen. \e shown, if not null, receives the silhouette (empty when
+    there is none; then the recognition has no template, index npos), \e stage the stage that answered. A check of
+    the recognition on many starts without servoing them.
   */
-  vpMorphRecognition recognizeStart(const vpMorphBenchScenario &scenario, vpMorphContour *shown = nullptr) const;
+  vpMorphRecognition recognizeStart(const vpMorphBenchScenario &scenario, vpMorphContour *shown = nullptr,
+                                    vpMorphPartRecognizer::Stage *stage = nullptr) const;
 
   //! One period of a run as a picture of it needs it (run()'s observer).
   struct Frame

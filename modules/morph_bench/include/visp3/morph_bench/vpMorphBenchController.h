@@ -18,6 +18,7 @@
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpPoint.h>
 #include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/morph/vpMorphPartRecognizer.h>
 #include <visp3/morph_vs/vpMorphJointVelocity.h>
 #include <visp3/robot/vpRobot.h>
 
@@ -80,9 +81,11 @@ public:
     double tagSize = 0.08;                      //!< black-border side, m
     vpHomogeneousMatrix oMt;                    //!< tag frame in the object frame
     const vpMorphDatabase *database = nullptr;  //!< templates (VISPMorph controllers)
-    std::string expectedObject;                 //!< the object truly present (only to score the recognition)
-    double lambda = 2.5;                        //!< gain (1/s): the same for every controller
-    double samplingTime = 0.04;                 //!< s
+    //! The first view's recognition over \e database (VISPMorph controllers; null: the database's own)
+    const vpMorphPartRecognizer *recognizer = nullptr;
+    std::string expectedObject; //!< the object truly present (only to score the recognition)
+    double lambda = 2.5;        //!< gain (1/s): the same for every controller
+    double samplingTime = 0.04; //!< s
     //! Fault injection (WRONG_TEMPLATE): the first recognition returns this template, whatever it sees.
     std::string forcedTemplate;
     //! The robot's lower joint limits (infinite for the free camera, whose "joints" are its pose).

@@ -8,11 +8,13 @@
 
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <string>
 
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/morph/vpMorphPartRecognizer.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_vs/vpMorphServoStatus.h>
 #include <visp3/morph_vs/vpMorphViewAlignment.h>
@@ -31,7 +33,8 @@
   - <b>Target check</b> (setTargetCheck()): the view is not the target when the database does not accept it as the
     target's template (vpMorphDatabase::accepts(), with a slack: an occluded view of the target is the target), or
     when the database's best template is another one, accepted, that costs getMismatchRatio() times less work and
-    explains more of the view's outline (vpMorphDatabase::support()).
+    explains more of the view's outline (vpMorphDatabase::support()). Given a vpMorphPartRecognizer, its RIGID stage
+    decides first where it names the view's part.
   - <b>Verification</b> (verify()): at the target, the measurement says aligned; CONVERGED only if the aligned view
     explains the target (vpMorphViewAlignment::explained()) and pins the pose: three standard deviations of the
     alignment's rotation, translation and scale (vpMorphViewAlignment::covariance) within the final thresholds, and,
@@ -74,6 +77,13 @@ public:
     \throw vpMorphException::notFoundError for an unknown name, badParameterError for a slack below 1 or NaN.
   */
   void setTargetCheck(const vpMorphDatabase &db, const std::string &name, double slack = 1.25);
+  /*!
+    As setTargetCheck(db, name, slack) over the recognizer's database, where the recognizer's RIGID stage decides
+    first (vpMorphPartRecognizer::namedAs()): a view it names as the target's part is the target, one it names as
+    another's is not; the database's rules judge the rest. The check then agrees with the recognition that chose the
+    target (an occluded view named by the rigid check may show less of its outline than the distance's support asks).
+  */
+  void setTargetCheck(const vpMorphPartRecognizer &recognizer, const std::string &name, double slack = 1.25);
   //! No target check from now on.
   void clearTargetCheck();
   //! True when a target check is set.
@@ -135,6 +145,7 @@ private:
   unsigned int m_maxLost = 25, m_maxReplans = 3;
   double m_jumpPx = 20.0, m_jumpRotation = 0.1;
   vpMorphDatabase m_db;
+  std::shared_ptr<const vpMorphPartRecognizer> m_recognizer; // its RIGID stage first, when set
   std::size_t m_index = 0;
   double m_slack = 1.25;
   unsigned int m_lost = 0, m_replans = 0;

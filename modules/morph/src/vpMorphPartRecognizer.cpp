@@ -1,0 +1,71 @@
+#include <visp3/morph/vpMorphPartRecognizer.h>
+
+#include <cmath>
+
+#include <visp3/morph/vpMorphException.h>
+
+vpMorphPartRecognizer::vpMorphPartRecognizer(const vpMorphDatabase &db, unsigned int threads) : m_db(db)
+{
+  if (db.empty())
+    throw vpMorphException(vpMorphException::notFoundError, "vpMorphPartRecognizer: the database is empty");
+  if (db.distance().model() == vpMorphShapeDistance::RIGID)
+    return;
+  m_rigid = db;
+  m_rigid.setDistance(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
+  m_rigid.calibrate(threads);
+}
+
+vpMorphRecognition vpMorphPartRecognizer::recognize(const vpMorphContour &c, Stage *stage) const
+{
+  if (c.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpMorphPartRecognizer::recognize: empty contour");
+  if (stage)
+    *stage = RIGID_STAGE;
+  const vpMorphRecognition r = getRigidDatabase().recognize(c);
+  if (r.accepted || r.ambiguous || m_rigid.empty())
+    return r;
+  if (stage)
+    *stage = DISTANCE_STAGE;
+  return m_db.recognize(c);
+}
+
+vpMorphPartRecognizer::Naming vpMorphPartRecognizer::namedAs(const vpMorphContour &c, std::size_t k) const
+{
+  if (k >= m_db.size())
+    throw vpMorphException(vpMorphException::badParameterError, "vpMorphPartRecognizer::namedAs: no such template");
+  if (c.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpMorphPartRecognizer::namedAs: empty contour");
+  const vpMorphRecognition r = getRigidDatabase().recognize(c);
+  if (!r.accepted)
+    return UNDECIDED;
+  return r.index == k ? NAMED_TEMPLATE : NAMED_OTHER;
+}
+
+vpMorphRecognition vpMorphPartRecognizer::recognize(const std::vector<vpMorphContour> &candidates, std::size_t &chosen,
+                                                    Stage *stage) const
+{
+  if (candidates.empty())
+    throw vpMorphException(vpMorphException::badContourError, "vpMorphPartRecognizer::recognize: no candidate contour");
+  // As vpMorphDatabase::recognize() ranks candidates: the distance over the template's threshold, the least first.
+  auto share = [](const vpMorphRecognition &r) {
+    return std::isfinite(r.threshold) && r.threshold > 0.0 ? r.distance / r.threshold : r.distance;
+  };
+  vpMorphRecognition best;
+  Stage bestStage = RIGID_STAGE;
+  chosen = 0;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    Stage s;
+    vpMorphRecognition r = recognize(candidates[k], &s);
+    // An exact rigid fit outranks a deformation-tolerant one; within a stage, the lesser share.
+    const bool better = r.accepted && (!best.accepted || (s == RIGID_STAGE && bestStage != RIGID_STAGE) ||
+                                       (s == bestStage && share(r) < share(best)));
+    if (k == 0 || better) {
+      best = std::move(r);
+      bestStage = s;
+      chosen = k;
+    }
+  }
+  if (stage)
+    *stage = bestStage;
+  return best;
+}
