@@ -285,7 +285,7 @@ void extractQueries(std::vector<Query> &queries, const std::vector<Entry> &entri
       every("views rendered"));
 }
 
-void recognizeQueries(std::vector<Query> &queries, const std::vector<vpMorphDatabase> &dbs, unsigned int threads,
+void recognizeQueries(std::vector<Query> &queries, const std::vector<Model> &models, unsigned int threads,
                       unsigned int repetitions)
 {
   vpMorphShapeDistance().parallelFor(
@@ -294,10 +294,10 @@ void recognizeQueries(std::vector<Query> &queries, const std::vector<vpMorphData
         Query &q = queries[k];
         if (q.contour.empty())
           return;
-        for (const vpMorphDatabase &db : dbs)
+        for (const Model &model : models)
           for (unsigned int r = 0; r < std::max(1u, repetitions); ++r) {
             const vpMorphThreadCpuClock::time_point t0 = vpMorphThreadCpuClock::now();
-            const vpMorphRecognition a = db.recognize(q.contour);
+            const vpMorphRecognition a = model.recognize(q.contour);
             const double ms = vpMorphThreadCpuClock::millisecondsSince(t0);
             if (r == 0) {
               q.answers.push_back(a);

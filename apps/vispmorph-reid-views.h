@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +14,7 @@
 
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/morph/vpMorphPartRecognizer.h>
 #include <visp3/morph/vpMorphRecognition.h>
 #include <visp3/morph/vpMorphShapeDistance.h>
 
@@ -71,9 +73,16 @@ std::vector<Entry> teachAll(const std::vector<Shape> &shapes, const std::vector<
 //! Renders and extracts every query's view (all cores); a view without object stays empty.
 void extractQueries(std::vector<Query> &queries, const std::vector<Entry> &entries, std::uint64_t seed,
                     unsigned int threads);
-//! Recognises every query with every database on \e threads threads, each recognition timed on its own thread: the
+//! A model under test: its database, and for a model "part+DISTANCE" the vpMorphPartRecognizer over it.
+struct Model
+{
+  vpMorphDatabase db;
+  std::shared_ptr<const vpMorphPartRecognizer> part;
+  vpMorphRecognition recognize(const vpMorphContour &c) const { return part ? part->recognize(c) : db.recognize(c); }
+};
+//! Recognises every query with every model on \e threads threads, each recognition timed on its own thread: the
 //! fastest of \e repetitions recognitions (the answer is the same each time; the machine's noise is not).
-void recognizeQueries(std::vector<Query> &queries, const std::vector<vpMorphDatabase> &dbs, unsigned int threads,
+void recognizeQueries(std::vector<Query> &queries, const std::vector<Model> &models, unsigned int threads,
                       unsigned int repetitions = 1);
 
 #endif

@@ -23,11 +23,12 @@
   - combined: noise, blur and tilt together;
   - occlusion: a light-grey card over 20 % of the outline, at a uniform place along it;
   - combined-occlusion: combined with the card.
-  Each model (vpMorphShapeDistance::fromName(), default the database's default) gets a database of the same
-  templates, calibrated, and every query. The answer is right (the exact template, accepted), wrong (another, accepted)
-  or rejected; an accepted view of an absent shape is a false accept. Query time: the CPU time of recognize() on the
-  thread that runs it (one core). Writes DIR/queries.csv (a row per query and model), DIR/summary.md and
-  DIR/summary.json (with the commit the tool was built at); the textures drawn (DIR/textures) are kept for a replay.
+  Each model (vpMorphShapeDistance::fromName(), default the database's default; "part+MODEL": vpMorphPartRecognizer
+  over MODEL's database, its RIGID twin first) gets a database of the same templates, calibrated, and every query. The
+  answer is right (the exact template, accepted), wrong (another, accepted) or rejected; an accepted view of an absent
+  shape is a false accept. Query time: the CPU time of recognize() on the thread that runs it (one core). Writes
+  DIR/queries.csv (a row per query and model), DIR/summary.md and DIR/summary.json (with the commit the tool was built
+  at); the textures drawn (DIR/textures) are kept for a replay.
 
   --timing: databases of the given sizes, drawn by the seed from every image of both datasets (both pools), each
   queried by --queries views (condition combined) of its own templates on one thread; per model the median and mean
@@ -97,7 +98,8 @@ void usage(std::ostream &os)
         "  --views N         views per shape and condition (default 2)\n"
         "  --seed S          classes drawn, views and faults (default 100)\n"
         "  --models a,b      distance models (rigid, polygon, paper, multiscale, height; default: the database's "
-        "default)\n"
+        "default),\n"
+        "                    or part+MODEL: vpMorphPartRecognizer, rigid first, then MODEL\n"
         "  --conditions a,b  of pose, noise, blur, tilt, combined, occlusion, combined-occlusion (default: all)\n"
         "  --threads T       threads (default: all cores; each query is timed on its own thread)\n"
         "  --queries N       --timing: queries per database (default 100)\n"
@@ -125,9 +127,14 @@ unsigned long parseUnsigned(const std::string &opt, const std::string &v, unsign
   return static_cast<unsigned long>(x);
 }
 
+// The prefix of a model recognised by vpMorphPartRecognizer over the distance that follows it (part+multiscale).
+const std::string kPartPrefix = "part+";
+bool isPart(const std::string &model) { return model.compare(0, kPartPrefix.size(), kPartPrefix) == 0; }
+std::string distanceSpec(const std::string &model) { return isPart(model) ? model.substr(kPartPrefix.size()) : model; }
+
 /*
-  A model: a name of vpMorphShapeDistance::fromName(), then settings after colons: "nomirror", "points=N", "kb=K",
-  "scales=a/b/c" (e.g. multiscale:nomirror:points=64).
+  A model's distance: a name of vpMorphShapeDistance::fromName(), then settings after colons: "nomirror", "points=N",
+  "kb=K", "scales=a/b/c" (e.g. multiscale:nomirror:points=64).
 */
 vpMorphShapeDistance distanceOf(const std::string &spec)
 {
@@ -227,11 +234,11 @@ Options parse(int argc, char **argv)
   if (o.models.empty())
     o.models.push_back(vpMorphDatabase().distance().name());
   for (const std::string &m : o.models)
-    (void)distanceOf(m); // unknown names: an error before any work
+    (void)distanceOf(distanceSpec(m)); // unknown names: an error before any work
   return o;
 }
 
-std::string outcome(const Query &q, const Entry &e, const vpMorphDatabase &db, std::size_t model)
+std::string outcome(const Query &q, const Entry &e, const Model &tested, std::size_t model)
 {
   if (q.contour.empty())
     return "no-silhouette";
@@ -240,7 +247,7 @@ std::string outcome(const Query &q, const Entry &e, const vpMorphDatabase &db, s
     return "rejected";
   if (!e.present)
     return "false-accept";
-  return db[r.index].name() == e.shape.id ? "right" : "wrong";
+  return tested.db[r.index].name() == e.shape.id ? "right" : "wrong";
 }
 
 //! Wilson's 95 % interval of a proportion k / n, in percent.
@@ -272,17 +279,19 @@ double mean(const std::vector<double> &v)
   return v.empty() ? std::numeric_limits<double>::quiet_NaN() : s / v.size();
 }
 
-std::vector<vpMorphDatabase> databases(const std::vector<Entry> &entries, const std::vector<std::string> &models,
-                                       unsigned int threads)
+std::vector<Model> databases(const std::vector<Entry> &entries, const std::vector<std::string> &models,
+                             unsigned int threads)
 {
-  std::vector<vpMorphDatabase> dbs;
+  std::vector<Model> dbs;
   for (const std::string &m : models) {
-    vpMorphDatabase db(distanceOf(m));
+    Model model{vpMorphDatabase(distanceOf(distanceSpec(m))), nullptr};
     for (const Entry &e : entries)
       if (e.present)
-        db.add(vpMorphTemplate(e.shape.id, e.taught, e.shape.image.string()));
-    db.calibrate(threads, every("calibration (" + m + ")"));
-    dbs.push_back(std::move(db));
+        model.db.add(vpMorphTemplate(e.shape.id, e.taught, e.shape.image.string()));
+    model.db.calibrate(threads, every("calibration (" + m + ")"));
+    if (isPart(m))
+      model.part = std::make_shared<const vpMorphPartRecognizer>(model.db, threads);
+    dbs.push_back(std::move(model));
   }
   return dbs;
 }
@@ -296,7 +305,7 @@ template <typename T, typename Key> void shuffleBy(std::vector<T> &items, std::u
 }
 
 void writeRows(std::ostream &f, const std::vector<Query> &queries, const std::vector<Entry> &entries,
-               const std::vector<vpMorphDatabase> &dbs, const std::vector<std::string> &models)
+               const std::vector<Model> &dbs, const std::vector<std::string> &models)
 {
   f << "model,condition,shape,class,present,view,answer,accepted,outcome,distance,threshold,support,margin,reranked,"
        "evaluated,ms\n"
@@ -311,16 +320,15 @@ void writeRows(std::ostream &f, const std::vector<Query> &queries, const std::ve
         continue;
       }
       const vpMorphRecognition &r = q.answers[m];
-      f << dbs[m][r.index].name() << ',' << r.accepted << ',' << outcome(q, e, dbs[m], m) << ',' << r.distance << ','
+      f << dbs[m].db[r.index].name() << ',' << r.accepted << ',' << outcome(q, e, dbs[m], m) << ',' << r.distance << ','
         << r.threshold << ',' << r.support << ',' << r.margin << ',' << r.reranked << ',' << r.evaluated << ','
         << q.ms[m] << '\n';
     }
 }
 
 //! Per model and condition: right, wrong, rejected (present shapes), false accepts (absent ones), query time.
-json summarise(const std::vector<Query> &queries, const std::vector<Entry> &entries,
-               const std::vector<vpMorphDatabase> &dbs, const std::vector<std::string> &models,
-               const std::vector<std::string> &conditions, std::ostream &md)
+json summarise(const std::vector<Query> &queries, const std::vector<Entry> &entries, const std::vector<Model> &dbs,
+               const std::vector<std::string> &models, const std::vector<std::string> &conditions, std::ostream &md)
 {
   json j = json::array();
   md << "| model | condition | views | right | wrong | rejected | no silhouette | absent: views | false accepts |\n"
@@ -356,7 +364,7 @@ json summarise(const std::vector<Query> &queries, const std::vector<Entry> &entr
                    {"absent_no_silhouette", n["absent-no-silhouette"]},
                    {"false_accepts", n["absent-false-accept"]}});
     }
-    timeMd << std::fixed << std::setprecision(2) << "| " << models[m] << " | " << dbs[m].size() << " | " << ms.size()
+    timeMd << std::fixed << std::setprecision(2) << "| " << models[m] << " | " << dbs[m].db.size() << " | " << ms.size()
            << " | " << quantile(ms, 0.5) << " | " << mean(ms) << " | " << quantile(ms, 0.95) << " |\n";
   }
   md << timeMd.str();
@@ -421,7 +429,7 @@ int reid(const Options &o)
       present.push_back(k < o.classes);
     }
   const std::vector<Entry> entries = teachAll(shapes, present, fs::path(o.out) / "textures", threads);
-  const std::vector<vpMorphDatabase> dbs = databases(entries, o.models, threads);
+  const std::vector<Model> dbs = databases(entries, o.models, threads);
   std::vector<Query> queries;
   for (const std::string &c : o.conditions)
     for (std::size_t e = 0; e < entries.size(); ++e)
@@ -439,8 +447,8 @@ int reid(const Options &o)
   writeRows(rows, queries, entries, dbs, o.models);
   std::ostringstream md;
   md << "Re-identification: " << o.dataset << " " << o.pool << " pool, seed " << o.seed << ", " << o.classes
-     << " classes in the database (" << dbs.front().size() << " templates), " << o.absent << " absent ("
-     << entries.size() - dbs.front().size() << " shapes), " << o.views << " views per shape and condition; "
+     << " classes in the database (" << dbs.front().db.size() << " templates), " << o.absent << " absent ("
+     << entries.size() - dbs.front().db.size() << " shapes), " << o.views << " views per shape and condition; "
      << merged.size() << " shapes left out as another's at another size (merged.csv).\n\n";
   const json table = summarise(queries, entries, dbs, o.models, o.conditions, md);
   json j;
@@ -448,8 +456,8 @@ int reid(const Options &o)
   j["dataset"] = o.dataset;
   j["pool"] = o.pool;
   j["seed"] = o.seed;
-  j["templates"] = dbs.front().size();
-  j["absent_shapes"] = entries.size() - dbs.front().size();
+  j["templates"] = dbs.front().db.size();
+  j["absent_shapes"] = entries.size() - dbs.front().db.size();
   j["views_per_shape"] = o.views;
   j["merged_shapes"] = merged.size();
   j["results"] = table;
@@ -489,7 +497,7 @@ int timing(const Options &o)
   json j = json::array();
   for (std::size_t size : o.timing) {
     const std::vector<Entry> entries(teachAllEntries.begin(), teachAllEntries.begin() + static_cast<long>(size));
-    const std::vector<vpMorphDatabase> dbs = databases(entries, o.models, threads);
+    const std::vector<Model> dbs = databases(entries, o.models, threads);
     std::vector<Query> queries;
     for (std::size_t k = 0; k < o.queries; ++k) {
       Query q;
