@@ -14,6 +14,7 @@
 #include <visp3/morph/vpMorph.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphDatabase.h>
+#include <visp3/morph/vpMorphPartRecognizer.h>
 
 #include "tutorial-display.h"
 
@@ -137,6 +138,18 @@ int main(int argc, char **argv)
               << " (distance " << m.distance << ", threshold " << m.threshold << ")" << std::endl;
     //! [Unknown]
 
+    //! [Part]
+    // A robot naming the part in front of it: the exact rigid part first (the outline laid on its template through a
+    // homography, look-alikes told apart or the view rejected as ambiguous), the database's distance only where no
+    // template fits the view rigidly (a bent object).
+    const vpMorphPartRecognizer parts(db);
+    vpMorphPartRecognizer::Stage stage;
+    const vpMorphRecognition p = parts.recognize(wc, &stage);
+    std::cout << "wedge, as a part: " << (p.accepted ? "recognised as " : "rejected, closest is ") << db[p.index].name()
+              << (stage == vpMorphPartRecognizer::RIGID_STAGE ? " by the rigid check" : " by the distance")
+              << std::endl;
+    //! [Part]
+
     //! [Display]
     show(viewer, query, 0, 0, "key", qc, db, r);
     show(viewer, wedge, 660, 0, "wedge", wc, db, w);
@@ -146,7 +159,7 @@ int main(int argc, char **argv)
     //! [Display]
 
     const bool ok = r.accepted && db[r.index].name().rfind("key", 0) == 0 && w.accepted &&
-                    db[w.index].name().rfind("wedge", 0) == 0 && !m.accepted;
+                    db[w.index].name().rfind("wedge", 0) == 0 && !m.accepted && p.accepted && p.index == w.index;
     return ok ? 0 : 1;
   } catch (const vpException &e) {
     std::cerr << "tutorial-morph-recognition: " << e.getStringMessage() << std::endl;
