@@ -4,15 +4,17 @@
 
 #include <visp3/morph/vpMorphException.h>
 
-vpMorphPartRecognizer::vpMorphPartRecognizer(const vpMorphDatabase &db, unsigned int threads) : m_db(db)
+vpMorphPartRecognizer::vpMorphPartRecognizer(const vpMorphDatabase &db, unsigned int threads)
 {
   if (db.empty())
     throw vpMorphException(vpMorphException::notFoundError, "vpMorphPartRecognizer: the database is empty");
+  m_db = std::make_shared<const vpMorphDatabase>(db);
   if (db.distance().model() == vpMorphShapeDistance::RIGID)
     return;
-  m_rigid = db;
-  m_rigid.setDistance(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
-  m_rigid.calibrate(threads);
+  auto rigid = std::make_shared<vpMorphDatabase>(db);
+  rigid->setDistance(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
+  rigid->calibrate(threads);
+  m_rigid = rigid;
 }
 
 vpMorphRecognition vpMorphPartRecognizer::recognize(const vpMorphContour &c, Stage *stage) const
@@ -22,16 +24,16 @@ vpMorphRecognition vpMorphPartRecognizer::recognize(const vpMorphContour &c, Sta
   if (stage)
     *stage = RIGID_STAGE;
   const vpMorphRecognition r = getRigidDatabase().recognize(c);
-  if (r.accepted || r.ambiguous || m_rigid.empty())
+  if (r.accepted || r.ambiguous || !m_rigid)
     return r;
   if (stage)
     *stage = DISTANCE_STAGE;
-  return m_db.recognize(c);
+  return m_db->recognize(c);
 }
 
 vpMorphPartRecognizer::Naming vpMorphPartRecognizer::namedAs(const vpMorphContour &c, std::size_t k) const
 {
-  if (k >= m_db.size())
+  if (k >= m_db->size())
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphPartRecognizer::namedAs: no such template");
   if (c.empty())
     throw vpMorphException(vpMorphException::badContourError, "vpMorphPartRecognizer::namedAs: empty contour");

@@ -6,6 +6,7 @@
 #define VP_MORPH_PART_RECOGNIZER_H
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include <visp3/morph/vpMorphContour.h>
@@ -29,7 +30,7 @@
     as vpMorphDatabase::recognize() alone does.
 
   The twin holds the same templates in the same order: every answer indexes the database given. A RIGID database is
-  its own twin (one stage).
+  its own twin (one stage). Copies share the two databases (neither changes after construction).
 
   \code
   vpMorphDatabase db = vpMorphDatabase::load("objects.json");   // MULTISCALE, calibrated
@@ -84,13 +85,13 @@ public:
   Naming namedAs(const vpMorphContour &c, std::size_t k) const;
 
   //! The database given (its own distance, and the indices of every answer).
-  const vpMorphDatabase &getDatabase() const { return m_db; }
+  const vpMorphDatabase &getDatabase() const { return *m_db; }
   //! The RIGID twin (the database itself when its distance is RIGID).
-  const vpMorphDatabase &getRigidDatabase() const { return m_rigid.empty() ? m_db : m_rigid; }
+  const vpMorphDatabase &getRigidDatabase() const { return m_rigid ? *m_rigid : *m_db; }
 
 private:
-  vpMorphDatabase m_db;
-  vpMorphDatabase m_rigid; // empty when m_db is RIGID
+  std::shared_ptr<const vpMorphDatabase> m_db;
+  std::shared_ptr<const vpMorphDatabase> m_rigid; // null when m_db is RIGID
 };
 
 #endif
