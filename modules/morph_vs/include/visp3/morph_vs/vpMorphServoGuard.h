@@ -76,14 +76,17 @@ public:
     Checks the view against \e db's template \e name, with the factor \e slack (>= 1) on its acceptance threshold.
     \throw vpMorphException::notFoundError for an unknown name, badParameterError for a slack below 1 or NaN.
   */
-  void setTargetCheck(const vpMorphDatabase &db, const std::string &name, double slack = 1.25);
+  void setTargetCheck(const vpMorphDatabase &db, const std::string &name, double slack = getDefaultSlack());
   /*!
     As setTargetCheck(db, name, slack) over the recognizer's database, where the recognizer's RIGID stage decides
     first (vpMorphPartRecognizer::namedAs()): a view it names as the target's part is the target, one it names as
     another's is not; the database's rules judge the rest. The check then agrees with the recognition that chose the
     target (an occluded view named by the rigid check may show less of its outline than the distance's support asks).
   */
-  void setTargetCheck(const vpMorphPartRecognizer &recognizer, const std::string &name, double slack = 1.25);
+  void setTargetCheck(const vpMorphPartRecognizer &recognizer, const std::string &name,
+                      double slack = getDefaultSlack());
+  //! The target check's default slack on the acceptance threshold.
+  static double getDefaultSlack() { return 1.25; }
   //! No target check from now on.
   void clearTargetCheck();
   //! True when a target check is set.
@@ -147,7 +150,7 @@ private:
   vpMorphDatabase m_db;
   std::shared_ptr<const vpMorphPartRecognizer> m_recognizer; // its RIGID stage first, when set
   std::size_t m_index = 0;
-  double m_slack = 1.25;
+  double m_slack = getDefaultSlack();
   unsigned int m_lost = 0, m_replans = 0;
   Status m_halted = NOT_STARTED;
   double m_targetDistance = std::numeric_limits<double>::quiet_NaN();
