@@ -140,7 +140,7 @@ TEST_CASE("part recognizer: of one image's candidates, a rigid fit before a defo
   CHECK_FALSE(r.accepted);
 }
 
-TEST_CASE("part recognizer: a RIGID database is its own twin; bad input", "[recognizer][safety]")
+TEST_CASE("part recognizer: a RIGID database is its own twin, and bad input", "[recognizer][safety]")
 {
   vpMorphDatabase rigid = tools();
   rigid.setDistance(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
