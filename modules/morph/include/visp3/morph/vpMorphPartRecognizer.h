@@ -30,7 +30,9 @@
     as vpMorphDatabase::recognize() alone does.
 
   The twin holds the same templates in the same order: every answer indexes the database given. A RIGID database is
-  its own twin (one stage). Copies share the two databases (neither changes after construction).
+  its own twin (one stage): give one when every part is rigid, since a view of an unknown part that fits no template
+  rigidly is otherwise judged by the distance, which accepts more of them. Copies share the two databases (neither
+  changes after construction).
 
   \code
   vpMorphDatabase db = vpMorphDatabase::load("objects.json");   // MULTISCALE, calibrated
