@@ -174,6 +174,7 @@ inline cv::Mat squareOccluder(const cv::Mat &src, double where, double share)
   cv::rectangle(out, cv::Point(o.x - h, o.y - h), cv::Point(o.x + h, o.y + h), cv::Scalar(170), cv::FILLED);
   return out;
 }
+
 //! \e src with a tab 40 px long and 8 px wide sticking out of its outline three tenths of the way round (a look-alike
 //! that differs in one place), and the tab's middle in \e centre.
 inline cv::Mat withTab(const cv::Mat &src, cv::Point &centre)
@@ -195,7 +196,6 @@ inline cv::Mat withTab(const cv::Mat &src, cv::Point &centre)
   centre = along(20, 0);
   return out;
 }
-
 } // namespace vpMorphTest
 
 #endif

@@ -41,17 +41,26 @@ vpMorphBenchResult run(const std::string &key, vpMorphSimRobot::Kind robot = vpM
   return r;
 }
 
-// The recognition of a pinned start's first image (free camera), printed: whether accepted, as what, the distance,
-// the support and the distance's own choice.
-vpMorphRecognition recognition(const std::string &key)
+// The recognition of a pinned start's first image (free camera) by the database's distance (the part recognizer's
+// second stage), printed: whether accepted, as what, the distance, the support and the distance's own choice; \e part
+// the bench's answer (vpMorphPartRecognizer, which asks the rigid check first).
+vpMorphRecognition recognition(const std::string &key, vpMorphRecognition &part)
 {
   const vpMorphBenchScenario sc = fixture::start(key);
   const vpMorphDatabase &db = fixture::bench().database();
-  const vpMorphRecognition rec = fixture::bench().recognizeStart(sc);
-  std::printf(
-      "[outline] %s: %s %s, distance %.2f (threshold %.2f), support %.2f, distance's choice %s\n", key.c_str(),
-      rec.accepted ? "accepted" : "rejected", db[rec.index].name().c_str(), rec.distance, rec.threshold, rec.support,
-      rec.secondIndex < db.size() && rec.reranked ? db[rec.secondIndex].name().c_str() : db[rec.index].name().c_str());
+  vpMorphContour shown;
+  vpMorphPartRecognizer::Stage stage;
+  part = fixture::bench().recognizeStart(sc, &shown, &stage);
+  REQUIRE_FALSE(shown.empty());
+  const vpMorphRecognition rec = db.recognize(shown);
+  std::printf("[outline] %s: %s %s, distance %.2f (threshold %.2f), support %.2f, distance's choice %s; the part "
+              "recognizer %s %s by its %s stage\n",
+              key.c_str(), rec.accepted ? "accepted" : "rejected", db[rec.index].name().c_str(), rec.distance,
+              rec.threshold, rec.support,
+              rec.secondIndex < db.size() && rec.reranked ? db[rec.secondIndex].name().c_str()
+                                                          : db[rec.index].name().c_str(),
+              part.accepted ? "named" : "rejected", db[part.index].name().c_str(),
+              stage == vpMorphPartRecognizer::RIGID_STAGE ? "rigid" : "distance");
   return rec;
 }
 
@@ -463,7 +472,9 @@ TEST_CASE("An occluded wedge nearer another tool by the distance, both rejected,
   // (2.05, beyond its threshold 1.23; the wedge at 2.35), so the view was rejected at the first image although it
   // shows 0.90 of the wedge's outline and 0.38 of the screwdriver's.
   const vpMorphDatabase &db = fixture::bench().database();
-  const vpMorphRecognition rec = recognition("occlusion/wedge/-53");
+  vpMorphRecognition part;
+  const vpMorphRecognition rec = recognition("occlusion/wedge/-53", part);
+  CHECK((part.accepted && db[part.index].name() == "wedge"));
   CHECK(db[rec.index].name() == "wedge");
   CHECK(rec.accepted);
   CHECK(rec.reranked);
@@ -482,7 +493,9 @@ TEST_CASE("An occluded wedge whose card edge runs along its top is aligned by it
   // pulled onto the wedge's top and drags the fit (0.32 of the outline shown, rejected at the first image); the
   // template fitted onto the view weighs its hidden stretch out and shows 0.83 of it.
   const vpMorphDatabase &db = fixture::bench().database();
-  const vpMorphRecognition rec = recognition("occlusion/wedge/156");
+  vpMorphRecognition part;
+  const vpMorphRecognition rec = recognition("occlusion/wedge/156", part);
+  CHECK((part.accepted && db[part.index].name() == "wedge"));
   CHECK(db[rec.index].name() == "wedge");
   CHECK(rec.distance > rec.threshold);
   CHECK(rec.support >= db.minimumSupport());
