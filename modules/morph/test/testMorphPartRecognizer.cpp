@@ -158,4 +158,9 @@ TEST_CASE("part recognizer: a RIGID database is its own twin, and bad input", "[
   std::size_t chosen = 0;
   CHECK_THROWS_AS(one.recognize(std::vector<vpMorphContour>(), chosen), vpMorphException);
   CHECK_THROWS_AS(one.recognize(std::vector<vpMorphContour>{c, vpMorphContour()}, chosen), vpMorphException);
+  const std::size_t pliers = rigid.find("pliers");
+  CHECK(one.namedAs(c, pliers) == vpMorphPartRecognizer::NAMED_TEMPLATE);
+  CHECK(one.namedAs(c, rigid.find("hammer")) == vpMorphPartRecognizer::NAMED_OTHER);
+  CHECK_THROWS_AS(one.namedAs(c, rigid.size()), vpMorphException);
+  CHECK_THROWS_AS(one.namedAs(vpMorphContour(), pliers), vpMorphException);
 }
