@@ -117,18 +117,24 @@ protected:
   }
   /*!
     The current template was found wrong for \e c: recognises \e c again without the templates already
-    rejected (the best, else the runner-up, if the database accepts it). False when none is left.
+    rejected (the best, else the runner-up if it is \e c's part: the recognizer's rigid stage decides where it names
+    one, as in mismatch(), the database's acceptance elsewhere). False when none is left.
   */
   bool rerecognize(const vpMorphContour &c)
   {
     const vpMorphDatabase &db = *m_ctx.database;
     m_rejected.push_back(db.find(m_template->name()));
-    const vpMorphRecognition r = db.recognize(c);
+    const vpMorphRecognition r = m_ctx.recognizer ? m_ctx.recognizer->recognize(c) : db.recognize(c);
+    auto names = [&](std::size_t k) {
+      const vpMorphPartRecognizer::Naming n =
+          m_ctx.recognizer ? m_ctx.recognizer->namedAs(c, k) : vpMorphPartRecognizer::UNDECIDED;
+      return n == vpMorphPartRecognizer::UNDECIDED ? db.accepts(c, k) : n == vpMorphPartRecognizer::NAMED_TEMPLATE;
+    };
     const std::size_t idx[2] = {r.index, r.secondIndex};
     for (int k = 0; k < 2; ++k) {
       if (idx[k] == vpMorphRecognition::npos ||
           std::find(m_rejected.begin(), m_rejected.end(), idx[k]) != m_rejected.end() ||
-          !(k == 0 ? r.accepted : db.accepts(c, idx[k])))
+          !(k == 0 ? r.accepted : names(idx[k])))
         continue;
       m_template = &db[idx[k]];
       m_object = m_template->name();
