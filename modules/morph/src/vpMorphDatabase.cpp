@@ -520,14 +520,11 @@ vpMorphRecognition vpMorphDatabase::recognize(const std::vector<vpMorphContour> 
 {
   if (candidates.empty())
     throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::recognize: no candidate contour");
-  auto share = [](const vpMorphRecognition &r) {
-    return std::isfinite(r.threshold) && r.threshold > 0.0 ? r.distance / r.threshold : r.distance;
-  };
   vpMorphRecognition best;
   chosen = 0;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     vpMorphRecognition r = recognize(candidates[k]);
-    if (k == 0 || (r.accepted && (!best.accepted || share(r) < share(best)))) {
+    if (k == 0 || (r.accepted && (!best.accepted || r.relativeDistance() < best.relativeDistance()))) {
       best = std::move(r);
       chosen = k;
     }

@@ -48,19 +48,16 @@ vpMorphRecognition vpMorphPartRecognizer::recognize(const std::vector<vpMorphCon
 {
   if (candidates.empty())
     throw vpMorphException(vpMorphException::badContourError, "vpMorphPartRecognizer::recognize: no candidate contour");
-  // As vpMorphDatabase::recognize() ranks candidates: the distance over the template's threshold, the least first.
-  auto share = [](const vpMorphRecognition &r) {
-    return std::isfinite(r.threshold) && r.threshold > 0.0 ? r.distance / r.threshold : r.distance;
-  };
   vpMorphRecognition best;
   Stage bestStage = RIGID_STAGE;
   chosen = 0;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     Stage s;
     vpMorphRecognition r = recognize(candidates[k], &s);
-    // An exact rigid fit outranks a deformation-tolerant one; within a stage, the lesser share.
+    // An exact rigid fit outranks a deformation-tolerant one; within a stage, as vpMorphDatabase::recognize() ranks
+    // candidates.
     const bool better = r.accepted && (!best.accepted || (s == RIGID_STAGE && bestStage != RIGID_STAGE) ||
-                                       (s == bestStage && share(r) < share(best)));
+                                       (s == bestStage && r.relativeDistance() < best.relativeDistance()));
     if (k == 0 || better) {
       best = std::move(r);
       bestStage = s;

@@ -42,10 +42,15 @@ void commandSpeed(const vpColVector &v, vpRobot::vpControlFrameType frame, const
 //! One database: the templates of one variant seen by one camera, and the objects that could not be taught.
 struct vpMorphBench::Taught
 {
-  vpMorphDatabase db;
-  std::unique_ptr<vpMorphPartRecognizer> recognizer;              // over db (none when db is empty)
+  std::unique_ptr<vpMorphPartRecognizer> recognizer;              // over the templates (none when none was taught)
   std::map<std::string, std::string> untaught;                    // object -> why
   std::map<std::string, vpMorphBenchObservability> observability; // object -> its taught view's
+  //! The templates: the recognizer's database (empty when none was taught).
+  const vpMorphDatabase &db() const
+  {
+    static const vpMorphDatabase none;
+    return recognizer ? recognizer->getDatabase() : none;
+  }
 };
 
 vpMorphBench::vpMorphBench(const vpMorphBenchObjectSet &objects, unsigned int seed, const Settings &settings)
@@ -78,8 +83,9 @@ const vpMorphBench::Taught &vpMorphBench::taught(const std::string &variant, con
   if (t)
     return *t;
   t.reset(new Taught);
+  vpMorphDatabase db;
   if (!m_settings.recognitionModel.empty())
-    t->db.setDistance(vpMorphShapeDistance::fromName(m_settings.recognitionModel));
+    db.setDistance(vpMorphShapeDistance::fromName(m_settings.recognitionModel));
   for (const vpMorphBenchObjectSet::Object &o : m_objects.objects()) {
     // The taught view: rendered at the desired pose, the tag where it fits (out of view when it fits nowhere: that
     // object's scenarios are set-up failures, but it still takes part in the recognition), masked, extracted.
@@ -97,21 +103,21 @@ const vpMorphBench::Taught &vpMorphBench::taught(const std::string &variant, con
       t->observability.emplace(o.name,
                                vpMorphBenchObservability(tpl.contour(), cam, cdMo, m_settings.successTranslation,
                                                          vpMath::rad(m_settings.successRotationDeg)));
-      t->db.add(tpl);
+      db.add(tpl);
     } catch (const vpException &e) {
       t->untaught[o.name] = e.getStringMessage();
     }
   }
-  if (!t->db.empty()) {
-    t->db.calibrate(1);
-    t->recognizer.reset(new vpMorphPartRecognizer(t->db, 1));
+  if (!db.empty()) {
+    db.calibrate(1);
+    t->recognizer.reset(new vpMorphPartRecognizer(db, 1));
   }
   return *t;
 }
 
 const vpMorphDatabase &vpMorphBench::database(const std::string &variant, const std::string &set) const
 {
-  return taught(variant, set).db;
+  return taught(variant, set).db();
 }
 
 const vpMorphBenchObservability *vpMorphBench::observability(const std::string &object, const std::string &variant,
@@ -180,7 +186,7 @@ vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const s
   if (!sc.setup.empty())
     return setupFailure(sc.setup);
   const Taught &taughtViews = taught(sc.variant, sc.set);
-  if (taughtViews.db.find(sc.object) == vpMorphRecognition::npos)
+  if (taughtViews.db().find(sc.object) == vpMorphRecognition::npos)
     return setupFailure("template-not-taught");
 
   vpMorphPlanarScene scene = sc.scene(); // not const: timed faults change it during the run
@@ -224,7 +230,7 @@ vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const s
   ctx.tagId = scene.tagId();
   ctx.tagSize = scene.tagSize();
   ctx.oMt = scene.oMt();
-  ctx.database = &taughtViews.db;
+  ctx.database = &taughtViews.db();
   ctx.recognizer = taughtViews.recognizer.get();
   ctx.expectedObject = sc.object;
   ctx.lambda = m_settings.lambda;

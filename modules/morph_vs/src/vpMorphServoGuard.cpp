@@ -19,7 +19,10 @@ void vpMorphServoGuard::setJumpRotation(double rad)
   m_jumpRotation = rad;
 }
 
-void vpMorphServoGuard::setTargetCheck(const vpMorphDatabase &db, const std::string &name, double slack)
+namespace
+{
+// Template \e name's index in \e db, for a target check with \e slack.
+std::size_t targetIndex(const vpMorphDatabase &db, const std::string &name, double slack)
 {
   if (!std::isfinite(slack) || slack < 1.0)
     throw vpMorphException(vpMorphException::badParameterError,
@@ -28,22 +31,36 @@ void vpMorphServoGuard::setTargetCheck(const vpMorphDatabase &db, const std::str
   if (k == vpMorphRecognition::npos)
     throw vpMorphException(vpMorphException::notFoundError,
                            "vpMorphServoGuard::setTargetCheck: no template '" + name + "' in the database");
-  m_db = db;
+  return k;
+}
+} // namespace
+
+void vpMorphServoGuard::setTargetCheck(const vpMorphDatabase &db, const std::string &name, double slack)
+{
+  m_index = targetIndex(db, name, slack);
+  m_db = std::make_shared<const vpMorphDatabase>(db);
   m_recognizer.reset();
-  m_index = k;
   m_slack = slack;
 }
 
 void vpMorphServoGuard::setTargetCheck(const vpMorphPartRecognizer &recognizer, const std::string &name, double slack)
 {
-  setTargetCheck(recognizer.getDatabase(), name, slack);
-  m_recognizer = std::make_shared<const vpMorphPartRecognizer>(recognizer);
+  m_index = targetIndex(recognizer.getDatabase(), name, slack);
+  m_recognizer = std::make_shared<const vpMorphPartRecognizer>(recognizer); // shares its databases
+  m_db = std::shared_ptr<const vpMorphDatabase>(m_recognizer, &m_recognizer->getDatabase());
+  m_slack = slack;
 }
 
 void vpMorphServoGuard::clearTargetCheck()
 {
-  m_db = vpMorphDatabase();
+  m_db.reset();
   m_recognizer.reset();
+}
+
+const vpMorphDatabase &vpMorphServoGuard::getTargetDatabase() const
+{
+  static const vpMorphDatabase none;
+  return m_db ? *m_db : none;
 }
 
 void vpMorphServoGuard::reset()
@@ -90,23 +107,24 @@ bool vpMorphServoGuard::allowReplan()
 
 bool vpMorphServoGuard::targetMismatch(const vpMorphContour &current, const vpMorphContour &target, bool articulated)
 {
-  if (m_db.empty())
+  if (!m_db)
     return false;
+  const vpMorphDatabase &db = *m_db;
   if (m_recognizer) {
     const vpMorphPartRecognizer::Naming n = m_recognizer->namedAs(current, m_index);
     if (n != vpMorphPartRecognizer::UNDECIDED)
       return n == vpMorphPartRecognizer::NAMED_OTHER;
   }
-  const vpMorphRecognition r = m_db.recognize(current);
+  const vpMorphRecognition r = db.recognize(current);
   if (articulated) {
     // Its distance to the target posed at one opening varies from one view to the next: the database's, over its
     // poses.
-    if (!m_db.accepts(current, m_index, m_slack, &m_targetDistance))
+    if (!db.accepts(current, m_index, m_slack, &m_targetDistance))
       return true;
   } else {
-    m_targetDistance = m_db.distance().distance(current, target);
-    if (!(m_targetDistance <= m_slack * m_db.threshold(m_index)) &&
-        !(m_db.support(current, m_index, r.index == m_index && r.mirrored) >= m_db.minimumSupport()))
+    m_targetDistance = db.distance().distance(current, target);
+    if (!(m_targetDistance <= m_slack * db.threshold(m_index)) &&
+        !(db.support(current, m_index, r.index == m_index && r.mirrored) >= db.minimumSupport()))
       return true; // NaN too; an occluded view of the target (it shows enough of its outline) is not a mismatch
   }
   if (!(r.index != vpMorphRecognition::npos && r.index != m_index && r.accepted &&
@@ -114,7 +132,7 @@ bool vpMorphServoGuard::targetMismatch(const vpMorphContour &current, const vpMo
     return false;
   // Nearer by the distance, another template still does not replace the target when it explains less of the view
   // (a bent view may be nearer another template by the distance).
-  return !(std::isfinite(r.support) && m_db.support(current, m_index, m_db.distance().mirrors()) > r.support);
+  return !(std::isfinite(r.support) && db.support(current, m_index, db.distance().mirrors()) > r.support);
 }
 
 vpMorphServoGuard::Status vpMorphServoGuard::verify(const vpMorphViewAlignment &a, double rotationRad,

@@ -5,6 +5,7 @@
 #ifndef VP_MORPH_RECOGNITION_H
 #define VP_MORPH_RECOGNITION_H
 
+#include <cmath>
 #include <cstddef>
 #include <limits>
 
@@ -64,6 +65,15 @@ public:
   */
   vpMorphCorrespondence correspondence;
   std::size_t evaluated = 0; //!< templates whose distance is computed (the others pruned by the bound)
+
+  /*!
+    The distance over the threshold (the distance itself without a finite positive threshold): comparable across
+    templates whose distances spread differently, so candidates of one image are ranked by it.
+  */
+  double relativeDistance() const
+  {
+    return std::isfinite(threshold) && threshold > 0.0 ? distance / threshold : distance;
+  }
 };
 
 #endif

@@ -90,9 +90,9 @@ public:
   //! No target check from now on.
   void clearTargetCheck();
   //! True when a target check is set.
-  bool hasTargetCheck() const { return !m_db.empty(); }
+  bool hasTargetCheck() const { return m_db != nullptr; }
   //! The database of the target check (empty without).
-  const vpMorphDatabase &getTargetDatabase() const { return m_db; }
+  const vpMorphDatabase &getTargetDatabase() const;
   //! Another template replaces the target when it costs this much less work (1.2).
   static double getMismatchRatio() { return 1.2; }
 
@@ -147,7 +147,7 @@ public:
 private:
   unsigned int m_maxLost = 25, m_maxReplans = 3;
   double m_jumpPx = 20.0, m_jumpRotation = 0.1;
-  vpMorphDatabase m_db;
+  std::shared_ptr<const vpMorphDatabase> m_db;               // null without a target check; the recognizer's if set
   std::shared_ptr<const vpMorphPartRecognizer> m_recognizer; // its RIGID stage first, when set
   std::size_t m_index = 0;
   double m_slack = getDefaultSlack();
