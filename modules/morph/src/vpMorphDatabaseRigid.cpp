@@ -11,9 +11,14 @@ namespace
 constexpr double kInf = std::numeric_limits<double>::infinity();
 } // namespace
 
-bool vpMorphDatabase::rigidAccepted(const vpMorphRigidCheck::Result &r) const
+bool vpMorphDatabase::rigidFits(const vpMorphRigidCheck::Result &r) const
 {
   return r.fitted && r.targetShare >= m_minSupport && r.outsideShare <= maximumOutside();
+}
+
+bool vpMorphDatabase::rigidAccepted(const vpMorphRigidCheck::Result &r) const
+{
+  return rigidFits(r) && r.absentShare <= maximumOutside();
 }
 
 const vpMorphRigidShape &vpMorphDatabase::rigidView(std::size_t k, std::size_t pose) const
@@ -59,7 +64,7 @@ vpMorphRecognition vpMorphDatabase::rigidSearch(const vpMorphContour &c, const v
   for (std::size_t m = 0; m < q.rigid.size(); ++m) {
     const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(
         q.rigid[m], views, prune ? rigidShortlist() : 0, m_lookAlikes.empty() ? nullptr : &m_lookAlikes,
-        [this](const vpMorphRigidCheck::Result &b) { return rigidAccepted(b); });
+        [this](const vpMorphRigidCheck::Result &b) { return rigidFits(b); });
     vpMorphRecognition a;
     a.index = o.index;
     a.distance = o.best.cost;

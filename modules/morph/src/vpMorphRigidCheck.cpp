@@ -277,7 +277,11 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &
                &r.unexplainedShare, 0.0, abandonAbove))
     return abandoned;
   ci = abandoned.cost;
-  if (!measure(tg, in, H.inverse(), tol, r.targetShare, abandoned.cost, nullptr, nullptr, ci, abandonAbove))
+  // A view whose outline is its own edge all round (vpMorphContour::ownEdge(): no occluder, nor the image's border,
+  // cuts it) hides nothing: the target's outline it leaves outside its region is absent. Otherwise it does not tell.
+  const bool hidesNothing = in.marked && !in.ownOnly;
+  if (!measure(tg, in, H.inverse(), tol, r.targetShare, abandoned.cost, hidesNothing ? &r.absentShare : nullptr,
+               nullptr, ci, abandonAbove))
     return abandoned;
   ct = abandoned.cost;
   r.cost = 0.5 * (ci + ct);

@@ -62,7 +62,8 @@ public:
 
   /*!
     \param lookAlikes per template index, or null: none compared beyond the shortlist.
-    \param acceptable whether a result would accept the view: only such a best's look-alikes are compared.
+    \param acceptable whether the view lies on a result's template as far as it shows it: only such a best's
+    look-alikes are compared.
     \param abandon with a shortlist, measure no further a template that can be neither the best nor the runner-up
     (false: every result in Outcome::exact is measured in full).
     \param every compare every template exactly, the shortlist bounding only the symmetric hypotheses.

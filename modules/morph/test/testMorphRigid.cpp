@@ -213,6 +213,40 @@ TEST_CASE("rigid shape: a whole view of a long curled part is laid by its centro
   CHECK(rec.accepted);
 }
 
+TEST_CASE("rigid check: a whole view that lacks part of the template is not taken for it, an occluded one may be",
+          "[rigid][absent]")
+{
+  // Views as vispmorph-reid renders them (development seed 303, pose, view 0, cropped) of an MPEG-7 pocket watch (a
+  // disc and its bow) and of an apple, and the watch's template (data/pocket-watch-goal.json). A homography lays the
+  // apple's body on the watch's disc and leaves the bow off the apple: with more than half of the watch's outline
+  // shown, the apple passed for it, though nothing cuts its outline that could hide the bow.
+  const vpMorphDatabase db = readGoals("pocket-watch-goal.json");
+  REQUIRE(db.size() == 1);
+  const vpMorphRigidShape t(db[0].contour());
+  const vpMorphContour apple = vpMorphContourExtractor().extractJoined(readView("apple-view.png"));
+  const vpMorphContour watch = vpMorphContourExtractor().extractJoined(readView("pocket-watch-view.png"));
+  const vpMorphRigidShape a(apple), w(watch);
+  const vpMorphRigidCheck::Result ra = vpMorphRigidCheck::check(a, t, a.alignOn(t));
+  const vpMorphRigidCheck::Result rw = vpMorphRigidCheck::check(w, t, w.alignOn(t));
+  CAPTURE(ra.targetShare, ra.absentShare, rw.targetShare, rw.absentShare);
+  CHECK(ra.targetShare > db.minimumSupport()); // the support alone does not tell
+  CHECK(ra.absentShare > 2.0 * vpMorphDatabase::maximumOutside());
+  CHECK(rw.targetShare > 0.95);
+  CHECK(rw.absentShare < 0.01);
+  CHECK_FALSE(db.recognize(apple).accepted);
+  CHECK(db.recognize(watch).accepted);
+  // The watch under a card that hides its bow: what the view lacks lies behind the card's edge, and is not counted.
+  const cv::Mat view = cv::imread((kData / "pocket-watch-view.png").string(), cv::IMREAD_GRAYSCALE);
+  cv::Mat covered = view.clone();
+  cv::rectangle(covered, cv::Rect(125, 155, 70, 70), cv::Scalar(170), cv::FILLED); // over the bow, lighter than it
+  const vpMorphContour hidden = extract(covered, true);
+  REQUIRE(hidden.outline().hasOwnEdges());
+  const vpMorphRigidShape h(hidden);
+  const vpMorphRigidCheck::Result rh = vpMorphRigidCheck::check(h, t, h.alignOn(t));
+  CAPTURE(rh.targetShare, rh.absentShare);
+  CHECK(rh.absentShare == 0.0);
+}
+
 TEST_CASE("rigid check: a tilted view coincides with its template through the homography, a bent drawing does not",
           "[rigid]")
 {

@@ -50,11 +50,14 @@ struct vpMorphRigidView; // a template view of the RIGID search (internal)
 
   <b>Acceptance with RIGID.</b> The rigidShortlist() templates whose coarse alignment (vpMorphRigidShape) costs least
   are compared exactly (vpMorphRigidCheck); the least exact cost wins. The view is accepted when it shows at least
-  minimumSupport() of the template's outline, sticks out of it by at most maximumOutside() of its own, and the
+  minimumSupport() of the template's outline, sticks out of it by at most maximumOutside() of its own, leaves at most
+  as much of the template's outline outside its region when nothing cuts its outline (vpMorphRigidCheck::Result::
+  absentShare: such a view hides nothing, so what it lacks is absent, not hidden), and the
   runner-up, if acceptable too, is told from it by at least ambiguity() (vpMorphRigidCheck::evidence(): outline that
   one explains and the other not, on the view's side, and on the templates' side what the view says is absent rather
   than hidden; look-alikes that differ only where the view is hidden are not told apart: rejected).
-  Before that, when the best template would accept the view, its lookAlikes() are compared exactly too, each as a
+  Before that, when the view lies on the best template as far as it shows it (a look-alike may lack what the view
+  lacks of the best), its lookAlikes() are compared exactly too, each as a
   shortlisted template is and from the best's fitted start carried over by the two templates' own alignment (and so
   on, should one of them become the best): a view is accepted only against every template whose views could be taken
   for it, not only against those the coarse stage happened to rank (calibrate() finds the look-alikes; an
@@ -262,7 +265,8 @@ public:
     each comparison costs a few hundred microseconds and a query against 100 templates should stay within 5 ms.
   */
   static std::size_t rigidShortlist() { return 5; }
-  //! RIGID: the largest share of a view's outline outside its template's region that accepts it (see the class).
+  //! RIGID: the largest share of a view's outline outside its template's region, and of the template's outside a
+  //! view that hides nothing, that accepts it (see the class).
   static double maximumOutside() { return 0.1; }
   /*!
     RIGID: the least evidence (vpMorphRigidCheck::evidence()) that tells the best template from another acceptable
@@ -300,7 +304,9 @@ private:
   std::vector<std::vector<LookAlike>> gathered(const std::vector<std::vector<Found>> &found) const;
   //! RIGID: lookAlikes() found anew (a calibrated file written without them), on \e threads threads (0: all cores).
   void findLookAlikes(unsigned int threads);
-  //! RIGID: whether a comparison accepts the view as that template (minimumSupport(), nothing outside it).
+  //! RIGID: whether the view lies on that template as far as it shows it (minimumSupport(), nothing outside it).
+  bool rigidFits(const vpMorphRigidCheck::Result &r) const;
+  //! RIGID: whether a comparison accepts the view as that template (rigidFits(), and it lacks none of it in sight).
   bool rigidAccepted(const vpMorphRigidCheck::Result &r) const;
   //! support(), with an articulated template's poses or (\e poses false) its taught view only.
   double support(const vpMorphContour &c, std::size_t k, bool mirrored, bool poses) const;
@@ -347,7 +353,7 @@ private:
   std::vector<vpMorphTemplate> m_templates;
   std::vector<vpMorphShapeDistance::Shape> m_shapes;
   std::vector<vpMorphRigidShape> m_outlineShapes; // per template, when m_shapes holds none (see outlineShape())
-  std::vector<std::vector<Pose>> m_poses; // per template: its articulated poses (none for a rigid one)
+  std::vector<std::vector<Pose>> m_poses;         // per template: its articulated poses (none for a rigid one)
   double m_threshold;
   double m_minSupport = 0.75;
   double m_supportFloor = 0.5;

@@ -64,6 +64,10 @@ public:
     //! takes away, so a view of the target never sticks out of it (0 for an input without a measured region: a
     //! silhouette joined across its occluder, vpMorphContourExtractor::extractJoined(), has bridges that may)
     double outsideShare = 0.0;
+    //! share of the target's outline outside the view's region by more than twice the tolerance, for a view whose
+    //! outline is its own edge all round (vpMorphContour::ownEdge(): nothing cuts it, so it hides nothing): what it
+    //! would show of the target and shows as background (0 for any other view, which does not tell hidden from absent)
+    double absentShare = 0.0;
     //! share of the input's outline on its own edge (vpMorphContour::ownEdge()) and not within tolerance of the
     //! target: the view's own boundary where the target has none (0 without marks)
     double unexplainedShare = 0.0;
