@@ -51,8 +51,8 @@ struct vpMorphRigidView; // a template view of the RIGID search (internal)
   <b>Acceptance with RIGID.</b> The rigidShortlist() templates whose coarse alignment (vpMorphRigidShape) costs least
   are compared exactly (vpMorphRigidCheck); the least exact cost wins. The view is accepted when it shows at least
   minimumSupport() of the template's outline, sticks out of it by at most maximumOutside() of its own, leaves at most
-  as much of the template's outline outside its region when nothing cuts its outline (vpMorphRigidCheck::Result::
-  absentShare: such a view hides nothing, so what it lacks is absent, not hidden), and the
+  as much of the template's outline outside its region when nothing cuts its outline
+  (vpMorphRigidCheck::Result::absentShare: such a view hides nothing, so what it lacks is absent, not hidden), and the
   runner-up, if acceptable too, is told from it by at least ambiguity() (vpMorphRigidCheck::evidence(): outline that
   one explains and the other not, on the view's side, and on the templates' side what the view says is absent rather
   than hidden; look-alikes that differ only where the view is hidden are not told apart: rejected).

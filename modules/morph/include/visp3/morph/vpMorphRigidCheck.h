@@ -41,8 +41,9 @@
   input's: how much of the view the template explains, less than 1 where an occluder's edge runs) and the mean of min(d,
   tolerance)^2 / tolerance^2; the cost is the mean of the two sides', 0 for outlines that coincide, 1 for nothing in
   common. The input's own edge that the target leaves unexplained is counted apart (Result::unexplainedShare): an
-  occluder only hides, so a view of the target shows none. The curves are the measured (dense, sub-pixel) outlines when
-  the contours have them (vpMorphContour::outline()), else the polygons.
+  occluder only hides, so a view of the target shows none. Conversely, a view whose outline is its own edge all round
+  hides nothing, and the target's outline outside its region is counted (Result::absentShare). The curves are the
+  measured (dense, sub-pixel) outlines when the contours have them (vpMorphContour::outline()), else the polygons.
 
   \code
   const vpMorphRigidShape t(tmpl), q(view);
