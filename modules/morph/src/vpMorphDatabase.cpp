@@ -125,7 +125,7 @@ void vpMorphDatabase::add(const vpMorphTemplate &t)
 
 void vpMorphDatabase::pushShapes(const vpMorphContour &c)
 {
-  m_shapes.push_back(m_distance.prepare(c));
+  m_shapes.push_back(m_distance.prepare(c, false));
   m_outlineShapes.push_back(m_shapes.back().rigid.empty() ? vpMorphRigidShape(c) : vpMorphRigidShape());
 }
 
@@ -185,7 +185,7 @@ std::vector<vpMorphDatabase::Pose> vpMorphDatabase::poses(const vpMorphTemplate 
   for (double x : angles)
     if (x != 0.0) {
       vpMorphContour c = a.pose(x);
-      vpMorphShapeDistance::Shape q = m_distance.prepare(c);
+      vpMorphShapeDistance::Shape q = m_distance.prepare(c, false);
       out.push_back(Pose{x, std::move(c), std::move(q)});
     }
   return out;
@@ -267,7 +267,7 @@ void vpMorphDatabase::setDistance(const vpMorphShapeDistance &d)
   // The poses are drawn from the articulation alone: only their shapes depend on the distance.
   for (std::vector<Pose> &poses : m_poses)
     for (Pose &p : poses)
-      p.shape = m_distance.prepare(p.contour);
+      p.shape = m_distance.prepare(p.contour, false);
   invalidate();
 }
 
@@ -318,7 +318,7 @@ double vpMorphDatabase::support(const vpMorphContour &c, std::size_t k, bool mir
                            "vpMorphDatabase::support: the contour's units are not those of template '" +
                                m_templates[k].name() + "'");
   if (m_distance.model() == vpMorphShapeDistance::RIGID)
-    return rigidCheck(m_distance.prepare(c), k, mirrored, poses).targetShare;
+    return rigidCheck(m_distance.prepare(c, false), k, mirrored, poses).targetShare;
   vpMorphMatcher matcher = m_distance.matcher();
   const double taught = orAligned(shownEitherWay(c, t, matcher, mirrored, matcher.match(c, t)), m_minSupport, c, t,
                                   view, outlineShape(k));
@@ -513,7 +513,7 @@ vpMorphRecognition vpMorphDatabase::recognize(const vpMorphContour &c, bool prun
   if (c.empty())
     throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::recognize: empty contour");
   vpMorphMatcher matcher = m_distance.matcher();
-  return search(c, m_distance.prepare(c), prune, matcher);
+  return search(c, m_distance.prepare(c, false), prune, matcher);
 }
 
 vpMorphRecognition vpMorphDatabase::recognize(const std::vector<vpMorphContour> &candidates, std::size_t &chosen) const
@@ -543,7 +543,7 @@ std::vector<vpMorphRecognition> vpMorphDatabase::recognizeAll(const std::vector<
       [&](std::size_t k, vpMorphMatcher &matcher) {
         if (contours[k].empty())
           throw vpMorphException(vpMorphException::badContourError, "vpMorphDatabase::recognizeAll: empty contour");
-        out[k] = search(contours[k], m_distance.prepare(contours[k]), true, matcher);
+        out[k] = search(contours[k], m_distance.prepare(contours[k], false), true, matcher);
       },
       progress);
   return out;

@@ -47,8 +47,8 @@ vpMorphRigidCheck::Result vpMorphDatabase::rigidCheck(const vpMorphShapeDistance
   for (std::size_t p = 0; poses && p < m_poses[k].size(); ++p)
     views.push_back(vpMorphRigidSearch::View{k, p, &rigidView(k, p)});
   vpMorphRigidCheck::Result best;
-  for (std::size_t m = 0; m < (mirrored ? q.rigid.size() : 1); ++m) {
-    const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(q.rigid[m], views, 1);
+  for (std::size_t m = 0; m < (mirrored ? q.forms.size() : 1); ++m) {
+    const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(vpMorphShapeDistance::rigidShape(q, m), views, 1);
     if (m == 0 || o.best.cost < best.cost)
       best = o.best;
   }
@@ -61,9 +61,10 @@ vpMorphRecognition vpMorphDatabase::rigidSearch(const vpMorphContour &c, const v
   const std::vector<vpMorphRigidSearch::View> views = rigidViews(poses);
   vpMorphRecognition r;
   // The view as it is, then (mirrors on) its mirror image when that is not accepted: a part turned over.
-  for (std::size_t m = 0; m < q.rigid.size(); ++m) {
+  for (std::size_t m = 0; m < q.forms.size(); ++m) {
+    const vpMorphRigidShape view = vpMorphShapeDistance::rigidShape(q, m); // the mirror image's made only when needed
     const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(
-        q.rigid[m], views, prune ? rigidShortlist() : 0, m_lookAlikes.empty() ? nullptr : &m_lookAlikes,
+        view, views, prune ? rigidShortlist() : 0, m_lookAlikes.empty() ? nullptr : &m_lookAlikes,
         [this](const vpMorphRigidCheck::Result &b) { return rigidFits(b); });
     vpMorphRecognition a;
     a.index = o.index;
@@ -82,7 +83,7 @@ vpMorphRecognition vpMorphDatabase::rigidSearch(const vpMorphContour &c, const v
     // best would be accepted.
     const bool acceptable = rigidAccepted(o.best);
     a.ambiguous = acceptable && o.second != vpMorphRecognition::npos && rigidAccepted(o.runnerUp) &&
-                  vpMorphRigidCheck::evidence(q.rigid[m], rigidView(o.index, o.pose), o.best,
+                  vpMorphRigidCheck::evidence(view, rigidView(o.index, o.pose), o.best,
                                               rigidView(o.second, o.secondPose), o.runnerUp) < ambiguity();
     a.accepted = acceptable && !a.ambiguous;
     if (m == 0 || a.accepted) {

@@ -195,7 +195,7 @@ void vpMorphShapeDistance::setScales(const std::vector<double> &sigmas)
   m_scales = sigmas;
 }
 
-vpMorphShapeDistance::Shape vpMorphShapeDistance::prepare(const vpMorphContour &c) const
+vpMorphShapeDistance::Shape vpMorphShapeDistance::prepare(const vpMorphContour &c, bool rigidMirror) const
 {
   if (c.empty())
     throw vpMorphException(vpMorphException::badContourError, "vpMorphShapeDistance: empty contour");
@@ -209,7 +209,8 @@ vpMorphShapeDistance::Shape vpMorphShapeDistance::prepare(const vpMorphContour &
     s.rigid.emplace_back(c);
     if (m_mirrors) {
       s.forms.push_back(c.mirrored());
-      s.rigid.emplace_back(s.forms.back());
+      if (rigidMirror)
+        s.rigid.emplace_back(s.forms.back());
     }
     return s;
   }
@@ -231,6 +232,14 @@ vpMorphShapeDistance::Shape vpMorphShapeDistance::prepare(const vpMorphContour &
   return s;
 }
 
+vpMorphRigidShape vpMorphShapeDistance::rigidShape(const Shape &s, std::size_t m)
+{
+  if (s.rigid.empty() || m >= s.forms.size())
+    throw vpMorphException(vpMorphException::badParameterError,
+                           "vpMorphShapeDistance::rigidShape: no such form of a shape prepared for RIGID");
+  return m < s.rigid.size() ? s.rigid[m] : vpMorphRigidShape(s.forms[m]);
+}
+
 double vpMorphShapeDistance::distance(const Shape &a, const Shape &b, vpMorphMatcher &matcher, double abandonAbove,
                                       bool *mirrored, vpMorphRigidCheck::Result *check) const
 {
@@ -238,14 +247,14 @@ double vpMorphShapeDistance::distance(const Shape &a, const Shape &b, vpMorphMat
   if (m_model == HEIGHT)
     return m_height.distance(a.height, b.height, mirrored);
   if (m_model == RIGID) {
-    if (a.rigid.size() != per || b.rigid.empty())
+    if (a.rigid.empty() || a.forms.size() != per || b.rigid.empty())
       throw vpMorphException(vpMorphException::badParameterError,
                              "vpMorphShapeDistance: shapes prepared with another distance");
     vpMorphRigidCheck::Result best;
     bool bestMirror = false;
     for (std::size_t m = 0; m < per; ++m) {
-      const vpMorphRigidCheck::Result r =
-          vpMorphRigidCheck::check(a.rigid[m], b.rigid[0], a.rigid[m].alignOn(b.rigid[0]));
+      const vpMorphRigidShape view = rigidShape(a, m);
+      const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(view, b.rigid[0], view.alignOn(b.rigid[0]));
       if (m == 0 || r.cost < best.cost) {
         best = r;
         bestMirror = m == 1;

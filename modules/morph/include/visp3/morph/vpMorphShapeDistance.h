@@ -81,7 +81,7 @@ public:
     std::vector<std::vector<double>> phi;     //!< per scale: turning angles (positive traversal)
     std::vector<std::vector<double>> lenSort; //!< per scale: lengths sorted
     std::vector<std::vector<double>> phiSort; //!< per scale: angles sorted
-    std::vector<vpMorphRigidShape> rigid;     //!< RIGID: the contour, then its mirror image if mirrors are used
+    std::vector<vpMorphRigidShape> rigid;     //!< RIGID: the contour, then its mirror image (see rigidShape())
     vpMorphHeightFunction::Descriptor height; //!< HEIGHT: the descriptor (and its mirror image's)
   };
 
@@ -129,7 +129,19 @@ public:
     The representations of \e c used by this distance.
     \throw vpMorphException::badContourError on an empty contour (HEIGHT: also on fewer than 3 vertices or no area).
   */
-  Shape prepare(const vpMorphContour &c) const;
+  Shape prepare(const vpMorphContour &c) const { return prepare(c, true); }
+  /*!
+    As prepare(c), but with \e rigidMirror false RIGID leaves the mirror image's shape unmade (Shape::rigid holds the
+    contour's only; Shape::forms both): a template is never laid on a view turned over, and a view accepted as it is
+    never needs its mirror image's. rigidShape() makes it where it is needed.
+  */
+  Shape prepare(const vpMorphContour &c, bool rigidMirror) const;
+  /*!
+    RIGID: the shape of \e s.forms[m] (0: the contour, 1: its mirror image), \e s.rigid[m] when prepared, made
+    otherwise.
+    \throw vpMorphException::badParameterError when \e s has no such form or was not prepared for RIGID.
+  */
+  static vpMorphRigidShape rigidShape(const Shape &s, std::size_t m);
   /*!
     Distance between two prepared shapes (symmetric for the D_morph models, nearly for HEIGHT); \e abandonAbove: once
     the partial sum over the scales exceeds it the computation stops and returns a value > abandonAbove (exact
