@@ -26,6 +26,16 @@ using vpMorphTest::extract;
 using vpMorphTest::similarity;
 using vpMorphTest::warp;
 
+//! A view of the tool in \e image turned by any angle and scaled by 0.8-1.2 (drawn from \e rng), noisy (\e seed),
+//! under a square card of \e card of its size at \e where (0: none); extracted joined across the card when \e joined.
+vpMorphContour toolView(const cv::Mat &image, std::mt19937 &rng, double card, double where, unsigned int seed,
+                        bool joined = false)
+{
+  std::uniform_real_distribution<double> turn(-180, 180), scale(0.8, 1.2);
+  const cv::Mat v = card > 0.0 ? vpMorphTest::squareOccluder(image, where, card) : image;
+  return extract(warp(v, similarity(v, turn(rng), scale(rng), 0, 0), 5, seed), joined);
+}
+
 //! A RIGID database of the tools and their bent drawings; \e images receives the tools' images.
 vpMorphDatabase toolsAndBentDrawings(std::vector<cv::Mat> &images)
 {
@@ -58,13 +68,9 @@ TEST_CASE("rigid recognition: the two-stage search gives the exhaustive search's
   std::vector<cv::Mat> images;
   const vpMorphDatabase db = toolsBentDrawingsAndHalves(images);
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> turn(-180, 180), scale(0.8, 1.2);
   std::size_t compared = 0, all = 0;
   for (int k = 0; k < 24; ++k) {
-    cv::Mat v = images[k % 6];
-    if (k % 3 == 0)
-      v = vpMorphTest::squareOccluder(v, 0.13 * k, 0.15);
-    const vpMorphContour c = extract(warp(v, similarity(v, turn(rng), scale(rng), 0, 0), 5, k), k % 3 == 0);
+    const vpMorphContour c = toolView(images[k % 6], rng, k % 3 == 0 ? 0.15 : 0.0, 0.13 * k, k, k % 3 == 0);
     const vpMorphRecognition a = db.recognize(c, true), b = db.recognize(c, false);
     CAPTURE(k, db[a.index].name(), db[b.index].name(), a.distance, b.distance);
     CHECK(a.index == b.index);
@@ -92,13 +98,9 @@ TEST_CASE("rigid recognition: the search's shortcuts give the plain two-stage se
   for (std::size_t k = 0; k < db.size(); ++k)
     shapes.emplace_back(db[k].contour());
   std::mt19937 rng(17);
-  std::uniform_real_distribution<double> turn(-180, 180), scale(0.8, 1.2);
   std::size_t abandoned = 0;
   for (int k = 0; k < 36; ++k) {
-    cv::Mat v = images[k % 6];
-    if (k % 2 == 0)
-      v = vpMorphTest::squareOccluder(v, 0.07 * k, 0.2);
-    const vpMorphContour c = extract(warp(v, similarity(v, turn(rng), scale(rng), 0, 0), 5, 100 + k), k % 4 == 0);
+    const vpMorphContour c = toolView(images[k % 6], rng, k % 2 == 0 ? 0.2 : 0.0, 0.07 * k, 100 + k, k % 4 == 0);
     const vpMorphRigidShape q(c);
     std::vector<std::pair<double, std::size_t>> coarse;
     std::vector<vpMorphRigidShape::Alignment> alignments;
@@ -184,13 +186,9 @@ TEST_CASE("rigid recognition: a saved and reloaded database gives identical answ
     }
   }
   std::mt19937 rng(13);
-  std::uniform_real_distribution<double> turn(-180, 180), scale(0.8, 1.2);
   std::size_t accepted = 0;
   for (int k = 0; k < 12; ++k) {
-    cv::Mat v = images[k % 6];
-    if (k % 3 == 0)
-      v = vpMorphTest::squareOccluder(v, 0.17 * k, 0.15);
-    const vpMorphContour c = extract(warp(v, similarity(v, turn(rng), scale(rng), 0, 0), 5, 40 + k), k % 3 == 0);
+    const vpMorphContour c = toolView(images[k % 6], rng, k % 3 == 0 ? 0.15 : 0.0, 0.17 * k, 40 + k, k % 3 == 0);
     const vpMorphRecognition a = db.recognize(c), b = back.recognize(c);
     CAPTURE(k, db[a.index].name(), back[b.index].name(), a.distance, b.distance);
     CHECK(a.index == b.index);
@@ -300,13 +298,9 @@ TEST_CASE("rigid recognition: the best template's look-alikes are compared whate
     views.push_back(vpMorphRigidSearch::View{k, vpMorphRigidSearch::npos, &shapes[k]});
   const auto always = [](const vpMorphRigidCheck::Result &) { return true; };
   std::mt19937 rng(19);
-  std::uniform_real_distribution<double> turn(-180, 180), scale(0.8, 1.2);
   int agreeWith = 0, agreeWithout = 0;
   for (int k = 0; k < 24; ++k) {
-    cv::Mat v = images[k % 6];
-    if (k % 2 == 0)
-      v = vpMorphTest::squareOccluder(v, 0.11 * k, 0.2);
-    const vpMorphRigidShape q(extract(warp(v, similarity(v, turn(rng), scale(rng), 0, 0), 5, 200 + k)));
+    const vpMorphRigidShape q(toolView(images[k % 6], rng, k % 2 == 0 ? 0.2 : 0.0, 0.11 * k, 200 + k));
     const vpMorphRigidSearch::Outcome with = vpMorphRigidSearch::run(q, views, 1, &lookAlikes, always),
                                       without = vpMorphRigidSearch::run(q, views, 1),
                                       all = vpMorphRigidSearch::run(q, views, 0);
