@@ -71,13 +71,27 @@ struct Frames
   }
 };
 
+// Tukey's loss at residual r for cut-off c, scaled to [0, 1]: 1 at and beyond c.
+inline double tukeyLoss(double r, double c)
+{
+  const double u = r / c;
+  if (!(std::fabs(u) < 1.0))
+    return 1.0;
+  const double v = 1.0 - u * u;
+  return 1.0 - v * v * v;
+}
+
 /*
   One Gauss-Newton step of G (h33 = 1) on the point-to-edge distances of the input's samples mapped onto the target
   and of the target's samples mapped back onto the input, Tukey-weighted at cut-off c (target sizes); false when the
-  system is singular or a point maps to infinity.
+  system is singular or a point maps to infinity. Given \e objective, G is left as it is and the mean Tukey loss of
+  those distances (tukeyLoss()) is stored there instead: what the step descends.
 */
-bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, const Frames &f, Mat3 &G, double c)
+bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, const Frames &f, Mat3 &G, double c,
+          double *objective = nullptr)
 {
+  double loss = 0.0;
+  std::size_t samples = 0;
   Mat8 A = Mat8::Zero();
   Vec8 b = Vec8::Zero();
   std::size_t used = 0;
@@ -93,6 +107,11 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
       return false;
     double mx, my;
     const double r = tg.fineEdges.within(f.ct_x + X * f.st, f.ct_y + Y * f.st, c * f.st, mx, my) * ist;
+    if (objective) {
+      loss += tukeyLoss(r, c);
+      ++samples;
+      continue;
+    }
     const double wt = std::isfinite(r) ? tukey(r, c) : 0.0;
     if (wt <= 0.0)
       continue;
@@ -113,6 +132,11 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
     const double iz = 1.0 / v(2), x = v(0) * iz, y = v(1) * iz;
     double mx, my;
     const double r = in.ownEdges().within(f.ci_x + x * f.si, f.ci_y + y * f.si, c * f.si, mx, my) * isi;
+    if (objective) {
+      loss += tukeyLoss(r, c);
+      ++samples;
+      continue;
+    }
     const double wt = std::isfinite(r) ? tukey(r, c) : 0.0;
     if (wt <= 0.0)
       continue;
@@ -125,6 +149,10 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
     A.noalias() += wt * J * J.transpose();
     b.noalias() -= wt * r * J;
     ++used;
+  }
+  if (objective) {
+    *objective = samples > 0 ? loss / static_cast<double>(samples) : 1.0;
+    return true;
   }
   if (used < 8)
     return false;
@@ -239,8 +267,24 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::check(const vpMorphRigidShape &inpu
   return checkFrom(input, target, start, -1.0);
 }
 
-vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
-                                                       const vpMorphRigidTransform &start, double abandonAbove)
+namespace
+{
+// The similarity \e start (input pixels to target pixels) in the normalised frames: U = (T(p) - ct) / st with
+// p = ci + si u.
+Mat3 normalised(const vpMorphRigidTransform &start, const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg)
+{
+  double ox, oy;
+  start.apply(in.cx, in.cy, ox, oy);
+  const double k = start.scale() * in.size / tg.size, c = std::cos(start.theta()), s = std::sin(start.theta());
+  Mat3 G;
+  G << k * c, -k * s, (ox - tg.cx) / tg.size, k * s, k * c, (oy - tg.cy) / tg.size, 0, 0, 1;
+  return G;
+}
+} // namespace
+
+bool vpMorphRigidCheck::laid(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                             const vpMorphRigidTransform &start, const vpMorphRigidShapeData *&in,
+                             const vpMorphRigidShapeData *&tg)
 {
   if (input.empty() || target.empty())
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck: empty shape");
@@ -248,18 +292,36 @@ vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &
   // and laying either at the other's blur through it would blur a part out of all measure.
   const double sizes = start.scale() * input.m_data->size / target.m_data->size;
   if (!(sizes >= 0.5 && sizes <= 2.0))
-    return Result();
-  const vpMorphRigidShapeData &in = *laidInput(input, target, start).m_data,
-                              &tg = *laidTarget(input, target, start).m_data;
-  if (in.contour.units() != tg.contour.units())
+    return false;
+  in = laidInput(input, target, start).m_data.get();
+  tg = laidTarget(input, target, start).m_data.get();
+  if (in->contour.units() != tg->contour.units())
     throw vpMorphException(vpMorphException::badParameterError, "vpMorphRigidCheck: the contours' units differ");
+  return true;
+}
+
+double vpMorphRigidCheck::startCost(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                    const vpMorphRigidTransform &start)
+{
+  const vpMorphRigidShapeData *in = nullptr, *tg = nullptr;
+  if (!laid(input, target, start, in, tg))
+    return 1.0;
+  Mat3 G = normalised(start, *in, *tg);
+  double objective = 1.0;
+  return step(*in, *tg, Frames{in->cx, in->cy, in->size, tg->cx, tg->cy, tg->size}, G, kFirstCutOff, &objective)
+             ? objective
+             : 1.0;
+}
+
+vpMorphRigidCheck::Result vpMorphRigidCheck::checkFrom(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                                                       const vpMorphRigidTransform &start, double abandonAbove)
+{
+  const vpMorphRigidShapeData *pin = nullptr, *ptg = nullptr;
+  if (!laid(input, target, start, pin, ptg))
+    return Result();
+  const vpMorphRigidShapeData &in = *pin, &tg = *ptg;
   const Frames f{in.cx, in.cy, in.size, tg.cx, tg.cy, tg.size};
-  // The start in the normalised frames: U = (T(p) - ct) / st with p = ci + si u.
-  double ox, oy;
-  start.apply(in.cx, in.cy, ox, oy);
-  const double k = start.scale() * in.size / tg.size, c = std::cos(start.theta()), s = std::sin(start.theta());
-  Mat3 G;
-  G << k * c, -k * s, (ox - tg.cx) / tg.size, k * s, k * c, (oy - tg.cy) / tg.size, 0, 0, 1;
+  Mat3 G = normalised(start, in, tg);
   Result r;
   const double tol = tolerance(in.contour, tg.contour);
   double cut = kFirstCutOff;

@@ -39,6 +39,7 @@ vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &que
     double cost;
     std::size_t index, view;
     vpMorphRigidShape::Alignment alignment;
+    std::vector<vpMorphRigidShape::Hypothesis> beyond; // its turns onto itself beyond the shortlist's cost
   };
   std::vector<Coarse> best;
   for (std::size_t v = 0; v < views.size(); ++v) {
@@ -46,24 +47,31 @@ vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &que
       prefetch(*views[v + 1].shape->m_data);
     const vpMorphRigidShape::Alignment a = query.alignOn(*views[v].shape, false);
     if (best.empty() || best.back().index != views[v].index)
-      best.push_back(Coarse{a.cost, views[v].index, v, a});
+      best.push_back(Coarse{a.cost, views[v].index, v, a, {}});
     else if (a.cost < best.back().cost)
-      best.back() = Coarse{a.cost, views[v].index, v, a};
+      best.back() = Coarse{a.cost, views[v].index, v, a, {}};
   }
   std::stable_sort(best.begin(), best.end(), [](const Coarse &a, const Coarse &b) {
     return a.cost < b.cost || (a.cost == b.cost && a.index < b.index);
   });
   // A template's turns by its symmetries are compared exactly as templates are: those whose coarse cost is within
-  // the shortlist's when it left templates out, all of them otherwise.
+  // the shortlist's when it left templates out, all of them otherwise. Its turns onto itself beyond that are kept
+  // aside for a second look.
   const std::size_t listed = shortlist > 0 && best.size() > shortlist ? shortlist : best.size();
   const double bar = listed < best.size() ? best[listed - 1].cost : std::numeric_limits<double>::infinity();
   if (!every)
     best.resize(listed);
   for (Coarse &c : best) {
     query.addSymmetric(*views[c.view].shape, c.alignment);
-    std::vector<vpMorphRigidShape::Hypothesis> &h = c.alignment.symmetric;
-    h.erase(std::remove_if(h.begin(), h.end(), [bar](const vpMorphRigidShape::Hypothesis &y) { return y.cost > bar; }),
-            h.end());
+    std::vector<vpMorphRigidShape::Hypothesis> within;
+    for (std::size_t k = 0; k < c.alignment.symmetric.size(); ++k) {
+      const vpMorphRigidShape::Hypothesis &y = c.alignment.symmetric[k];
+      if (y.cost <= bar)
+        within.push_back(y);
+      else if (k < c.alignment.selfTurns)
+        c.beyond.push_back(y);
+    }
+    c.alignment.symmetric.swap(within);
   }
   // The exact results, the least per template; the best and the runner-up by cost, ties to the lower index.
   Outcome o;
@@ -102,6 +110,31 @@ vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &que
   for (const Coarse &c : best)
     compare(c.view, c.alignment);
   ranked();
+  // A second look when no answer is acceptable: of each shortlisted template's turns onto itself beyond the
+  // shortlist's cost, the one whose fit objective at the start is least (vpMorphRigidCheck::startCost(), on the
+  // outlines), compared when that is less than the alignment's. The coarse cost, of outlines smoothed past a tooth's
+  // width, cannot rank the alike turns of a toothed part; the sweep's turns are unlike ones, which it does rank.
+  if (acceptable && !(o.index != npos && acceptable(o.best))) {
+    for (const Coarse &c : best) {
+      const vpMorphRigidShape &target = *views[c.view].shape;
+      const vpMorphRigidShape::Hypothesis *least = nullptr;
+      double objective = 0.0;
+      for (const vpMorphRigidShape::Hypothesis &y : c.beyond) {
+        const double cost = vpMorphRigidCheck::startCost(query, target, y.transform);
+        if (!least || cost < objective) {
+          least = &y;
+          objective = cost;
+        }
+      }
+      if (least && objective < vpMorphRigidCheck::startCost(query, target, c.alignment.transform)) {
+        vpMorphRigidShape::Alignment turned;
+        turned.transform = least->transform;
+        turned.cost = least->cost;
+        compare(c.view, turned);
+      }
+    }
+    ranked();
+  }
   // The best's look-alikes, from its fitted start carried over, while the best is acceptable and one whose
   // look-alikes were not compared yet.
   std::vector<std::size_t> visited;

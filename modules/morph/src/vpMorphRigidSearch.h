@@ -26,6 +26,9 @@ struct vpMorphRigidView
   compared exactly (vpMorphRigidCheck, a few hundred microseconds); the least exact cost wins, ties to the lower index.
   A shortlisted template is compared from its alignment, its alternative, and those of its symmetric hypotheses
   (vpMorphRigidShape::Alignment::symmetric) whose coarse cost is within the shortlist's: the rule that admits templates.
+  When no answer is then \e acceptable, each shortlisted template gets a second look: of its turns onto itself beyond
+  that cost, the one whose fit objective at the start is least, when less than the alignment's, is compared too
+  (vpMorphRigidCheck::startCost(), on the outlines: the coarse cost cannot rank a toothed part's alike turns).
   Once two are compared, one whose cost is sure to exceed the runner-up's is measured no further (it can be neither).
   With shortlist 0 every template is compared exactly: the exhaustive search that the two stages stand for (a test
   checks they agree). With \e every, every template is compared exactly from its alignment and alternative, and the
@@ -63,7 +66,7 @@ public:
   /*!
     \param lookAlikes per template index, or null: none compared beyond the shortlist.
     \param acceptable whether the view lies on a result's template as far as it shows it: only such a best's
-    look-alikes are compared.
+    look-alikes are compared, and a best that is not gets the second look (none without \e acceptable).
     \param abandon with a shortlist, measure no further a template that can be neither the best nor the runner-up
     (false: every result in Outcome::exact is measured in full).
     \param every compare every template exactly, the shortlist bounding only the symmetric hypotheses.

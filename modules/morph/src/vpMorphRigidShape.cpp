@@ -558,6 +558,7 @@ void vpMorphRigidShape::addSymmetric(const vpMorphRigidShape &target, Alignment 
     if (!a.hasAlternative || turnsApart(turned, other))
       a.symmetric.push_back(Hypothesis{toPixels(in, t, turned), hypothesisCost(in, t, turned)});
   }
+  a.selfTurns = a.symmetric.size();
   // The sweep: the winner turned about the target's centre and refined on this view, two steps each and the rest for
   // those still within the bound, as alignOn()'s turns are.
   const double bound = 2.0 * a.cost;

@@ -138,6 +138,21 @@ TEST_CASE("rigid check: a star of alike lobes is laid lobe on lobe, each lobe tr
   CAPTURE(r.cost, r.targetShare, r.outsideShare, vpMorphRigidCheck::check(q, t, a.transform).targetShare);
   CHECK(r.targetShare >= 0.95);
   CHECK(r.outsideShare == 0.0);
+  // The fit's objective at the start, measured on the outlines, ranks the turns as the coarse cost cannot: of the
+  // alignment and its symmetric hypotheses, the least is the lobe the check settles on, and less than the alignment's.
+  std::vector<vpMorphRigidTransform> starts{a.transform};
+  for (const vpMorphRigidShape::Hypothesis &h : a.symmetric)
+    starts.push_back(h.transform);
+  std::vector<double> objective;
+  for (const vpMorphRigidTransform &s : starts)
+    objective.push_back(vpMorphRigidCheck::startCost(q, t, s));
+  const std::size_t least =
+      static_cast<std::size_t>(std::min_element(objective.begin(), objective.end()) - objective.begin());
+  const double off = std::fabs(std::remainder(starts[least].theta() - r.start.theta(), 2.0 * M_PI)) * 180.0 / M_PI;
+  CAPTURE(objective, least, off);
+  CHECK(least != 0);
+  CHECK(objective[least] < objective[0]);
+  CHECK(off < 5.0);
   // Through a database of it and the six tools (more than the shortlist): named and accepted by both searches.
   vpMorphDatabase db(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
   db.add(vpMorphTemplate("star", t.contour()));
@@ -284,6 +299,7 @@ TEST_CASE("rigid check: one shape at two sizes, and bad input", "[rigid][safety]
   CHECK_THROWS_AS(empty.alignOn(a), vpMorphException);
   CHECK_THROWS_AS(a.alignOn(empty), vpMorphException);
   CHECK_THROWS_AS(vpMorphRigidCheck::check(empty, a, vpMorphRigidTransform()), vpMorphException);
+  CHECK_THROWS_AS(vpMorphRigidCheck::startCost(a, empty, vpMorphRigidTransform()), vpMorphException);
   // A start that no view of the part is (the view scaled to a hundredth or a hundred times the template's size): not
   // fitted, and not laid at the blur such a scale would ask for.
   double kx, ky;
@@ -294,7 +310,13 @@ TEST_CASE("rigid check: one shape at two sizes, and bad input", "[rigid][safety]
         vpMorphRigidCheck::check(a, a, vpMorphRigidTransform(0.0, 0.0, 0.0, scale, kx, ky));
     CHECK_FALSE(r.fitted);
     CHECK(r.cost == 1.0);
+    CHECK(vpMorphRigidCheck::startCost(a, a, vpMorphRigidTransform(0.0, 0.0, 0.0, scale, kx, ky)) == 1.0);
   }
+  // The objective at a start that lays the part on itself: every distance 0; shifted by a tenth of its size, more.
+  CHECK(vpMorphRigidCheck::startCost(a, a, vpMorphRigidTransform()) < 1e-6);
+  CHECK(vpMorphRigidCheck::startCost(
+            a, a, vpMorphRigidTransform(0.0, 0.1 * std::sqrt(k.regionArea()), 0.1 * std::sqrt(k.regionArea()))) > 0.2);
+  CHECK(vpMorphRigidCheck::startCost(a, a, vpMorphRigidTransform(0.0, 0.0, 0.0, 1e-300)) == 1.0);
   const vpMorphContour normalized(k.xs(), k.ys(), vpMorphContour::NORMALIZED);
   CHECK_THROWS_AS(vpMorphRigidCheck::check(normalized, k, vpMorphRigidTransform()), vpMorphException);
   CHECK_THROWS_AS(vpMorphRigidCheck::similarityDeviation(k, k, 1.5), vpMorphException);

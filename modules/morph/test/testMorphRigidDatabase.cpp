@@ -5,12 +5,15 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
 
+#include <visp3/io/vpImageIo.h>
+#include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphRigidCheck.h>
@@ -153,7 +156,7 @@ TEST_CASE("rigid recognition: the search's shortcuts give the plain two-stage se
     CHECK(a.support == rb.targetShare);
     CHECK(a.secondIndex == second);
     CHECK(a.secondDistance == rs.cost);
-    CHECK(a.evaluated == vpMorphDatabase::rigidShortlist());
+    CHECK(a.evaluated == vpMorphDatabase::rigidShortlist()); // every best acceptable: no second look
   }
   CHECK(abandoned > 0); // the measurement did stop early
 }
@@ -275,6 +278,55 @@ TEST_CASE("rigid database: every template that shows enough of another's is its 
       CHECK(std::any_of(l.begin(), l.end(), [i](const vpMorphDatabase::LookAlike &x) { return x.index == i; }));
     }
   CHECK(pairs >= 80); // most of the 90 ordered pairs
+}
+
+TEST_CASE("rigid recognition: with no acceptable answer, a turn of a part onto itself beyond the shortlist's cost is "
+          "compared when the outlines rank it first",
+          "[rigid][symmetry]")
+{
+  // An MPEG-7 device (ten pointed lobes, their serrations differ) at its goal and a first view of it
+  // (testMorphRigid.cpp's star), among the six tools with a shortlist of one: the shortlist's cost is the star's own
+  // alignment's, the lobes' turns cost about as much on the smoothed outlines, and the alignment lays the view off by
+  // lobes. Compared only from the hypotheses within that cost, most of the star's outline stays off the view: no
+  // acceptable answer. The second look's turn onto itself whose fit objective is least, beyond that cost, lays it
+  // lobe on lobe.
+  const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
+  vpImage<unsigned char> V;
+  vpImageIo::read(V, (data / "ten-lobed-star-view.png").string());
+  const vpMorphDatabase goal = vpMorphDatabase::load((data / "ten-lobed-star-goal.json").string(), false);
+  std::vector<vpMorphRigidShape> shapes{vpMorphRigidShape(goal[0].contour())};
+  for (const char *name : kObjects)
+    shapes.emplace_back(extract(vpMorphTest::readObject(name)));
+  std::vector<vpMorphRigidSearch::View> views;
+  for (std::size_t k = 0; k < shapes.size(); ++k)
+    views.push_back(vpMorphRigidSearch::View{k, vpMorphRigidSearch::npos, &shapes[k]});
+  const vpMorphRigidShape q(vpMorphContourExtractor().extract(V));
+  // An answer is acceptable when the view shows most of the template's outline.
+  const auto most = [](const vpMorphRigidCheck::Result &r) { return r.fitted && r.targetShare >= 0.9; };
+  const vpMorphRigidSearch::Outcome o = vpMorphRigidSearch::run(q, views, 1, nullptr, most),
+                                    first = vpMorphRigidSearch::run(q, views, 1);
+  // Within the bar alone: the alignment, its alternative and the turns that cost no more than it.
+  vpMorphRigidShape::Alignment a = q.alignOn(shapes[0]);
+  const double bar = a.cost;
+  std::size_t beyond = 0;
+  for (std::size_t k = 0; k < a.selfTurns; ++k)
+    beyond += a.symmetric[k].cost > bar;
+  a.symmetric.erase(std::remove_if(a.symmetric.begin(), a.symmetric.end(),
+                                   [bar](const vpMorphRigidShape::Hypothesis &h) { return h.cost > bar; }),
+                    a.symmetric.end());
+  const vpMorphRigidCheck::Result within = vpMorphRigidCheck::check(q, shapes[0], a);
+  CAPTURE(bar, beyond, within.targetShare, first.best.targetShare, o.best.targetShare);
+  CHECK(beyond >= 5);
+  CHECK(within.targetShare < 0.6);
+  // Without a rule of acceptance there is no second look: the first answer is that of the hypotheses within the bar.
+  CHECK(first.index == 0);
+  CHECK(first.compared == 1);
+  CHECK(first.best.cost == within.cost);
+  // With one, the first answer is not acceptable, and the second look compares the star from that turn.
+  CHECK(o.index == 0);
+  CHECK(o.compared == 2);
+  CHECK(o.best.targetShare >= 0.95);
+  CHECK(most(o.best));
 }
 
 TEST_CASE("rigid recognition: the best template's look-alikes are compared whatever the coarse stage ranked",

@@ -94,6 +94,15 @@ public:
   */
   static Result check(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                       const vpMorphRigidShape::Alignment &alignment, double abandonAbove);
+  /*!
+    The objective that check()'s fit from \e start first descends: the mean Tukey loss, in [0, 1], of the fit's point
+    to edge distances both ways at its first cut-off (a twentieth of the target's size). Unlike the coarse stage's
+    cost, it is measured on the outlines: of a part's alike turns (its teeth, say) the right one costs least. 1 for a
+    start that is no view of the target. The distances of one of the fit's steps, nothing solved.
+    \throw vpMorphException::badParameterError on an empty shape or units that differ.
+  */
+  static double startCost(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
+                          const vpMorphRigidTransform &start);
   //! check() of two contours, prepared here.
   static Result check(const vpMorphContour &input, const vpMorphContour &target, const vpMorphRigidTransform &start);
 
@@ -133,6 +142,10 @@ public:
                                     double quantile = 0.99);
 
 private:
+  //! The input and the target as a fit from \e start lays them (the sharper at the other's blur); false for a start
+  //! off the sizes a view of the target can have.
+  static bool laid(const vpMorphRigidShape &input, const vpMorphRigidShape &target, const vpMorphRigidTransform &start,
+                   const vpMorphRigidShapeData *&in, const vpMorphRigidShapeData *&tg);
   //! check() from \e start, abandoned above \e abandonAbove when it is >= 0.
   static Result checkFrom(const vpMorphRigidShape &input, const vpMorphRigidShape &target,
                           const vpMorphRigidTransform &start, double abandonAbove);

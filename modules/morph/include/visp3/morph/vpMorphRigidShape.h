@@ -97,6 +97,8 @@ public:
       before it.
     */
     std::vector<Hypothesis> symmetric;
+    //! How many of \e symmetric, first, are the target's turns onto itself (the rest are the sweep's).
+    std::size_t selfTurns = 0;
   };
   //! A turn of a shape onto itself, in its normalised frame (X = a x - b y + tx, Y = b x + a y + ty), and its cost.
   struct Symmetry
