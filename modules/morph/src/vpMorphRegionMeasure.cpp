@@ -496,11 +496,17 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
   cv::dilate(outer, outerMore, k3, cv::Point(-1, -1), 2);
   band = outer & ~inner & ~others;
   ring = outerMore & ~outer & ~others;
+  // The object's level is read on its own pixels, B deep where it has any: its filled outline less what the mask
+  // reads as background inside it (a hole, or what a coiled wire encloses once a blur has closed its coils), whose
+  // level is no object's.
+  cv::Mat own, plateau;
+  cv::bitwise_and(bin(box), region, own);
+  cv::erode(own, plateau, k3, cv::Point(-1, -1), B, cv::BORDER_CONSTANT, cv::Scalar(0));
   const bool given = levelsFrom != nullptr && levelsFrom->fg.valid && levelsFrom->bg.valid;
-  const LevelHistogram innerLevels(g, inner), ringLevels(g, ring);
+  const LevelHistogram innerLevels(g, plateau), ringLevels(g, ring);
   const Level fg = given ? levelsFrom->fg
-                         : (innerLevels.n > 0 ? affineLevel(g, inner, box.tl(), innerLevels)
-                                              : affineLevel(g, region, box.tl(), LevelHistogram(g, region)));
+                         : (innerLevels.n > 0 ? affineLevel(g, plateau, box.tl(), innerLevels)
+                                              : affineLevel(g, own, box.tl(), LevelHistogram(g, own)));
   const Level bg = given ? levelsFrom->bg : affineLevel(g, ring, box.tl(), ringLevels);
   reg.fg = fg;
   reg.bg = bg;

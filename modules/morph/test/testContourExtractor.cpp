@@ -353,6 +353,39 @@ TEST_CASE("extractor: the edge outline of a grooved part survives a change of un
   CHECK_NOTHROW(vpMorphRigidTransform(0.3, 0.01, -0.02, 1.1).apply(e.toNormalized(cam)));
 }
 
+TEST_CASE("extractor: a washer's levels, edge outline and blur are read on its own pixels, not on its hole",
+          "[extract][outline]")
+{
+  // A washer 100 px across with a hole 80 px across: its filled outline encloses four times more background than it
+  // holds of the washer's own pixels. Read on the filled outline, the object's level was the background's: the
+  // contour had no edge outline and no blur.
+  auto circle = [](double r) {
+    Poly p;
+    for (int k = 0; k < 360; ++k) {
+      p.x.push_back(320.3 + r * std::cos(k * M_PI / 180.0));
+      p.y.push_back(240.6 + r * std::sin(k * M_PI / 180.0));
+    }
+    return p;
+  };
+  for (double s : {0.0, 1.0}) {
+    vpImage<unsigned char> I = render({circle(50.0), circle(40.0)}, 40, 210); // the inner circle: a hole
+    if (s > 0.0) {
+      const cv::Mat b = blurred(I, s);
+      std::copy(b.data, b.data + I.getSize(), I.bitmap);
+    }
+    const vpMorphContour c = vpMorphContourExtractor().extract(I);
+    INFO("image blur " << s << " px: outline blur " << c.outlineBlur() << " px");
+    REQUIRE(c.hasOutline());
+    // The edge blur is the image's and the pixel's area's (1/12 px^2) in quadrature.
+    CHECK(c.outlineBlur() == Approx(std::sqrt(s * s + 1.0 / 12.0)).margin(0.05));
+    const vpMorphContour &o = c.outline();
+    double worst = 0.0;
+    for (std::size_t k = 0; k < o.size(); ++k)
+      worst = std::max(worst, std::fabs(std::hypot(o.x(k) - 320.3, o.y(k) - 240.6) - 50.0));
+    CHECK(worst < 0.15);
+  }
+}
+
 TEST_CASE("approximation: vertex count is stable under image noise and sub-pixel motion", "[approx][noise]")
 {
   // 40 renderings of the same 10-vertex polygon, each with a random sub-pixel offset, a small rotation and
