@@ -27,6 +27,13 @@ void prefetch(const vpMorphRigidShapeData &d)
   (void)d;
 #endif
 }
+
+// The similarity that lays the whole of the input \e in on the target \e t turned by \e theta: centroid on centroid,
+// size on size (exact for a view that hides nothing).
+vpMorphRigidTransform wholeView(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, double theta)
+{
+  return vpMorphRigidTransform(theta, t.cx - in.cx, t.cy - in.cy, t.size / in.size, in.cx, in.cy);
+}
 } // namespace
 
 vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &query, const std::vector<View> &views,
@@ -110,27 +117,33 @@ vpMorphRigidSearch::Outcome vpMorphRigidSearch::run(const vpMorphRigidShape &que
   for (const Coarse &c : best)
     compare(c.view, c.alignment);
   ranked();
-  // A second look when no answer is acceptable: of each shortlisted template's turns onto itself beyond the
-  // shortlist's cost, the one whose fit objective at the start is least (vpMorphRigidCheck::startCost(), on the
-  // outlines), compared when that is less than the alignment's. The coarse cost, of outlines smoothed past a tooth's
-  // width, cannot rank the alike turns of a toothed part; the sweep's turns are unlike ones, which it does rank.
+  // A second look when no answer is acceptable: of each shortlisted template's starts that the coarse cost cannot
+  // rank, the one whose fit objective is least (vpMorphRigidCheck::startCost(), on the outlines), compared when that
+  // is less than the alignment's. They are the template's turns onto itself beyond the shortlist's cost (the coarse
+  // cost, of outlines smoothed past a tooth's width, ranks a toothed part's alike turns by chance) and the whole
+  // view's start at the alignment's turn (alignOn() keeps it or the votes' by their cost after two steps, and a
+  // spring's voted start a coil off can cost less there). The sweep's turns are unlike ones, which the coarse cost
+  // does rank.
   if (acceptable && !(o.index != npos && acceptable(o.best))) {
     for (const Coarse &c : best) {
       const vpMorphRigidShape &target = *views[c.view].shape;
-      const vpMorphRigidShape::Hypothesis *least = nullptr;
+      std::vector<vpMorphRigidTransform> starts;
+      for (const vpMorphRigidShape::Hypothesis &y : c.beyond)
+        starts.push_back(y.transform);
+      starts.push_back(wholeView(*query.m_data, *target.m_data, c.alignment.transform.theta()));
+      const vpMorphRigidTransform *least = nullptr;
       double objective = 0.0;
-      for (const vpMorphRigidShape::Hypothesis &y : c.beyond) {
-        const double cost = vpMorphRigidCheck::startCost(query, target, y.transform);
+      for (const vpMorphRigidTransform &start : starts) {
+        const double cost = vpMorphRigidCheck::startCost(query, target, start);
         if (!least || cost < objective) {
-          least = &y;
+          least = &start;
           objective = cost;
         }
       }
-      if (least && objective < vpMorphRigidCheck::startCost(query, target, c.alignment.transform)) {
-        vpMorphRigidShape::Alignment turned;
-        turned.transform = least->transform;
-        turned.cost = least->cost;
-        compare(c.view, turned);
+      if (objective < vpMorphRigidCheck::startCost(query, target, c.alignment.transform)) {
+        vpMorphRigidShape::Alignment other;
+        other.transform = *least;
+        compare(c.view, other);
       }
     }
     ranked();

@@ -50,9 +50,10 @@ struct vpMorphRigidView; // a template view of the RIGID search (internal)
 
   <b>Acceptance with RIGID.</b> The rigidShortlist() templates whose coarse alignment (vpMorphRigidShape) costs least
   are compared exactly (vpMorphRigidCheck); the least exact cost wins. When the view lies on none of them as far as it
-  shows it, each is compared again from the one of its turns onto itself that the coarse cost ranked out and the fine
-  outlines rank first, if they rank it before its alignment (vpMorphRigidCheck::startCost()): smoothed outlines cannot
-  tell a toothed part's turns apart. The view is accepted when it shows at least minimumSupport() of the template's
+  shows it, each is compared again from the one of its turns onto itself that the coarse cost ranked out, or of the
+  whole view's start at its alignment's turn, that the fine outlines rank first, if they rank it before its alignment
+  (vpMorphRigidCheck::startCost()): smoothed outlines cannot tell a toothed part's turns, nor a spring's coils, apart.
+  The view is accepted when it shows at least minimumSupport() of the template's
   outline, sticks out of it by at most maximumOutside() of its own, leaves at most
   as much of the template's outline outside its region when nothing cuts its outline
   (vpMorphRigidCheck::Result::absentShare: such a view hides nothing, so what it lacks is absent, not hidden), and the
