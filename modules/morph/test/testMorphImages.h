@@ -1,12 +1,14 @@
 // Images shared by the morph unit tests: the six tools' images, a test polygon rendered anti-aliased and blurred,
-// distances to an outline, the largest object's boundary, the benchmark scene's square occluder, and views seen
-// through a map (turned, shifted, scaled), blurred and noisy, and their objects extracted. Include after catch.hpp.
+// distances to an outline, the largest object's boundary, the benchmark scene's square occluder, views seen through a
+// map (turned, shifted, scaled), blurred and noisy, and their objects extracted, and the bench views and goal databases
+// saved in data/. Include after catch.hpp.
 #ifndef VP_MORPH_TEST_IMAGES_H
 #define VP_MORPH_TEST_IMAGES_H
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
@@ -15,7 +17,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include <visp3/core/vpImage.h>
+#include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphDatabase.h>
 
 namespace vpMorphTest
 {
@@ -195,6 +199,19 @@ inline cv::Mat withTab(const cv::Mat &src, cv::Point &centre)
   cv::fillConvexPoly(out, tab, cv::Scalar(0));
   centre = along(20, 0);
   return out;
+}
+//! A bench view saved in data/ (as vispmorph-reid or the servo bench renders it, cropped).
+inline vpImage<unsigned char> readView(const char *name)
+{
+  vpImage<unsigned char> V;
+  vpImageIo::read(V, (std::filesystem::path(__FILE__).parent_path() / "data" / name).string());
+  return V;
+}
+
+//! A database of goals saved in data/ beside the views.
+inline vpMorphDatabase readGoals(const char *name)
+{
+  return vpMorphDatabase::load((std::filesystem::path(__FILE__).parent_path() / "data" / name).string(), false);
 }
 } // namespace vpMorphTest
 

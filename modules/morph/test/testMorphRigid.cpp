@@ -6,16 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph/vpMorphException.h>
@@ -46,16 +43,8 @@ cv::Mat tilted(const cv::Mat &src, double deg, double roll)
   return similarity(src, roll, 1.0, 0, 0) * back * H;
 }
 
-// A bench view saved in data/ (as vispmorph-reid or the servo bench renders it, cropped) and a database of goals saved
-// beside it.
-const std::filesystem::path kData = std::filesystem::path(__FILE__).parent_path() / "data";
-vpImage<unsigned char> readView(const char *name)
-{
-  vpImage<unsigned char> V;
-  vpImageIo::read(V, (kData / name).string());
-  return V;
-}
-vpMorphDatabase readGoals(const char *name) { return vpMorphDatabase::load((kData / name).string(), false); }
+using vpMorphTest::readGoals;
+using vpMorphTest::readView;
 } // namespace
 
 TEST_CASE("rigid shape: a view turned, shifted, scaled and noisy is laid on its template", "[rigid]")
@@ -251,8 +240,8 @@ TEST_CASE("rigid check: a whole view that lacks part of the template is not take
   CHECK_FALSE(db.recognize(apple).accepted);
   CHECK(db.recognize(watch).accepted);
   // The watch under a card that hides its bow: what the view lacks lies behind the card's edge, and is not counted.
-  const cv::Mat view = cv::imread((kData / "pocket-watch-view.png").string(), cv::IMREAD_GRAYSCALE);
-  cv::Mat covered = view.clone();
+  vpImage<unsigned char> view = readView("pocket-watch-view.png");
+  cv::Mat covered = cv::Mat(int(view.getHeight()), int(view.getWidth()), CV_8UC1, view.bitmap).clone();
   cv::rectangle(covered, cv::Rect(125, 155, 70, 70), cv::Scalar(170), cv::FILLED); // over the bow, lighter than it
   const vpMorphContour hidden = extract(covered, true);
   REQUIRE(hidden.outline().hasOwnEdges());

@@ -5,14 +5,12 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
 
-#include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph/vpMorphException.h>
@@ -290,10 +288,8 @@ TEST_CASE("rigid recognition: with no acceptable answer, a turn of a part onto i
   // lobes. Compared only from the hypotheses within that cost, most of the star's outline stays off the view: no
   // acceptable answer. The second look's turn onto itself whose fit objective is least, beyond that cost, lays it
   // lobe on lobe.
-  const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
-  vpImage<unsigned char> V;
-  vpImageIo::read(V, (data / "ten-lobed-star-view.png").string());
-  const vpMorphDatabase goal = vpMorphDatabase::load((data / "ten-lobed-star-goal.json").string(), false);
+  const vpImage<unsigned char> V = vpMorphTest::readView("ten-lobed-star-view.png");
+  const vpMorphDatabase goal = vpMorphTest::readGoals("ten-lobed-star-goal.json");
   std::vector<vpMorphRigidShape> shapes{vpMorphRigidShape(goal[0].contour())};
   for (const char *name : kObjects)
     shapes.emplace_back(extract(vpMorphTest::readObject(name)));
@@ -339,12 +335,9 @@ TEST_CASE("rigid recognition: with no acceptable answer, the whole view's start 
   // placements: from it, the exact check lays about 0.7 of the template's outline on the view, and the answer is not
   // acceptable. The second look ranks the whole view's start (centroid on centroid, size on size) by the fit
   // objective on the outlines and compares it: the whole outline laid.
-  const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
-  vpImage<unsigned char> V;
-  vpImageIo::read(V, (data / "spring-view.png").string());
-  const vpMorphDatabase db = vpMorphDatabase::load((data / "spring-goal.json").string(), false);
+  const vpMorphDatabase db = vpMorphTest::readGoals("spring-goal.json");
   REQUIRE(db.size() == 1);
-  const vpMorphContour view = vpMorphContourExtractor().extractJoined(V);
+  const vpMorphContour view = vpMorphContourExtractor().extractJoined(vpMorphTest::readView("spring-view.png"));
   const vpMorphRigidShape t(db[0].contour()), q(view);
   const vpMorphRigidShape::Alignment a = q.alignOn(t);
   const vpMorphRigidCheck::Result first = vpMorphRigidCheck::check(q, t, a);
