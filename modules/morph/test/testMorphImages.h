@@ -200,6 +200,7 @@ inline cv::Mat withTab(const cv::Mat &src, cv::Point &centre)
   centre = along(20, 0);
   return out;
 }
+
 //! A bench view saved in data/ (as vispmorph-reid or the servo bench renders it, cropped).
 inline vpImage<unsigned char> readView(const char *name)
 {
