@@ -82,6 +82,17 @@ inline double tukeyWeight(double r, double c)
   return u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
 }
 
+// Tukey's loss of a residual r at cut-off c, normalised to [0, 1]: 1 - (1 - (r / c)^2)^3 inside, 1 beyond (and for a
+// non-finite r).
+inline double tukeyLoss(double r, double c)
+{
+  const double u = r / c;
+  if (!(u * u < 1.0))
+    return 1.0;
+  const double v = 1.0 - u * u;
+  return 1.0 - v * v * v;
+}
+
 /*
   The point-to-point terms of an ICP round (weight 1e-3 w per pair, rows (px, -py, 1, 0) -> qx and (py, px, 0, 1) ->
   qy), summed over the pairs in closed form and added to the first four unknowns' normal equations: two 4 x 4 outer

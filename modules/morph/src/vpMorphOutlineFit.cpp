@@ -47,15 +47,6 @@ double differenceScale(const std::vector<double> &r, double floor)
   return d.empty() ? floor : std::max(kMadToSigma * median(d) / std::sqrt(1.5), floor);
 }
 
-// Tukey's loss at cut-off c, normalised to [0, 1]: 1 - (1 - u^2)^3 inside, 1 beyond.
-double tukeyLoss(double r, double c)
-{
-  const double u = r / c;
-  if (!(u * u < 1.0))
-    return 1.0;
-  const double v = 1.0 - u * u;
-  return 1.0 - v * v * v;
-}
 } // namespace
 
 struct vpMorphOutlineFit::Goal

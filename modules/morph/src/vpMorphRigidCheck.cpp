@@ -9,10 +9,13 @@
 
 #include <visp3/morph/vpMorphException.h>
 
+#include "vpMorphEdgeFit.h"
 #include "vpMorphRigidShapeData.h"
 
 namespace
 {
+using vpMorphEdgeFit::tukeyLoss;
+using vpMorphEdgeFit::tukeyWeight;
 typedef Eigen::Matrix3d Mat3;
 typedef Eigen::Matrix<double, 8, 8> Mat8;
 typedef Eigen::Matrix<double, 8, 1> Vec8;
@@ -51,13 +54,6 @@ inline bool project(const Mat3 &H, double x, double y, double &X, double &Y, dou
   return std::isfinite(X) && std::isfinite(Y);
 }
 
-// Tukey's biweight at residual r for cut-off c.
-inline double tukey(double r, double c)
-{
-  const double u = r / c;
-  return std::fabs(u) < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
-}
-
 // Normalised frames: input u = (p - ci) / si, target U = (P - ct) / st; G maps u to U.
 struct Frames
 {
@@ -70,16 +66,6 @@ struct Frames
     return B * G * A;
   }
 };
-
-// Tukey's loss at residual r for cut-off c, scaled to [0, 1]: 1 at and beyond c.
-inline double tukeyLoss(double r, double c)
-{
-  const double u = r / c;
-  if (!(std::fabs(u) < 1.0))
-    return 1.0;
-  const double v = 1.0 - u * u;
-  return 1.0 - v * v * v;
-}
 
 /*
   One Gauss-Newton step of G (h33 = 1) on the point-to-edge distances of the input's samples mapped onto the target
@@ -112,7 +98,7 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
       ++samples;
       continue;
     }
-    const double wt = std::isfinite(r) ? tukey(r, c) : 0.0;
+    const double wt = std::isfinite(r) ? tukeyWeight(std::fabs(r), c) : 0.0;
     if (wt <= 0.0)
       continue;
     // d(X, Y) / d(h11 h12 h13 h21 h22 h23 h31 h32)
@@ -137,7 +123,7 @@ bool step(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &tg, cons
       ++samples;
       continue;
     }
-    const double wt = std::isfinite(r) ? tukey(r, c) : 0.0;
+    const double wt = std::isfinite(r) ? tukeyWeight(std::fabs(r), c) : 0.0;
     if (wt <= 0.0)
       continue;
     Vec8 J;

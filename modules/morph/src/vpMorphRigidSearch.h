@@ -27,8 +27,9 @@ struct vpMorphRigidView
   A shortlisted template is compared from its alignment, its alternative, and those of its symmetric hypotheses
   (vpMorphRigidShape::Alignment::symmetric) whose coarse cost is within the shortlist's: the rule that admits templates.
   When no answer is then \e acceptable, each shortlisted template gets a second look: of its turns onto itself beyond
-  that cost, the one whose fit objective at the start is least, when less than the alignment's, is compared too
-  (vpMorphRigidCheck::startCost(), on the outlines: the coarse cost cannot rank a toothed part's alike turns).
+  that cost and the whole view's start at its alignment's turn, the one whose fit objective at the start is least,
+  when less than the alignment's, is compared too (vpMorphRigidCheck::startCost(), on the outlines: the coarse cost
+  cannot rank a toothed part's alike turns, nor a spring's coils).
   Once two are compared, one whose cost is sure to exceed the runner-up's is measured no further (it can be neither).
   With shortlist 0 every template is compared exactly: the exhaustive search that the two stages stand for (a test
   checks they agree). With \e every, every template is compared exactly from its alignment and alternative, and the
