@@ -1,9 +1,11 @@
 #include "vpMorphRigidSearch.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "vpMorphRigidShapeData.h"
+#include "vpMorphSimilarityFit.h"
 
 namespace
 {
@@ -32,7 +34,7 @@ void prefetch(const vpMorphRigidShapeData &d)
 // size on size (exact for a view that hides nothing).
 vpMorphRigidTransform wholeView(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, double theta)
 {
-  return vpMorphRigidTransform(theta, t.cx - in.cx, t.cy - in.cy, t.size / in.size, in.cx, in.cy);
+  return vpMorphSimilarityFit::toPixels(in, t, vpMorphSimilarityFit::Sim{std::cos(theta), std::sin(theta), 0.0, 0.0});
 }
 } // namespace
 

@@ -12,7 +12,10 @@
 #include <visp3/morph/vpMorphException.h>
 
 #include "vpMorphRigidShapeData.h"
+#include "vpMorphSimilarityFit.h"
 #include "vpMorphSmoothing.h"
+
+using namespace vpMorphSimilarityFit;
 
 namespace
 {
@@ -34,12 +37,6 @@ constexpr double kTurnScale = 0.01;
 
 vpMorphException badParameter(const std::string &m) { return vpMorphException(vpMorphException::badParameterError, m); }
 
-// A similarity in the shapes' normalised frames: X = a x - b y + tx, Y = b x + a y + ty.
-struct Sim
-{
-  double a = 1.0, b = 0.0, tx = 0.0, ty = 0.0;
-};
-
 // A normalised coordinate in shift-vote cells (offset so that the accumulator starts at 0), as houghShift() casts it.
 float voteCell(double v)
 {
@@ -55,35 +52,6 @@ int binOf(double angle)
   double f = angle / kTwoPi * kBins;
   f -= std::floor(f / kBins) * kBins;
   return std::min(kBins - 1, static_cast<int>(f));
-}
-
-// Solves the 4x4 symmetric system A x = b in place (Gaussian elimination with partial pivoting); false if singular.
-bool solve4(double A[4][4], double b[4])
-{
-  for (int c = 0; c < 4; ++c) {
-    int p = c;
-    for (int r = c + 1; r < 4; ++r)
-      if (std::fabs(A[r][c]) > std::fabs(A[p][c]))
-        p = r;
-    if (!(std::fabs(A[p][c]) > 1e-300))
-      return false;
-    if (p != c) {
-      std::swap(A[p], A[c]);
-      std::swap(b[p], b[c]);
-    }
-    for (int r = c + 1; r < 4; ++r) {
-      const double f = A[r][c] / A[c][c];
-      for (int k = c; k < 4; ++k)
-        A[r][k] -= f * A[c][k];
-      b[r] -= f * b[c];
-    }
-  }
-  for (int c = 3; c >= 0; --c) {
-    for (int k = c + 1; k < 4; ++k)
-      b[c] -= A[c][k] * b[k];
-    b[c] /= A[c][c];
-  }
-  return true;
 }
 } // namespace
 
@@ -140,6 +108,22 @@ vpMorphRigidShape::vpMorphRigidShape(const vpMorphContour &c)
     d->bin.push_back(binOf(std::atan2(s.y(b) - s.y(a), s.x(b) - s.x(a))));
     ++count[d->bin.back()];
   }
+  auto padded = [](std::vector<float> &v) {
+    constexpr std::size_t L = vpMorphRigidShapeData::kLanes;
+    v.resize((v.size() + L - 1) / L * L, 0.0f);
+  };
+  for (const int i : d->inputs) {
+    d->inputX.push_back(static_cast<float>(d->x[static_cast<std::size_t>(i)]));
+    d->inputY.push_back(static_cast<float>(d->y[static_cast<std::size_t>(i)]));
+  }
+  for (std::size_t i = 0; i < n; i += 2) {
+    d->evenX.push_back(static_cast<float>(d->x[i]));
+    d->evenY.push_back(static_cast<float>(d->y[i]));
+  }
+  padded(d->inputX);
+  padded(d->inputY);
+  padded(d->evenX);
+  padded(d->evenY);
   d->bucketStart.assign(kBins + 1, 0);
   for (int k = 0; k < kBins; ++k)
     d->bucketStart[k + 1] = d->bucketStart[k] + count[k];
@@ -196,40 +180,6 @@ const vpMorphContour &vpMorphRigidShape::contour() const
 
 namespace
 {
-// Mean truncated distance of the input's voting samples (vpMorphRigidShapeData::inputs) to the target's grid, for \e s.
-double inputCost(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const Sim &s, double tau)
-{
-  double sum = 0.0;
-  for (const int i : in.inputs) {
-    const double X = s.a * in.x[i] - s.b * in.y[i] + s.tx, Y = s.b * in.x[i] + s.a * in.y[i] + s.ty;
-    double d = tau, gx, gy;
-    if (t.distanceAt(X, Y, d, gx, gy))
-      d = std::min(std::fabs(d), tau);
-    sum += d;
-  }
-  return sum / (tau * static_cast<double>(in.inputs.size()));
-}
-
-// Mean truncated distance of the target's samples (every other one), mapped back by \e s, to the input's polygon,
-// in the target's sizes.
-double targetCost(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const Sim &s, double tau)
-{
-  const double s2 = s.a * s.a + s.b * s.b, scale = std::sqrt(s2);
-  if (!(s2 > 0.0) || !std::isfinite(s2))
-    return 1.0;
-  const double a = s.a / s2, b = s.b / s2; // the inverse's turn and scale
-  double sum = 0.0;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < t.x.size(); i += 2, ++n) {
-    const double X = t.x[i] - s.tx, Y = t.y[i] - s.ty;
-    double d = tau, gx, gy;
-    if (in.distanceAt(a * X + b * Y, -b * X + a * Y, d, gx, gy))
-      d = std::min(std::fabs(d) * scale, tau); // input sizes to the target's
-    sum += d;
-  }
-  return sum / (tau * static_cast<double>(n));
-}
-
 /*
   The cost of hypothesis \e s both ways, or 2 (nothing in common) when its scale leaves [0.5, 2] sizes: a view of the
   same part has the template's size up to what an occluder hides or a tilt shrinks (a fit that shrinks the input to a
@@ -241,45 +191,6 @@ double hypothesisCost(const vpMorphRigidShapeData &in, const vpMorphRigidShapeDa
   if (!(k >= 0.5 && k <= 2.0))
     return 2.0;
   return inputCost(in, t, s, vpMorphRigidShape::tau()) + targetCost(in, t, s, vpMorphRigidShape::tau());
-}
-
-// Gauss-Newton on the target's grid from \e s: the input's samples within tau pull their point onto the zero level.
-Sim refine(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, Sim s, double tau, int iterations)
-{
-  for (int it = 0; it < iterations; ++it) {
-    double A[4][4] = {}, b[4] = {};
-    std::size_t used = 0;
-    for (const int i : in.inputs) {
-      const double x = in.x[i], y = in.y[i];
-      const double X = s.a * x - s.b * y + s.tx, Y = s.b * x + s.a * y + s.ty;
-      double r, gx, gy;
-      if (!t.distanceAt(X, Y, r, gx, gy) || std::fabs(r) > tau)
-        continue;
-      const double J[4] = {gx * x + gy * y, gy * x - gx * y, gx, gy};
-      for (int p = 0; p < 4; ++p) {
-        b[p] -= J[p] * r;
-        for (int q = p; q < 4; ++q)
-          A[p][q] += J[p] * J[q];
-      }
-      ++used;
-    }
-    if (used < 4)
-      break;
-    for (int p = 1; p < 4; ++p)
-      for (int q = 0; q < p; ++q)
-        A[p][q] = A[q][p];
-    for (int p = 0; p < 4; ++p)
-      A[p][p] *= 1.0 + 1e-6; // Levenberg's damping: a flat direction (a straight edge) stays put
-    if (!solve4(A, b))
-      break;
-    s.a += b[0];
-    s.b += b[1];
-    s.tx += b[2];
-    s.ty += b[3];
-    if (std::fabs(b[0]) + std::fabs(b[1]) + std::fabs(b[2]) + std::fabs(b[3]) < 1e-4)
-      break; // converged: a ten-thousandth of a size
-  }
-  return s;
 }
 
 // Shift votes at turn \e bins (in 72ths of a turn), at the scales kScales (one pass over the compatible pairs): per
@@ -414,13 +325,6 @@ bool turnsApart(const Sim &s, const Sim &t)
   return std::fabs(std::remainder(std::atan2(s.b, s.a) - std::atan2(t.b, t.a), kTwoPi)) > 2.0 * kTwoPi / kBins;
 }
 
-// s after t: X = s(t(x)).
-Sim compose(const Sim &s, const Sim &t)
-{
-  return Sim{s.a * t.a - s.b * t.b, s.b * t.a + s.a * t.b, s.a * t.tx - s.b * t.ty + s.tx,
-             s.b * t.tx + s.a * t.ty + s.ty};
-}
-
 std::vector<vpMorphRigidShape::Symmetry> symmetriesOf(const vpMorphRigidShapeData &d)
 {
   Peaks peaks;
@@ -445,22 +349,6 @@ std::vector<vpMorphRigidShape::Symmetry> symmetriesOf(const vpMorphRigidShapeDat
   std::sort(out.begin(), out.end(),
             [](const vpMorphRigidShape::Symmetry &x, const vpMorphRigidShape::Symmetry &y) { return x.cost < y.cost; });
   return out;
-}
-
-Sim toSim(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const vpMorphRigidTransform &T)
-{
-  // T: x' = s R (x - c) + c + t in pixels; normalised: X = (s in.size / t.size) R x + (T(in.c) - t.c) / t.size.
-  double ox, oy;
-  T.apply(in.cx, in.cy, ox, oy);
-  const double k = T.scale() * in.size / t.size;
-  return Sim{k * std::cos(T.theta()), k * std::sin(T.theta()), (ox - t.cx) / t.size, (oy - t.cy) / t.size};
-}
-
-vpMorphRigidTransform toPixels(const vpMorphRigidShapeData &in, const vpMorphRigidShapeData &t, const Sim &s)
-{
-  const double k = std::hypot(s.a, s.b);
-  return vpMorphRigidTransform(std::atan2(s.b, s.a), t.cx - in.cx + s.tx * t.size, t.cy - in.cy + s.ty * t.size,
-                               k * t.size / in.size, in.cx, in.cy);
 }
 
 void check(const vpMorphRigidShape &in, const vpMorphRigidShape &t)

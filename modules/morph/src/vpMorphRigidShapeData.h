@@ -32,6 +32,7 @@ struct vpMorphRigidShapeData
   static constexpr int kSamples = 64;              // coarse samples along the outline
   static constexpr int kGrid = 64;                 // signed distance grid cells a side
   static constexpr std::size_t kFineSamples = 256; // fine samples along the fine curve
+  static constexpr int kLanes = 4;                 // points the coarse fit reads at once (vpMorphSimilarityFit)
 
   vpMorphContour contour, polygon; // as given; its polygon, counter-clockwise
   double cx = 0.0, cy = 0.0, size = 1.0;
@@ -41,6 +42,9 @@ struct vpMorphRigidShapeData
   // The samples that vote and are fitted when this shape is the input: every other one, on its own edges only when
   // the outline tells them and at least 4 are (vpMorphContour::ownEdge(): an occluder's edge belongs to no template)
   std::vector<int> inputs;
+  // The inputs' samples and every other sample (the target side of the coarse cost), in float, zero-padded to a
+  // multiple of kLanes: what the coarse fit reads (vpMorphSimilarityFit)
+  std::vector<float> inputX, inputY, evenX, evenY;
   std::vector<int> bucketStart, bucket; // samples per direction bin (bucketStart[kBins] = kSamples)
   std::vector<float> voteX, voteY;      // the samples in bucket order, in shift-vote cells (vpMorphRigidShape)
   std::vector<float> grid;              // signed distance, normalised, kGrid x kGrid (empty: none)
@@ -79,22 +83,6 @@ struct vpMorphRigidShapeData
 
   // The fine curve's own edges (all of it when unmarked or all its own).
   const vpMorphNearestEdge &ownEdges() const { return ownOnly ? *ownOnly : fineEdges; }
-
-  // Signed distance (sizes) at normalised (X, Y) and its gradient; false outside the grid.
-  bool distanceAt(double X, double Y, double &d, double &gx, double &gy) const
-  {
-    const double fx_ = (X - lo) * invStep, fy_ = (Y - lo) * invStep;
-    if (!(fx_ >= 0.0 && fy_ >= 0.0 && fx_ < kGrid - 1 && fy_ < kGrid - 1))
-      return false;
-    const int i = static_cast<int>(fx_), j = static_cast<int>(fy_);
-    const double u = fx_ - i, v = fy_ - j;
-    const float *r0 = &grid[static_cast<std::size_t>(j * kGrid + i)], *r1 = r0 + kGrid;
-    const double p = r0[0], q = r0[1], r = r1[0], s = r1[1];
-    d = (p * (1 - u) + q * u) * (1 - v) + (r * (1 - u) + s * u) * v;
-    gx = ((q - p) * (1 - v) + (s - r) * v) * invStep;
-    gy = ((r - p) * (1 - u) + (s - q) * u) * invStep;
-    return true;
-  }
 };
 
 #endif
