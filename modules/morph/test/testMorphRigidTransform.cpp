@@ -636,6 +636,7 @@ TEST_CASE(
     // A dense outline (a point per pixel or so), thin or round: a grid of many cells.
     const vpMorphContour c = starPolygon(rng, 24, trial % 2 ? 4.0 : 1.2).resampled(600);
     const vpMorphNearestEdge nearest(c);
+    const double cell = 4.0 * c.perimeter() / static_cast<double>(c.size()); // the grid's cell, about
     const auto bx = std::minmax_element(c.xs().begin(), c.xs().end());
     const auto by = std::minmax_element(c.ys().begin(), c.ys().end());
     const double x0 = *bx.first, x1 = *bx.second, y0 = *by.first, y1 = *by.second;
@@ -659,9 +660,10 @@ TEST_CASE(
       const double d = nearest(px, py, mx, my);
       const Nearest o = scan(c, px, py);
       check(c, o, px, py, d, mx, my);
-      // within(): whether the scan's nearest point is within a tolerance, at tolerances about the distance.
+      // within(): whether the scan's nearest point is within a tolerance, at tolerances about the distance and
+      // about the cell (a reach whose box meets a few cells is searched there, a longer one by rings).
       const double off = std::hypot(px - o.fx, py - o.fy);
-      for (const double tol : {0.25, 0.9 * off, 1.1 * off, 3.0})
+      for (const double tol : {0.25, 0.9 * off, 1.1 * off, 3.0, 0.3 * cell, 0.6 * cell, 2.0 * cell})
         if (tol > 0.0 && std::fabs(off - tol) > 1e-9 * tol) {
           CHECK(nearest.within(px, py, tol) == (off < tol));
           // The distance within a reach: operator()'s answer within it (the same edge, bit for bit), +inf beyond.
