@@ -218,7 +218,7 @@ private:
     // A reach whose box p +- reach meets at most 2 x 2 cells (any reach of half a cell or less, as the fits' final
     // cut-offs are): those cells hold every edge within reach (its nearest point to p lies in the box, in a cell the
     // edge is bucketed in), searched alone. The rings would search 9 cells as soon as ring 0 holds no edge.
-    if (reach < std::numeric_limits<double>::infinity()) {
+    if (reach > 0.0 && reach < std::numeric_limits<double>::infinity()) {
       const int i0 = cellX(px - reach), i1 = cellX(px + reach), j0 = cellY(py - reach), j1 = cellY(py + reach);
       if ((i1 - i0 + 1) * (j1 - j0 + 1) <= 4) {
         for (int j = j0; j <= j1; ++j)
