@@ -474,14 +474,24 @@ void vpMorphGreyClasses::bright(const cv::Mat &grey, cv::Mat &dst) const
     cv::threshold(grey, dst, std::floor(m_t0), 255, cv::THRESH_BINARY);
     return;
   }
+  // Pixel u of row v is above the float threshold T = t + tu u exactly when its grey level, an integer, is above T's
+  // integer part clamped to [0, 255] (NaN to 255): below 0 that leaves out only a level of 0, above 255 it takes in only
+  // one of 255, as the limits' rule does anyway. Two loops a row that vectorise, the levels' then the pixels'.
+  const float tu = static_cast<float>(m_tu);
+  std::vector<float> slope(static_cast<std::size_t>(grey.cols));
+  for (int u = 0; u < grey.cols; ++u)
+    slope[std::size_t(u)] = tu * static_cast<float>(u);
+  std::vector<unsigned char> level(slope.size());
   for (int v = 0; v < grey.rows; ++v) {
     const unsigned char *g = grey.ptr<unsigned char>(v);
     unsigned char *d = dst.ptr<unsigned char>(v);
-    const float t = static_cast<float>(m_t0 + m_tv * v), tu = static_cast<float>(m_tu);
-    // A pixel at a limit goes to the class on its side (the levels never cross in the image: apartEverywhere()).
-    for (int u = 0; u < grey.cols; ++u) {
-      const bool above = static_cast<float>(g[u]) > t + tu * static_cast<float>(u);
-      d[u] = ((above & (g[u] != 0)) | (g[u] == 255)) ? 255 : 0;
+    const float t = static_cast<float>(m_t0 + m_tv * v);
+    for (std::size_t u = 0; u < slope.size(); ++u) {
+      const float T = t + slope[u];
+      level[u] = static_cast<unsigned char>(static_cast<int>(!(T <= 255.0f) ? 255.0f : (T > 0.0f ? T : 0.0f)));
     }
+    // A pixel at a limit goes to the class on its side (the levels never cross in the image: apartEverywhere()).
+    for (std::size_t u = 0; u < slope.size(); ++u)
+      d[u] = ((g[u] > level[u]) & (g[u] != 0)) | (g[u] == 255) ? 255 : 0;
   }
 }
