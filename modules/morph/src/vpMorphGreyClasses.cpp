@@ -475,8 +475,9 @@ void vpMorphGreyClasses::bright(const cv::Mat &grey, cv::Mat &dst) const
     return;
   }
   // Pixel u of row v is above the float threshold T = t + tu u exactly when its grey level, an integer, is above T's
-  // integer part clamped to [0, 255] (NaN to 255): below 0 that leaves out only a level of 0, above 255 it takes in only
-  // one of 255, as the limits' rule does anyway. Two loops a row that vectorise, the levels' then the pixels'.
+  // integer part. A level of 0 is never above and one of 255 always (a pixel at a limit goes to the class on its side,
+  // the levels never crossing in the image by apartEverywhere()): both hold with T clamped to 0 to 254 first. Two loops
+  // a row that vectorise, the levels' and the pixels'.
   const float tu = static_cast<float>(m_tu);
   std::vector<float> slope(static_cast<std::size_t>(grey.cols));
   for (int u = 0; u < grey.cols; ++u)
@@ -486,12 +487,9 @@ void vpMorphGreyClasses::bright(const cv::Mat &grey, cv::Mat &dst) const
     const unsigned char *g = grey.ptr<unsigned char>(v);
     unsigned char *d = dst.ptr<unsigned char>(v);
     const float t = static_cast<float>(m_t0 + m_tv * v);
-    for (std::size_t u = 0; u < slope.size(); ++u) {
-      const float T = t + slope[u];
-      level[u] = static_cast<unsigned char>(static_cast<int>(!(T <= 255.0f) ? 255.0f : (T > 0.0f ? T : 0.0f)));
-    }
-    // A pixel at a limit goes to the class on its side (the levels never cross in the image: apartEverywhere()).
     for (std::size_t u = 0; u < slope.size(); ++u)
-      d[u] = ((g[u] > level[u]) & (g[u] != 0)) | (g[u] == 255) ? 255 : 0;
+      level[u] = static_cast<unsigned char>(static_cast<int>(std::max(0.0f, std::min(t + slope[u], 254.0f))));
+    for (std::size_t u = 0; u < slope.size(); ++u)
+      d[u] = g[u] > level[u] ? 255 : 0;
   }
 }

@@ -879,40 +879,46 @@ TEST_CASE("grey classes: a shaded view's pixels are split at the threshold plane
           "their side",
           "[extract][light]")
 {
-  // The gradient set's views, the bright side clipped at 255, and the same with specks at 0 and 255 all over.
-  const cv::Mat b = blurred(render({testPolygon(300, 250, 0.4)}, 40, 210), 1.0);
+  // The gradient set's views, the bright side clipped at 255, and the same with specks at 0 and 255 all over; and a
+  // bright object on a light plane, the threshold plane itself above 255 on the bright side.
   std::mt19937 rng(3);
-  std::uniform_int_distribution<int> pixel(0, b.rows * b.cols - 1);
-  int shadedViews = 0;
-  for (double fallOff : {0.3, 0.6})
-    for (int deg : {-150, -30, 45, 120})
-      for (bool specks : {false, true}) {
-        vpImage<unsigned char> J = shaded(b, 1.2, fallOff, deg * M_PI / 180.0, 5);
-        for (int k = 0; specks && k < 2000; ++k)
-          J.bitmap[pixel(rng)] = k % 2 ? 255 : 0;
-        const cv::Mat grey(int(J.getHeight()), int(J.getWidth()), CV_8UC1, J.bitmap);
-        const vpMorphGreyClasses::Histogram h = vpMorphGreyClasses::histogram(J.bitmap, J.getSize());
-        const vpMorphGreyClasses classes(grey, vpMorphGreyClasses::otsu(h, long(J.getSize())));
-        const bool flat = classes.threshold(grey.cols, grey.rows) == classes.threshold(0, 0) &&
-                          classes.threshold(grey.cols, 0) == classes.threshold(0, 0);
-        shadedViews += flat ? 0 : 1;
-        cv::Mat dst(grey.size(), CV_8UC1);
-        classes.bright(grey, dst);
-        // Above the plane, or at 255; never at 0. A level within rounding of the plane may go either way.
-        long wrong = 0;
-        for (int v = 0; v < grey.rows; ++v)
-          for (int u = 0; u < grey.cols; ++u) {
-            const int g = grey.at<unsigned char>(v, u);
-            const double t = classes.threshold(u, v);
-            if (std::fabs(g - t) < 1e-3)
-              continue;
-            const bool expected = g == 255 || (g != 0 && g > t);
-            wrong += (dst.at<unsigned char>(v, u) == 255) != expected;
-          }
-        INFO("fall-off " << fallOff << " toward " << deg << " deg" << (specks ? ", specks" : ""));
-        CHECK(wrong == 0);
-      }
-  CHECK(shadedViews >= 8); // the shading was fitted (not Otsu's single level)
+  int shadedViews = 0, beyondLimit = 0;
+  for (const cv::Mat &b : {blurred(render({testPolygon(300, 250, 0.4)}, 40, 210), 1.0),
+                           blurred(render({testPolygon(300, 250, 0.4)}, 235, 120), 1.0)})
+    for (double fallOff : {0.3, 0.6})
+      for (int deg : {-150, -30, 45, 120})
+        for (bool specks : {false, true}) {
+          std::uniform_int_distribution<int> pixel(0, b.rows * b.cols - 1);
+          vpImage<unsigned char> J = shaded(b, 1.2, fallOff, deg * M_PI / 180.0, 5);
+          for (int k = 0; specks && k < 2000; ++k)
+            J.bitmap[pixel(rng)] = k % 2 ? 255 : 0;
+          const cv::Mat grey(int(J.getHeight()), int(J.getWidth()), CV_8UC1, J.bitmap);
+          const vpMorphGreyClasses::Histogram h = vpMorphGreyClasses::histogram(J.bitmap, J.getSize());
+          const vpMorphGreyClasses classes(grey, vpMorphGreyClasses::otsu(h, long(J.getSize())));
+          const bool flat = classes.threshold(grey.cols, grey.rows) == classes.threshold(0, 0) &&
+                            classes.threshold(grey.cols, 0) == classes.threshold(0, 0);
+          shadedViews += flat ? 0 : 1;
+          for (int u : {0, grey.cols - 1})
+            for (int v : {0, grey.rows - 1})
+              beyondLimit += classes.threshold(u, v) > 255.0 ? 1 : 0;
+          cv::Mat dst(grey.size(), CV_8UC1);
+          classes.bright(grey, dst);
+          // Above the plane, or at 255; never at 0. A level within rounding of the plane may go either way.
+          long wrong = 0;
+          for (int v = 0; v < grey.rows; ++v)
+            for (int u = 0; u < grey.cols; ++u) {
+              const int g = grey.at<unsigned char>(v, u);
+              const double t = classes.threshold(u, v);
+              if (std::fabs(g - t) < 1e-3)
+                continue;
+              const bool expected = g == 255 || (g != 0 && g > t);
+              wrong += (dst.at<unsigned char>(v, u) == 255) != expected;
+            }
+          INFO("fall-off " << fallOff << " toward " << deg << " deg" << (specks ? ", specks" : ""));
+          CHECK(wrong == 0);
+        }
+  CHECK(shadedViews >= 16); // the shading was fitted (not Otsu's single level)
+  CHECK(beyondLimit > 0);
 }
 
 namespace
