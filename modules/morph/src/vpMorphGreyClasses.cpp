@@ -476,8 +476,8 @@ void vpMorphGreyClasses::bright(const cv::Mat &grey, cv::Mat &dst) const
   }
   // Pixel u of row v is above the float threshold T = t + tu u exactly when its grey level, an integer, is above T's
   // integer part. A level of 0 is never above and one of 255 always (a pixel at a limit goes to the class on its side,
-  // the levels never crossing in the image by apartEverywhere()): both hold with T clamped to 0 to 254 first. Two loops
-  // a row that vectorise, the levels' and the pixels'.
+  // the levels never crossing in the image by apartEverywhere()): both hold with T clamped to 0 to 254 first (a NaN to
+  // 254: above nothing, as in the float comparison). Two loops a row that vectorise, the levels' and the pixels'.
   const float tu = static_cast<float>(m_tu);
   std::vector<float> slope(static_cast<std::size_t>(grey.cols));
   for (int u = 0; u < grey.cols; ++u)
@@ -488,7 +488,7 @@ void vpMorphGreyClasses::bright(const cv::Mat &grey, cv::Mat &dst) const
     unsigned char *d = dst.ptr<unsigned char>(v);
     const float t = static_cast<float>(m_t0 + m_tv * v);
     for (std::size_t u = 0; u < slope.size(); ++u)
-      level[u] = static_cast<unsigned char>(static_cast<int>(std::max(0.0f, std::min(t + slope[u], 254.0f))));
+      level[u] = static_cast<unsigned char>(static_cast<int>(std::max(0.0f, std::min(254.0f, t + slope[u]))));
     for (std::size_t u = 0; u < slope.size(); ++u)
       d[u] = g[u] > level[u] ? 255 : 0;
   }
