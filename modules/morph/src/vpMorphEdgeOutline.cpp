@@ -33,9 +33,11 @@ template <typename T> double bilinear(const cv::Mat &m, double x, double y)
   blur, and on that level, x0 is the edge. Only samples off the sensor's limits count, so a side clipped beyond the
   middle of the step does not move it; the gradient peak does, through the 3x3 support of its derivative (measured:
   10 grey levels low on a step lifted to 285 and clipped at 255 under a 1.2 px blur, the edge 0.15 px out).
-  Returns \e level0 when too few samples are left.
+  Returns \e level0 when too few samples are left. With \e scale (one per profile), profile k's level is the level
+  times scale[k]: an edge under a light that falls off.
 */
-double antisymmetricLevel(const cv::Mat &g, const std::vector<cv::Vec4d> &profiles, double level0, double slope)
+double antisymmetricLevel(const cv::Mat &g, const std::vector<cv::Vec4d> &profiles, double level0, double slope,
+                          const std::vector<double> &scale = {})
 {
   const int half = 12; // samples each side, a quarter pixel apart: +-3 px
   const double h = 0.25, umax = 1.5;
@@ -45,8 +47,10 @@ double antisymmetricLevel(const cv::Mat &g, const std::vector<cv::Vec4d> &profil
   // At most 512 profiles, spread along the edge: the level is one number for the whole edge.
   const std::size_t stride = (profiles.size() + 511) / 512;
   std::vector<std::array<double, 2 * half + 1>> prof;
+  std::vector<double> profScale;
   for (std::size_t k = 0; k < profiles.size(); k += stride) {
     prof.emplace_back();
+    profScale.push_back(scale.empty() ? 1.0 : scale[k]);
     for (int i = -half; i <= half; ++i) {
       const double x = std::min(std::max(profiles[k][0] + i * h * profiles[k][2], 0.0), double(g.cols - 1)),
                    y = std::min(std::max(profiles[k][1] + i * h * profiles[k][3], 0.0), double(g.rows - 1));
@@ -65,10 +69,12 @@ double antisymmetricLevel(const cv::Mat &g, const std::vector<cv::Vec4d> &profil
     return std::isfinite(v);
   };
   // The mean squared asymmetry of the profiles about L, +inf when under half of them can be compared.
-  auto asymmetry = [&](double L) {
+  auto asymmetry = [&](double level) {
     double cost = 0.0;
     std::size_t n = 0;
-    for (const auto &p : prof) {
+    for (std::size_t j = 0; j < prof.size(); ++j) {
+      const std::array<double, 2 *half + 1> &p = prof[j];
+      const double L = level * profScale[j];
       // The crossing of L nearest the maximum (g rises along the profile), searched outwards: ring k holds the two
       // intervals whose crossings lie k to k + 1 steps from it, so once one is found strictly nearer than k steps,
       // ring k cannot do better (a crossing on a ring's boundary is found in the inner ring): the same crossing as a
@@ -125,12 +131,16 @@ void vpMorphEdgeOutline::gradient(const cv::Mat &g, cv::Mat &gx, cv::Mat &gy)
 }
 
 bool vpMorphEdgeOutline::edgeProfile(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy, const cv::Mat &band,
-                                     double minSlope, double &level, double &slope)
+                                     double minSlope, double &level, double &slope, const Level *shading,
+                                     const cv::Point &tl)
 {
+  // Each maximum's level over the shading there, relative to the box's centre.
+  const double reference = shading ? shading->at(tl.x + 0.5 * (g.cols - 1), tl.y + 0.5 * (g.rows - 1)) : 1.0;
+  auto shade = [&](int c, int r) { return shading ? shading->at(tl.x + c, tl.y + r) / reference : 1.0; };
   cv::Mat mag;
   cv::magnitude(gx, gy, mag);
   auto at = [&mag](double x, double y) { return bilinear<float>(mag, x, y); };
-  std::vector<double> levels, slopes;
+  std::vector<double> levels, slopes, scales;
   std::vector<cv::Vec4d> profiles; // each maximum and its gradient direction
   for (int r = 0; r < g.rows; ++r)
     for (int c = 0; c < g.cols; ++c) {
@@ -143,7 +153,8 @@ bool vpMorphEdgeOutline::edgeProfile(const cv::Mat &g, const cv::Mat &gx, const 
         continue;
       const double den = mm - 2.0 * m0 + mp;
       const double d = den < 0.0 ? std::min(0.5, std::max(-0.5, 0.5 * (mm - mp) / den)) : 0.0;
-      levels.push_back(g.at<unsigned char>(r, c) + d * m0); // g rises along the gradient at m0 per pixel
+      scales.push_back(shade(c, r));
+      levels.push_back((g.at<unsigned char>(r, c) + d * m0) / scales.back()); // g rises along the gradient at m0 / px
       slopes.push_back(m0 - 0.25 * (mm - mp) * d);
       profiles.push_back(cv::Vec4d(c, r, nx, ny));
     }
@@ -153,7 +164,7 @@ bool vpMorphEdgeOutline::edgeProfile(const cv::Mat &g, const cv::Mat &gx, const 
   slope = median(slopes);
   if (!(slope > 0.0))
     return false;
-  level = antisymmetricLevel(g, profiles, level, slope);
+  level = antisymmetricLevel(g, profiles, level, slope, shading ? scales : std::vector<double>());
   return true;
 }
 

@@ -22,10 +22,13 @@ void gradient(const cv::Mat &g, cv::Mat &gx, cv::Mat &gy);
   band's pixels that are a maximum of the gradient magnitude along the gradient direction, each refined to the
   parabola's vertex; the level is then the one about which the profiles through those maxima are antisymmetric
   (antisymmetricLevel()): the peaks' own level is pulled by a clipped far side through the 3x3 derivative. False
-  when too few maxima (under 16) are found. gx, gy: the gradient of g (see gradient()).
+  when too few maxima (under 16) are found. gx, gy: the gradient of g (see gradient()). With \e shading (a level
+  across the image, g a box of it at \e tl), the edge's level varies along it as the shading does (a light that falls
+  off scales the object's and the background's levels alike), and \e level is its value at the box's centre.
 */
 bool edgeProfile(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy, const cv::Mat &band, double minSlope,
-                 double &level, double &slope);
+                 double &level, double &slope, const vpMorphRegionMeasure::Level *shading = nullptr,
+                 const cv::Point &tl = cv::Point());
 
 /*
   The edge near each chain pixel, in image coordinates (chain pixel + box corner), one point per pixel.

@@ -19,6 +19,9 @@ using vpMorphRegionMeasure::Region;
 
 namespace
 {
+using vpMorphEdgeOutline::edgeOutline;
+using vpMorphEdgeOutline::edgeProfile;
+using vpMorphEdgeOutline::gradient;
 using vpMorphLevelSpread::fourSigma;
 using vpMorphLevelSpread::median;
 using vpMorphLevelSpread::medianOf;
@@ -184,9 +187,35 @@ Level affineLevel(const cv::Mat &g, const cv::Mat &m, const cv::Point &tl, const
   return out;
 }
 
-using vpMorphEdgeOutline::edgeOutline;
-using vpMorphEdgeOutline::edgeProfile;
-using vpMorphEdgeOutline::gradient;
+/*
+  The object's level for a region without a plateau (nowhere more than 2 B + 1 px wide: a wire): all its pixels are
+  edge, their levels between the object's and the background's, so \e own, read on them, lies towards the
+  background the more the thinner the part and the wider the blur, and the edge's middle with it. A blurred step's
+  profile is antisymmetric about the step's middle whatever the blur (edgeProfile()), so the object's level is the one
+  whose middle with the background's is that level: 2 L - bg, L in proportion to own + bg along the edge (a light that
+  falls off scales both). \e own when no such level is found between \e own and the background. gx, gy: the gradient.
+*/
+Level levelFromEdge(const cv::Mat &g, const cv::Mat &gx, const cv::Mat &gy, const cv::Mat &band, const Level &own,
+                    const Level &bg, const cv::Point &tl)
+{
+  Level middle = own;
+  middle.a = 0.5 * (own.a + bg.a);
+  middle.au = 0.5 * (own.au + bg.au);
+  middle.av = 0.5 * (own.av + bg.av);
+  const double uc = tl.x + 0.5 * (g.cols - 1), vc = tl.y + 0.5 * (g.rows - 1);
+  const double ownc = own.at(uc, vc), bgc = bg.at(uc, vc), midc = middle.at(uc, vc);
+  double level, slope;
+  if (!(midc > 0.0) || !edgeProfile(g, gx, gy, band, std::fabs(ownc - bgc) / 8.0, level, slope, &middle, tl) ||
+      !((level - ownc) * (bgc - level) > 0.0))
+    return own;
+  const double k = 2.0 * level / midc; // fg = k middle - bg
+  Level fg = own;
+  fg.a = k * middle.a - bg.a;
+  fg.au = k * middle.au - bg.au;
+  fg.av = k * middle.av - bg.av;
+  return fg;
+}
+
 } // namespace
 
 void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg, const Region *levelsFrom,
@@ -220,20 +249,27 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
   cv::erode(own, plateau, k3, cv::Point(-1, -1), B, cv::BORDER_CONSTANT, cv::Scalar(0));
   const bool given = levelsFrom != nullptr && levelsFrom->fg.valid && levelsFrom->bg.valid;
   const LevelHistogram innerLevels(g, plateau), ringLevels(g, ring);
-  const Level fg = given ? levelsFrom->fg
-                         : (innerLevels.n > 0 ? affineLevel(g, plateau, box.tl(), innerLevels)
-                                              : affineLevel(g, own, box.tl(), LevelHistogram(g, own)));
+  Level fg = given ? levelsFrom->fg
+                   : (innerLevels.n > 0 ? affineLevel(g, plateau, box.tl(), innerLevels)
+                                        : affineLevel(g, own, box.tl(), LevelHistogram(g, own)));
   const Level bg = given ? levelsFrom->bg : affineLevel(g, ring, box.tl(), ringLevels);
+  // The levels at the box's centre tell the contrast and the polarity.
+  const double uc = box.x + 0.5 * (box.width - 1), vc = box.y + 0.5 * (box.height - 1);
+  auto contrast = [&] { return fg.valid && bg.valid ? std::fabs(fg.at(uc, vc) - bg.at(uc, vc)) : 0.0; };
+  const double minContrast = 8.0;
+  cv::Mat gx, gy; // computed once for the edge's level, profile and outline
+  if (!given && innerLevels.n == 0 && contrast() >= minContrast) {
+    gradient(g, gx, gy);
+    fg = levelFromEdge(g, gx, gy, band, fg, bg, box.tl());
+  }
   reg.fg = fg;
   reg.bg = bg;
   if (levelsOnly)
     return;
   // Raw moments about the box corner (well conditioned), centred at the end.
   double m00 = 0.0, m10 = 0.0, m01 = 0.0, m20 = 0.0, m11 = 0.0, m02 = 0.0;
-  // The levels at the box's centre tell the contrast and the polarity.
-  const double uc = box.x + 0.5 * (box.width - 1), vc = box.y + 0.5 * (box.height - 1);
   const double fgc = fg.valid ? fg.at(uc, vc) : -1.0, bgc = bg.valid ? bg.at(uc, vc) : -1.0;
-  const bool grades = fg.valid && bg.valid && std::fabs(fgc - bgc) >= 8.0;
+  const bool grades = contrast() >= minContrast;
   // A level clipped by the sensor (a bright background at 255 under a brighter light) flattens the far half of the
   // edge: the linear weights then lose that half's share and the region shrinks by a few tenths of a pixel all
   // round. There, the pixels count by their distance to the edge, (level - g) / slope, the edge's slope read where
@@ -241,8 +277,7 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
   // the step does not move (edgeProfile()). Half of the far level's pixels at the limit (its median there) marks it as
   // clipped: a level under the limit whose noise reaches it is not.
   double edgeLevel = 0.0, edgeSlope = 0.0;
-  cv::Mat gx, gy; // computed once for the edge's profile and outline
-  if (grades)
+  if (grades && gx.empty())
     gradient(g, gx, gy);
   const unsigned char far = fgc < bgc ? 255 : 0, near = fgc < bgc ? 0 : 255;
   const bool clipped = grades && (ringLevels.share(far) >= 0.5 || innerLevels.share(near) >= 0.5) &&

@@ -1127,3 +1127,59 @@ TEST_CASE("extractor: the edge outline's blur is the image's, unknown where a le
   REQUIRE(clipped.hasOutline());
   CHECK(clipped.outlineBlur() == 0.0);
 }
+
+TEST_CASE("extractor: a wire thinner than the region's band keeps its edge and blur, blurred and shaded",
+          "[extract][outline][thin]")
+{
+  // A wavy wire 4.5 px wide: no pixel of it lies 3 px deep, so its own pixels are all edge, their levels between the
+  // object's and the background's, the more so the wider the blur. Its edge is checked as the polygon's is above (the
+  // renderer's 1/16 px taken off), away from its two flat ends.
+  const double width = 4.5;
+  Poly p, lower;
+  for (int k = 0; k <= 120; ++k) {
+    const double t = k / 120.0, x = 170.0 + 300.0 * t, y = 240.0 + 60.0 * std::sin(3.0 * M_PI * t);
+    const double dy = 60.0 * 3.0 * M_PI * std::cos(3.0 * M_PI * t) / 300.0, n = std::hypot(1.0, dy);
+    p.x.push_back(x + 0.5 * width * dy / n);
+    p.y.push_back(y - 0.5 * width / n);
+    lower.x.push_back(x - 0.5 * width * dy / n);
+    lower.y.push_back(y + 0.5 * width / n);
+  }
+  const std::size_t ends[] = {0, p.x.size() - 1, p.x.size(), 2 * p.x.size() - 1};
+  p.x.insert(p.x.end(), lower.x.rbegin(), lower.x.rend());
+  p.y.insert(p.y.end(), lower.y.rbegin(), lower.y.rend());
+  std::vector<cv::Point2f> truth;
+  for (std::size_t v = 0; v < p.x.size(); ++v)
+    truth.emplace_back(float(p.x[v]), float(p.y[v]));
+  const double b0 = vpMorphContourExtractor().extract(render({testPolygon(300, 250, 0.4)}, 40, 210)).outlineBlur();
+  for (double fallOff : {0.0, 0.3})
+    for (double s : {0.8, 1.2, 1.5}) {
+      const vpMorphContour c =
+          vpMorphContourExtractor().extract(shaded(blurred(render({p}, 40, 210), s), 1.0, fallOff, 0.7, 11));
+      REQUIRE(c.hasOutline());
+      const vpMorphContour &o = c.outline();
+      // Each half's mean apart, that of the lighter and of the darker side of the light's fall-off.
+      double mean[2] = {0.0, 0.0};
+      std::size_t n[2] = {0, 0};
+      for (std::size_t k = 0; k < o.size(); ++k) {
+        bool nearEnd = false;
+        for (std::size_t v : ends)
+          nearEnd = nearEnd || std::hypot(o.x(k) - p.x[v], o.y(k) - p.y[v]) < 3.0;
+        if (nearEnd)
+          continue;
+        const bool inside = cv::pointPolygonTest(truth, cv::Point2f(float(o.x(k)), float(o.y(k))), false) > 0;
+        const int half = (o.x(k) - 319.5) * std::cos(0.7) + (o.y(k) - 239.5) * std::sin(0.7) > 0.0;
+        mean[half] += (inside ? -1.0 : 1.0) * distToOutline(p.x, p.y, o.x(k), o.y(k)); // outward positive
+        ++n[half];
+      }
+      REQUIRE(n[0] > 250);
+      REQUIRE(n[1] > 250);
+      mean[0] /= double(n[0]);
+      mean[1] /= double(n[1]);
+      INFO("blur " << s << " px, fall-off " << fallOff << ": mean signed distance to the edge " << mean[0] << " and "
+                   << mean[1] << " px (darker and lighter half), blur read " << c.outlineBlur() << " px (the image's "
+                   << std::hypot(s, b0) << ")");
+      CHECK(std::fabs(mean[0] - 1.0 / 16) < 0.1);
+      CHECK(std::fabs(mean[1] - 1.0 / 16) < 0.1);
+      CHECK(c.outlineBlur() == Approx(std::hypot(s, b0)).margin(0.15));
+    }
+}
