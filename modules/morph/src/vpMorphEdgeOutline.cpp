@@ -68,12 +68,13 @@ double antisymmetricLevel(const cv::Mat &g, const std::vector<cv::Vec4d> &profil
     v = p[i] + (f - i) * (p[i + 1] - p[i]);
     return std::isfinite(v);
   };
-  // The mean squared asymmetry of the profiles about L, +inf when under half of them can be compared.
+  // The mean squared asymmetry of the profiles about their level L (\e level times the profile's scale), +inf when
+  // under half of them can be compared.
   auto asymmetry = [&](double level) {
     double cost = 0.0;
     std::size_t n = 0;
     for (std::size_t j = 0; j < prof.size(); ++j) {
-      const std::array<double, 2 *half + 1> &p = prof[j];
+      const auto &p = prof[j];
       const double L = level * profScale[j];
       // The crossing of L nearest the maximum (g rises along the profile), searched outwards: ring k holds the two
       // intervals whose crossings lie k to k + 1 steps from it, so once one is found strictly nearer than k steps,

@@ -256,7 +256,7 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
   // The levels at the box's centre tell the contrast and the polarity.
   const double uc = box.x + 0.5 * (box.width - 1), vc = box.y + 0.5 * (box.height - 1);
   auto contrast = [&] { return fg.valid && bg.valid ? std::fabs(fg.at(uc, vc) - bg.at(uc, vc)) : 0.0; };
-  const double minContrast = 8.0;
+  const double minContrast = 8.0; // grey levels: below, the levels are not told apart (the binary region is used)
   cv::Mat gx, gy; // computed once for the edge's level, profile and outline
   if (!given && innerLevels.n == 0 && contrast() >= minContrast) {
     gradient(g, gx, gy);
