@@ -33,11 +33,11 @@ template <typename T> double bilinear(const cv::Mat &m, double x, double y)
   blur, and on that level, x0 is the edge. Only samples off the sensor's limits count, so a side clipped beyond the
   middle of the step does not move it; the gradient peak does, through the 3x3 support of its derivative (measured:
   10 grey levels low on a step lifted to 285 and clipped at 255 under a 1.2 px blur, the edge 0.15 px out).
-  Returns \e level0 when too few samples are left. With \e scale (one per profile), profile k's level is the level
-  times scale[k]: an edge under a light that falls off.
+  Returns \e level0 when too few samples are left. Profile k's level is the level times \e scale[k] (1 for every
+  profile of an evenly lit edge; under a light that falls off, the shading there).
 */
 double antisymmetricLevel(const cv::Mat &g, const std::vector<cv::Vec4d> &profiles, double level0, double slope,
-                          const std::vector<double> &scale = {})
+                          const std::vector<double> &scale)
 {
   const int half = 12; // samples each side, a quarter pixel apart: +-3 px
   const double h = 0.25, umax = 1.5;
@@ -50,7 +50,7 @@ double antisymmetricLevel(const cv::Mat &g, const std::vector<cv::Vec4d> &profil
   std::vector<double> profScale;
   for (std::size_t k = 0; k < profiles.size(); k += stride) {
     prof.emplace_back();
-    profScale.push_back(scale.empty() ? 1.0 : scale[k]);
+    profScale.push_back(scale[k]);
     for (int i = -half; i <= half; ++i) {
       const double x = std::min(std::max(profiles[k][0] + i * h * profiles[k][2], 0.0), double(g.cols - 1)),
                    y = std::min(std::max(profiles[k][1] + i * h * profiles[k][3], 0.0), double(g.rows - 1));
@@ -165,7 +165,7 @@ bool vpMorphEdgeOutline::edgeProfile(const cv::Mat &g, const cv::Mat &gx, const 
   slope = median(slopes);
   if (!(slope > 0.0))
     return false;
-  level = antisymmetricLevel(g, profiles, level, slope, shading ? scales : std::vector<double>());
+  level = antisymmetricLevel(g, profiles, level, slope, scales);
   return true;
 }
 

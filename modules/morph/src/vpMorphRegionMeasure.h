@@ -41,7 +41,8 @@ struct Region
 /*
   Area and centroid of a region from its grey levels: pixels well inside count 1, pixels across the edge count
   their fraction of the way from the background level to the object level (both measured about the region, as affine
-  functions of the position, so illumination, its fall-off across the view and contrast do not matter). Unlike the pixel
+  functions of the position, so illumination, its fall-off across the view and contrast do not matter; the object's
+  on its pixels 3 px deep, or for a part with none, a wire, from its edge). Unlike the pixel
   count or the boundary polygon, this moves continuously with the object and is unbiased by zero-mean noise (the weights
   are not clipped). The band is 3 px wide on each side, enough for the edge blur of a camera; other regions' pixels (\e
   bin, the object mask) are left out of it. The second-order moments come with it (the region's orientation, steadier
