@@ -22,6 +22,7 @@
 #include <visp3/morph/vpMorphPolygonApproximation.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 
+#include "../src/vpMorphPixelChain.h"
 #include "testMorphImages.h"
 
 namespace
@@ -463,6 +464,40 @@ double chainL1(const std::vector<vpImagePoint> &chain, long a, long b)
   for (long i = a + 1; i < b; ++i)
     s += segDist(at(a).get_u(), at(a).get_v(), at(b).get_u(), at(b).get_v(), at(i).get_u(), at(i).get_v());
   return s;
+}
+
+TEST_CASE("approximation: a chord's L1 error is the sum of its pixels' distances, and an abandoned sum stays at its "
+          "limit",
+          "[approx]")
+{
+  // Chains of integer pixels (where the chord's error is summed as crosses) and of sub-pixel points (one distance at a
+  // time), chords of every length, both ways round the chain's end, and pixels beyond the chord's ends (corners).
+  std::mt19937 rng(7);
+  for (const bool integral : {true, false}) {
+    const vpMorphContourExtractor ex;
+    const std::vector<vpImagePoint> boundary = ex.boundary(render({testPolygon(320.3, 240.6, 0.3)}, 50, 200, 20.0, 3));
+    std::vector<vpImagePoint> chain = boundary;
+    if (!integral)
+      for (vpImagePoint &ip : chain)
+        ip.set_uv(ip.get_u() + 0.25, ip.get_v() - 0.125 * std::sin(ip.get_u()));
+    std::vector<vpMorphPixelChain::Pt> pts;
+    for (const vpImagePoint &ip : chain)
+      pts.push_back({ip.get_u(), ip.get_v()});
+    const vpMorphPixelChain c(pts);
+    const long n = static_cast<long>(chain.size());
+    std::uniform_int_distribution<long> start(-n, n - 1), length(2, n - 1);
+    for (int t = 0; t < 400; ++t) {
+      const long a = start(rng), b = a + length(rng);
+      const double reference = chainL1(chain, a, b);
+      INFO((integral ? "pixels" : "sub-pixel points") << ", chord " << a << " to " << b << " of " << n);
+      CHECK(c.l1(a, b) == Approx(reference).epsilon(1e-12).margin(1e-9));
+      CHECK(c.lowerBound(a, b) <= c.l1(a, b) * (1.0 + 1e-12) + 1e-9);
+      // Abandoned past a limit: the value returned, with its base, is still at or above the limit; under it, whole.
+      const double base = 0.5 * reference, limit = base + 0.5 * reference;
+      CHECK(base + c.l1(a, b, base, limit) >= limit * (1.0 - 1e-12));
+      CHECK(c.l1(a, b, base, base + 2.0 * reference + 1.0) == Approx(reference).epsilon(1e-12).margin(1e-9));
+    }
+  }
 }
 
 TEST_CASE("approximation: every vertex is at the least L1 error between its neighbours", "[approx]")
