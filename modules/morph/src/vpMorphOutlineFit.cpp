@@ -166,7 +166,10 @@ struct vpMorphOutlineFit::Solver
     scale; all of them when cut is not > 0), floored at sigmaFloor. Trimmed to the inliers, the scale stays the noise of
     the part the fit lies on, however much of the view lies elsewhere (a bent limb longer than the part, an occluder).
     A residual of magnitude \e reach or more is given as +inf (its row weighs nothing): the caller needs it only as
-    beyond its cut-off, and the nearest-edge search stops there instead of crossing the grid for a far point.
+    beyond its cut-off, and the nearest-edge search stops there instead of crossing the grid for a far point. With a
+    cut and a finite reach (a reweighting round), so is one beyond Tukey's cut-off of the scale returned: the rows are
+    measured within the cut first (all the scale needs), then those beyond it again, within that cut-off (a few
+    outliers: the searches stay short).
   */
   static double measureRows(const Goal &goal, const std::vector<Eigen::Vector2d> &P, const InputEdges *inputEdges,
                             const Eigen::Vector4d &x, double delta, double sigmaFloor, double cut, Rows &rows,
@@ -175,52 +178,65 @@ struct vpMorphOutlineFit::Solver
     const std::size_t n = P.size(), ng = inputEdges ? goal.samples.size() : 0;
     rows.resize(n + ng);
     rows.forward = n;
-    std::vector<double> d(n + ng);
     const double inf = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < n; ++k) {
-      const Eigen::Vector2d y = linearMap(x, P[k]);
-      double mx, my, along;
-      // |r| >= |rk| - |delta|: a distance of reach + |delta| or more is a residual of reach or more.
-      const double rk = goal.nearest.within(y.x(), y.y(), reach + std::fabs(delta), mx, my, &along);
-      rows.p[k] = P[k];
-      rows.m[k] = Eigen::Vector2d(mx, my);
-      const bool near = rk != inf;
-      rows.rhs[k] = near ? rows.m[k].dot(y) - rk : 0.0; // m . q, q the nearest point of the unmoved edges
-      rows.offset[k] = -along;
-      rows.r[k] =
-          near ? rk - along * delta : inf; // the distance to the goal's edges moved by delta along their normals
-      d[k] = std::fabs(rows.r[k]);
-    }
-    if (ng > 0) {
-      const double s2 = x.head<2>().squaredNorm(), s = std::sqrt(s2);
-      const Eigen::Matrix2d M = linearPart(x), Minv = M.transpose() / s2, R = M / s;
-      for (std::size_t j = 0; j < ng; ++j) {
-        const Eigen::Vector2d &g = goal.samples[j];
-        const Eigen::Vector2d u = Minv * (g - x.tail<2>()); // about the input's centroid
-        double mx, my;
-        // |r| >= s |rj| - |delta|, as above in the input's units.
-        const double rj = inputEdges->edges.within(u.x() + inputEdges->cx, u.y() + inputEdges->cy,
-                                                   (reach + std::fabs(delta)) / s, mx, my);
-        const Eigen::Vector2d nIn(mx, my);
-        const std::size_t k = n + j;
-        if (rj == inf) {
-          rows.p[k] = u;
-          rows.m[k] = Eigen::Vector2d::Zero();
-          rows.rhs[k] = rows.offset[k] = 0.0;
-          rows.r[k] = d[k] = inf;
-          continue;
-        }
-        rows.p[k] = u - rj * nIn;
-        rows.m[k] = R * nIn;
-        rows.rhs[k] = rows.m[k].dot(g);
-        rows.offset[k] = -rows.m[k].dot(goal.normals[j]);
-        rows.r[k] = s * rj + delta * rows.m[k].dot(goal.normals[j]);
-        d[k] = std::fabs(rows.r[k]);
+    const double s2 = x.head<2>().squaredNorm(), s = std::sqrt(s2);
+    const Eigen::Matrix2d M = linearPart(x), Minv = M.transpose() / s2, R = M / s;
+    // Row k's residual, +inf when its magnitude is \e within or more.
+    auto measure = [&](std::size_t k, double within) {
+      if (k < n) {
+        const Eigen::Vector2d y = linearMap(x, P[k]);
+        double mx, my, along;
+        // |r| >= |rk| - |delta|: a distance of within + |delta| or more is a residual of within or more.
+        const double rk = goal.nearest.within(y.x(), y.y(), within + std::fabs(delta), mx, my, &along);
+        rows.p[k] = P[k];
+        rows.m[k] = Eigen::Vector2d(mx, my);
+        const bool near = rk != inf;
+        rows.rhs[k] = near ? rows.m[k].dot(y) - rk : 0.0; // m . q, q the nearest point of the unmoved edges
+        rows.offset[k] = -along;
+        rows.r[k] =
+            near ? rk - along * delta : inf; // the distance to the goal's edges moved by delta along their normals
+        return;
       }
+      const std::size_t j = k - n;
+      const Eigen::Vector2d &g = goal.samples[j];
+      const Eigen::Vector2d u = Minv * (g - x.tail<2>()); // about the input's centroid
+      double mx, my;
+      // |r| >= s |rj| - |delta|, as above in the input's units.
+      const double rj = inputEdges->edges.within(u.x() + inputEdges->cx, u.y() + inputEdges->cy,
+                                                 (within + std::fabs(delta)) / s, mx, my);
+      const Eigen::Vector2d nIn(mx, my);
+      if (rj == inf) {
+        rows.p[k] = u;
+        rows.m[k] = Eigen::Vector2d::Zero();
+        rows.rhs[k] = rows.offset[k] = 0.0;
+        rows.r[k] = inf;
+        return;
+      }
+      rows.p[k] = u - rj * nIn;
+      rows.m[k] = R * nIn;
+      rows.rhs[k] = rows.m[k].dot(g);
+      rows.offset[k] = -rows.m[k].dot(goal.normals[j]);
+      rows.r[k] = s * rj + delta * rows.m[k].dot(goal.normals[j]);
+    };
+    // Every residual under the cut is measured at a reach of the cut: the same value (a search within reach finds
+    // what a search without one does).
+    const bool twoPasses = cut > 0.0 && cut < reach && reach < inf;
+    for (std::size_t k = 0; k < n + ng; ++k)
+      measure(k, twoPasses ? cut : reach);
+    std::vector<double> d;
+    d.reserve(n + ng);
+    for (double r : rows.r)
+      if (!(cut > 0.0) || std::fabs(r) < cut)
+        d.push_back(std::fabs(r));
+    const double sigma = std::max(kMadToSigma * median(d), sigmaFloor);
+    if (twoPasses) {
+      const double cutOff = std::min(reach, tukeyConstant() * sigma);
+      if (cutOff > cut)
+        for (std::size_t k = 0; k < n + ng; ++k)
+          if (rows.r[k] == inf)
+            measure(k, cutOff);
     }
-    if (cut > 0.0)
-      d.erase(std::remove_if(d.begin(), d.end(), [cut](double v) { return !(v < cut); }), d.end());
-    return std::max(kMadToSigma * median(d), sigmaFloor);
+    return sigma;
   }
 
   static bool solveRows(Rows &rows, const Eigen::Vector4d &x, double delta, double cut, bool withOffset,
