@@ -107,25 +107,29 @@ constexpr double kTukey = 4.685;
 
 /*
   The robust scale of the residuals \e r, 1.4826 MAD floored at \e minSigma and at rounding (1e-13 \e scale), where
-  those beyond \e reach were not searched (+inf). That is the exhaustive scale when the median and Tukey's cut-off lie
-  within reach (every residual beyond is then beyond both); otherwise \e requery(k) sets r[k] exactly for each of
-  them, and the scale is taken again.
+  those beyond \e reach were not searched (+inf). That is the exhaustive scale when the median lies within reach
+  (every residual beyond is beyond it too). Where Tukey's cut-off of that scale lies beyond reach, \e requery(k,
+  within) searches each of them again within the cut-off (r[k] then exact, or +inf beyond it, where it weighs
+  nothing); where the median does, exhaustively, and the scale is taken again.
 */
 template <typename F> double robustScale(std::vector<double> &r, double reach, double minSigma, double scale, F requery)
 {
-  auto scaleOf = [&]() {
+  auto scaleOf = [&](double &m) {
     std::vector<double> a(r.size());
     for (std::size_t k = 0; k < r.size(); ++k)
       a[k] = std::fabs(r[k]);
-    return std::max({minSigma, 1.4826 * median(a), 1e-13 * scale});
+    m = median(a);
+    return std::max({minSigma, 1.4826 * m, 1e-13 * scale});
   };
-  const double sigma = scaleOf();
+  double m = 0.0;
+  const double sigma = scaleOf(m);
   if (!(kTukey * sigma > reach))
     return sigma;
+  const double within = m <= reach ? kTukey * sigma : std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < r.size(); ++k)
     if (std::isinf(r[k]))
-      requery(k);
-  return scaleOf();
+      requery(k, within);
+  return m <= reach ? sigma : scaleOf(m);
 }
 
 // Robust weight of a residual in units of sigma: Huber (c = 1.345) or Tukey biweight (c = kTukey).
@@ -385,11 +389,10 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     return k < SI.size() ? offsetDistance(nearestTarget, x, y, delta, mx, my, side, reach)
                          : nearestInput.within(x, y, reach, mx, my);
   };
-  // Tukey's weights need no residual beyond their cut-off: the nearest edges are searched within twice the last
-  // round's (a sample off a hidden or bent part would spread the search over the whole outline).
-  auto reachAt = [](double sigma) {
-    return sigma > 0.0 ? 2.0 * kTukey * sigma : std::numeric_limits<double>::infinity();
-  };
+  // Tukey's weights need no residual beyond their cut-off: the nearest edges are searched within the last round's
+  // (a sample off a hidden or bent part would spread the search over the whole outline), then beyond it as far as
+  // this round's needs (robustScale()).
+  auto reachAt = [](double sigma) { return sigma > 0.0 ? kTukey * sigma : std::numeric_limits<double>::infinity(); };
   vpMorphHomography out;
   unsigned int it = 0;
   bool converged = false;
@@ -459,8 +462,7 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     const double reach = tukey ? reachAt(sigma) : std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < N; ++k)
       row(k, reach);
-    sigma =
-        robustScale(r, reach, minSigma, scale, [&](std::size_t k) { row(k, std::numeric_limits<double>::infinity()); });
+    sigma = robustScale(r, reach, minSigma, scale, [&](std::size_t k, double within) { row(k, within); });
     tukeyMoved = tukey;
     Eigen::VectorXd wr(N);
     for (std::size_t k = 0; k < N; ++k) {
@@ -509,7 +511,7 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
   // Final residuals and inliers at the returned homography.
   {
     const Mat3 Gi = G.inverse();
-    // As in the rounds: within twice the last round's cut-off, the samples beyond it weigh nothing.
+    // As in the rounds: within the last round's cut-off, then as far as the final scale's needs.
     const double reach = reachAt(sigma);
     auto at = [&](std::size_t k, double within) {
       double x, y, mx, my, side;
@@ -518,8 +520,7 @@ vpMorphHomography vpMorphHomography::refine(const vpMorphContour &input, const v
     };
     for (std::size_t k = 0; k < N; ++k)
       at(k, reach);
-    const double sigma =
-        robustScale(r, reach, minSigma, scale, [&](std::size_t k) { at(k, std::numeric_limits<double>::infinity()); });
+    const double sigma = robustScale(r, reach, minSigma, scale, [&](std::size_t k, double within) { at(k, within); });
     double s2 = 0, ws2 = 0, sw = 0;
     std::size_t n = 0;
     for (std::size_t k = 0; k < N; ++k) {
