@@ -100,7 +100,7 @@ public:
   std::ptrdiff_t blockDistances(const Pt &pa, const Pt &pb, std::ptrdiff_t i, std::ptrdiff_t w, std::ptrdiff_t b,
                                 double *d) const
   {
-    const std::ptrdiff_t len = std::min(kBlock, std::min(b - i, m_n - w));
+    const std::ptrdiff_t len = blockLength(i, w, b);
     const Pt *q = &m_p[static_cast<std::size_t>(w)];
     std::ptrdiff_t k = 0;
 #ifdef __SSE2__
@@ -126,6 +126,11 @@ public:
     return len;
   }
   std::ptrdiff_t next(std::ptrdiff_t w, std::ptrdiff_t len) const { return w + len == m_n ? 0 : w + len; }
+  // The pixels of a block from unwrapped index i (stored at w) up to b: at most kBlock, contiguous in storage.
+  std::ptrdiff_t blockLength(std::ptrdiff_t i, std::ptrdiff_t w, std::ptrdiff_t b) const
+  {
+    return std::min(kBlock, std::min(b - i, m_n - w));
+  }
 
   EdgeError error(std::ptrdiff_t a, std::ptrdiff_t b) const
   {
@@ -165,14 +170,16 @@ public:
     if (!m_sx.empty() && l2 > 0.0) {
       const double len = std::sqrt(l2);
       double inside = 0.0, beyond = 0.0; // the sum of |cross| inside, of the distances beyond the ends
+#ifdef __SSE2__
+      const __m128d vax = _mm_set1_pd(pa.x), vay = _mm_set1_pd(pa.y), vdx = _mm_set1_pd(dx), vdy = _mm_set1_pd(dy),
+                    vl2 = _mm_set1_pd(l2), zero = _mm_setzero_pd(), sign = _mm_set1_pd(-0.0);
+#endif
       for (std::ptrdiff_t i = a + 1, w = wrap(i); i < b && base + inside / len + beyond < limit;) {
-        const std::ptrdiff_t count = std::min(kBlock, std::min(b - i, m_n - w));
+        const std::ptrdiff_t count = blockLength(i, w, b);
         const Pt *q = &m_p[static_cast<std::size_t>(w)];
         std::ptrdiff_t k = 0;
 #ifdef __SSE2__
         // Two pixels at a time while both project inside (integers: the order of the sum does not change it).
-        const __m128d vax = _mm_set1_pd(pa.x), vay = _mm_set1_pd(pa.y), vdx = _mm_set1_pd(dx), vdy = _mm_set1_pd(dy),
-                      vl2 = _mm_set1_pd(l2), zero = _mm_setzero_pd(), sign = _mm_set1_pd(-0.0);
         __m128d acc = _mm_setzero_pd();
         for (; k + 1 < count; k += 2) {
           const __m128d p0 = _mm_loadu_pd(&q[k].x), p1 = _mm_loadu_pd(&q[k + 1].x);
