@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include <visp3/core/vpExponentialMap.h>
 #include <visp3/core/vpMath.h>
@@ -154,9 +155,9 @@ vpColVector vpMorphSimRobot::referenceJointPositions() const
   vpColVector q(6, 0.0);
   switch (m_kind) {
   case VIPER850:
-    // Chosen on a grid of benchmark starts (offsets up to 80 mm, depth +-0.2 m, tilts up to 30 deg, any turn
-    // about the optical axis): from this configuration all of them are within the joint limits, where the
-    // elbow-up (-45, 135, -90 deg) configuration reached only 72 % of them.
+    // Starts tilted by up to 30 deg about the camera, turned any way, lie in this configuration (a test checks a grid
+    // of them); of the benchmark's 6-dof starts, which orbit the object, a few tilted far with the depth much changed
+    // too do not, and are unreachable.
     q[1] = vpMath::rad(-120);
     q[2] = vpMath::rad(220);
     q[4] = vpMath::rad(-45);
@@ -206,45 +207,81 @@ bool vpMorphSimRobot::setDesiredPoseMidway(const vpHomogeneousMatrix &cdMo, cons
   return true;
 }
 
-bool vpMorphSimRobot::placeCamera(const vpHomogeneousMatrix &fMc, const vpColVector &qSeed)
+bool vpMorphSimRobot::solveCamera(const vpHomogeneousMatrix &fMc, vpColVector &q) const
 {
-  const vpHomogeneousMatrix fMe = fMc * m_eMcTrue.inverse();
-  vpColVector q = qSeed;
-  bool ok = true;
-  switch (m_kind) {
-  case FREE_CAMERA:
-    m_model->flyer.setPosition(fMe);
-    break;
-  case VIPER850: {
+  const vpColVector seed = q;
+  if (m_kind == VIPER850) {
     m_model->viper.set_eMc(m_eMcTrue);
-    ok = m_model->viper.getInverseKinematics(fMc, q) > 0;
-    break;
-  }
-  case AFMA6: {
-    m_model->afma.set_eMc(m_eMcTrue);
-    ok = m_model->afma.getInverseKinematics(fMc, q, true) > 0;
-    break;
-  }
-  }
-  if (m_kind != FREE_CAMERA) {
-    const vpColVector qmin = getJointMin(), qmax = getJointMax();
-    for (unsigned int i = 0; ok && i < 6; ++i)
-      ok = std::isfinite(q[i]) && q[i] >= qmin[i] && q[i] <= qmax[i];
-    if (ok) {
-      // The solvers may return the nearest configuration even when it is not exact: check the reached pose.
-      vpHomogeneousMatrix fMe_q;
-      if (m_kind == VIPER850)
-        m_model->viper.get_fMe(q, fMe_q);
-      else
-        m_model->afma.get_fMe(q, fMe_q);
-      const vpHomogeneousMatrix d = fMe_q.inverse() * fMe;
-      vpThetaUVector tu(d.getRotationMatrix());
-      ok = d.getTranslationVector().frobeniusNorm() < 1e-6 && std::sqrt(tu.sumSquare()) < 1e-6;
-    }
-    if (!ok)
+    if (m_model->viper.getInverseKinematics(fMc, q) == 0)
       return false;
-    m_model->q = q;
+  } else {
+    m_model->afma.set_eMc(m_eMcTrue);
+    if (m_model->afma.getInverseKinematics(fMc, q, true) == 0)
+      return false;
   }
+  // The solvers give one wrist among the two that orient the tool alike, (q4, q5, q6) and (q4 + pi, -q5, q6 + pi)
+  // (or pi - q5 about a wrist whose singularity is at q5 = +-pi/2), the nearest by their own measure: each is tried,
+  // and the first in the configuration of the seed is kept (placeCamera()).
+  std::vector<vpColVector> candidates{q};
+  for (const double mirror : {0.0, M_PI}) {
+    vpColVector f = q;
+    f[3] += M_PI;
+    f[4] = mirror - q[4];
+    f[5] += M_PI;
+    candidates.push_back(f);
+  }
+  const vpColVector qmin = getJointMin(), qmax = getJointMax();
+  const double side = get_eJe(seed).det();
+  const vpHomogeneousMatrix fMe = fMc * m_eMcTrue.inverse();
+  const unsigned int firstRevolute = m_kind == AFMA6 ? 3 : 0; // the gantry's first three joints slide
+  for (vpColVector &c : candidates) {
+    bool in = true;
+    for (unsigned int i = 0; in && i < 6; ++i) {
+      // A revolute joint's angle is defined to a whole turn: the turn nearest the seed within the limits (the
+      // Viper850's last joint turns by 360 deg either way).
+      if (i >= firstRevolute) {
+        c[i] = seed[i] + std::remainder(c[i] - seed[i], 2.0 * M_PI);
+        if (c[i] < qmin[i] && c[i] + 2.0 * M_PI <= qmax[i])
+          c[i] += 2.0 * M_PI;
+        if (c[i] > qmax[i] && c[i] - 2.0 * M_PI >= qmin[i])
+          c[i] -= 2.0 * M_PI;
+      }
+      in = std::isfinite(c[i]) && c[i] >= qmin[i] && c[i] <= qmax[i];
+    }
+    if (!in)
+      continue;
+    // The solvers may return the nearest configuration even when it is not exact: check the reached pose.
+    const vpHomogeneousMatrix d = get_fMe(c).inverse() * fMe;
+    const vpThetaUVector tu(d.getRotationMatrix());
+    if (!(d.getTranslationVector().frobeniusNorm() < 1e-6 && std::sqrt(tu.sumSquare()) < 1e-6))
+      continue;
+    // The singular configurations (det eJe = 0) separate the arm's configurations (shoulder, elbow, wrist flipped),
+    // and no servo crosses one on its way to the goal: the straight joint path from the seed (within the limits, a
+    // box) keeps the sign of det eJe, sampled every kPlacementJointStep of the joint that turns most.
+    const vpColVector dq = c - seed;
+    const unsigned int n =
+        static_cast<unsigned int>(std::ceil(std::max(dq.getMaxValue(), -dq.getMinValue()) / kPlacementJointStep));
+    bool same = true;
+    for (unsigned int i = 1; same && i <= n; ++i)
+      same = side * get_eJe(seed + dq * (double(i) / n)).det() > 0.0;
+    if (same) {
+      q = c;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool vpMorphSimRobot::placeCamera(const vpHomogeneousMatrix &fMc, const vpColVector &qFrom)
+{
+  if (m_kind == FREE_CAMERA) {
+    m_model->flyer.setPosition(fMc * m_eMcTrue.inverse());
+    return true;
+  }
+  vpColVector q = qFrom;
+  if (!solveCamera(fMc, q))
+    return false;
+  m_model->q = q;
   return true;
 }
 

@@ -11,6 +11,7 @@
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph_sim/vpMorphSimRobot.h>
 #include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
+#include <visp3/robot/vpViper850.h>
 
 namespace
 {
@@ -306,9 +307,13 @@ TEST_CASE("the arms' kinematic model is evaluated at any joints, the free camera
   CHECK_THROWS_AS(camera.get_eJe(vpColVector(6, 0.0)), vpMorphException);
 }
 
-TEST_CASE("the Viper850 reaches the benchmark's 6-dof starts from its reference configuration", "[morph_sim][robot]")
+TEST_CASE("the Viper850 places starts tilted and turned any way in its reference configuration", "[morph_sim][robot]")
 {
-  unsigned int ok = 0, n = 0;
+  // Tilted by up to 30 deg about the camera, turned about its axis, moved along it by 0.2 m either way.
+  vpMorphSimRobot reference(vpMorphSimRobot::VIPER850);
+  reference.setDesiredPose(cdMo);
+  const double wrist = reference.getJointPositions()[4];
+  unsigned int ok = 0, n = 0, flipped = 0;
   for (double rx : {-30., 0., 30.})
     for (double ry : {-30., 0., 30.})
       for (double rz : {-180., -90., 0., 90., 170.})
@@ -319,9 +324,18 @@ TEST_CASE("the Viper850 reaches the benchmark's 6-dof starts from its reference 
                                            vpHomogeneousMatrix(0, 0, 0, vpMath::rad(rx), vpMath::rad(ry), 0) *
                                            vpHomogeneousMatrix(0, 0, 0, 0, 0, vpMath::rad(rz));
           ++n;
-          ok += robot.initialiseCameraRelativeToDesired(cdMc) ? 1 : 0;
+          if (!robot.initialiseCameraRelativeToDesired(cdMc))
+            continue;
+          ++ok;
+          // The goal's wrist (joint 5 on the same side of its singularity), whichever the solver offers.
+          CHECK(robot.getJointPositions()[4] * wrist > 0.0);
+          vpColVector nearest = reference.getJointPositions();
+          vpViper850 viper;
+          REQUIRE(viper.getInverseKinematics(reference.get_fMc() * cdMc, nearest) > 0);
+          flipped += nearest[4] * wrist < 0.0 ? 1 : 0;
         }
   CHECK(ok == n);
+  CHECK(flipped > 0); // for some, the solver's nearest solution had the wrist flipped
   vpMorphSimRobot robot(vpMorphSimRobot::VIPER850);
   vpColVector q = robot.referenceJointPositions();
   q[0] = 0.2;
@@ -329,6 +343,23 @@ TEST_CASE("the Viper850 reaches the benchmark's 6-dof starts from its reference 
   CHECK(robot.referenceJointPositions()[0] == 0.2);
   q[2] = 10.0;
   CHECK_THROWS_AS(robot.setReferenceJointPositions(q), vpMorphException);
+}
+
+TEST_CASE("a start the Viper850 reaches only in another configuration is unreachable", "[morph_sim][robot]")
+{
+  // Orbited by 30 deg with the camera 40 % further: within the joint limits with the elbow flipped, and only so.
+  vpMorphSimRobot robot(vpMorphSimRobot::VIPER850);
+  robot.setDesiredPose(cdMo);
+  const vpColVector goal = robot.getJointPositions();
+  const vpHomogeneousMatrix fMc = robot.get_fMc();
+  const vpHomogeneousMatrix cdMc(0.0656, 0.3376, -0.0568, 0.4999, 0.1545, -0.5357);
+  vpColVector elsewhere = goal;
+  vpViper850 viper;
+  REQUIRE(viper.getInverseKinematics(fMc * cdMc, elsewhere) > 0);
+  CHECK(std::fabs(elsewhere[2] - goal[2]) > 2.0); // the elbow's other side
+  CHECK_FALSE(robot.initialiseCameraRelativeToDesired(cdMc));
+  CHECK(robot.status() == vpMorphSimRobot::UNREACHABLE);
+  CHECK(robot.getJointPositions() == goal); // not moved
 }
 
 TEST_CASE("bad robot input throws vpMorphException", "[morph_sim][errors]")

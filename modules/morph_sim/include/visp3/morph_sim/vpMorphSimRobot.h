@@ -67,7 +67,7 @@ public:
   enum Status {
     OK,          //!< Every command so far executed in full.
     JOINT_LIMIT, //!< A command was clipped at a joint limit.
-    UNREACHABLE  //!< The last requested start pose has no inverse-kinematics solution within the limits.
+    UNREACHABLE  //!< The last requested start pose is out of the reference configuration's reach within the limits.
   };
 
   /*!
@@ -120,9 +120,11 @@ public:
   bool setDesiredPoseMidway(const vpHomogeneousMatrix &cdMo, const vpHomogeneousMatrix &cdMc);
   /*!
     Moves the robot (instantly, in position) so that the true camera sees the object at \e cMo: inverse
-    kinematics with the true eMc, nearest solution to the reference configuration. Returns false and sets
-    status UNREACHABLE (robot not moved) when no solution lies within the joint limits. Resets the path
-    length, the step counter and the status.
+    kinematics with the true eMc, in the configuration of the reference joints (referenceJointPositions(): the
+    goal's), the joints reached from them by a straight joint path that crosses no singularity (no shoulder, elbow
+    or wrist flip, which no servo makes on its way to the goal). Returns false and sets status UNREACHABLE (robot not
+    moved) when that configuration has no solution within the joint limits. Resets the path length, the step counter
+    and the status.
   */
   bool initialiseCameraRelativeToObject(const vpHomogeneousMatrix &cMo);
   /*!
@@ -177,7 +179,7 @@ public:
   vpColVector getJointMin() const;
   //! The joints' upper limits (infinite: none).
   vpColVector getJointMax() const;
-  //! The configuration at which setDesiredPose() puts the desired camera pose (and near which IK solutions are sought).
+  //! The configuration at which setDesiredPose() puts the desired camera pose, and in which the starts are placed.
   vpColVector referenceJointPositions() const;
   //! Changes it (6 finite joint positions within the limits); for the free camera, ignored.
   void setReferenceJointPositions(const vpColVector &q);
@@ -195,7 +197,14 @@ private:
   struct Model;
   void checkPose(const vpHomogeneousMatrix &M, const char *what) const;
   void checkModelJoints(const vpColVector &q, const char *what) const;
-  bool placeCamera(const vpHomogeneousMatrix &fMc, const vpColVector &qSeed);
+  // Joints putting the true camera at fMc within the limits, in the configuration of q (in: the seed); the arms only.
+  bool solveCamera(const vpHomogeneousMatrix &fMc, vpColVector &q) const;
+  // Moves the robot to put the true camera at fMc in the configuration of qFrom, false if it has none within the
+  // limits.
+  bool placeCamera(const vpHomogeneousMatrix &fMc, const vpColVector &qFrom);
+  // The sampling of the joint path solveCamera() checks (rad): det eJe of the Viper850 and the Afma6 changes sign
+  // only across a singular configuration, which one degree of the joint turning most cannot step over.
+  static constexpr double kPlacementJointStep = 1.7453292519943295e-2;
 
   Kind m_kind;
   double m_dt;
