@@ -169,18 +169,29 @@ public:
   */
   bool within(double px, double py, double tol) const
   {
+    return within(px, py, tol, [](std::size_t, double) { return true; });
+  }
+  /*
+    The same over the edges \e accept takes: accept(k, t), the nearest point of edge k at k + t (t in [0, 1]), for an
+    edge within tol of p.
+  */
+  template <typename Accept> bool within(double px, double py, double tol, Accept accept) const
+  {
     if (!std::isfinite(px) || !std::isfinite(py))
       return false;
     const double tol2 = tol * tol;
-    // Edge k's squared distance to p, as the nearest-point search computes it.
-    auto distance2 = [&](std::size_t k) {
+    // Edge k within tol of p, as the nearest-point search measures it, and accepted.
+    auto near = [&](std::size_t k) {
       Best b;
       visit(k, px, py, b);
-      return b.d2;
+      if (!(b.d2 < tol2))
+        return false;
+      const Edge &e = m_edges[k];
+      return accept(k, std::min(1.0, std::max(0.0, ((px - e.ax) * e.dx + (py - e.ay) * e.dy) * e.il2)));
     };
     if (m_first.empty()) {
       for (std::size_t k : m_kept)
-        if (distance2(k) < tol2)
+        if (near(k))
           return true;
       return false;
     }
@@ -189,7 +200,7 @@ public:
       for (int i = i0; i <= i1; ++i) {
         const std::size_t cell = std::size_t(j) * std::size_t(m_nx) + std::size_t(i);
         for (std::size_t e = m_first[cell]; e < m_first[cell + 1]; ++e)
-          if (distance2(m_cellEdges[e]) < tol2)
+          if (near(m_cellEdges[e]))
             return true;
       }
     return false;

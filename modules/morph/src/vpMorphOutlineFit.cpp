@@ -88,6 +88,13 @@ void vpMorphOutlineFit::setMinimumSigma(double sigma)
   m_minSigma = sigma;
 }
 
+void vpMorphOutlineFit::setFineWidth(double width)
+{
+  if (!std::isfinite(width) || width < 0.0)
+    badParameter("the fine width must be finite and >= 0");
+  m_fineWidth = width;
+}
+
 void vpMorphOutlineFit::setMaximumSigma(double sigma)
 {
   if (!(sigma > 0.0))
@@ -398,10 +405,10 @@ struct vpMorphOutlineFit::Solver
   }
 
   // The results of a fit at its solution x (or of none: \e solved false).
-  static vpMorphRigidTransform finish(vpMorphOutlineFit &self, const std::vector<Eigen::Vector2d> &P,
-                                      const InputEdges *inputEdges, const Eigen::Vector4d &x, double delta,
-                                      double lastSigma, bool solved, double sigmaFloor, double cx, double cy,
-                                      const vpMorphRigidTransform &initial)
+  static vpMorphRigidTransform finish(vpMorphOutlineFit &self, const vpMorphContour &input,
+                                      const std::vector<Eigen::Vector2d> &P, const InputEdges *inputEdges,
+                                      const Eigen::Vector4d &x, double delta, double lastSigma, bool solved,
+                                      double sigmaFloor, double cx, double cy, const vpMorphRigidTransform &initial)
   {
     const std::size_t n = P.size();
     self.m_residuals.assign(n, 0.0);
@@ -431,7 +438,8 @@ struct vpMorphOutlineFit::Solver
     }
     for (std::size_t k = n; k < rows.r.size(); ++k)
       covered += rows.w[k] > 0.0 ? 1 : 0;
-    self.structuredOutliers(std::vector<double>(rows.w.begin(), rows.w.begin() + std::ptrdiff_t(n)));
+    self.structuredOutliers(std::vector<double>(rows.w.begin(), rows.w.begin() + std::ptrdiff_t(n)), input.outline(),
+                            inputEdges ? &inputEdges->edges : nullptr);
     self.m_sigma = sigma;
     self.m_offset = outward * delta; // delta moves the edges along their left normals; reported outwards
     self.m_inlierShare = double(inliers) / double(n);
@@ -468,7 +476,7 @@ vpMorphRigidTransform vpMorphOutlineFit::fit(const vpMorphContour &input, const 
   if (solved)
     Solver::graduate(*m_goalData, P, edges.get(), x, delta, sigma, m_withScale, m_withOffset, m_maxIterations, floor,
                      m_maxSigma, spread);
-  return Solver::finish(*this, P, edges.get(), x, delta, sigma, solved, floor, cx, cy, initial);
+  return Solver::finish(*this, input, P, edges.get(), x, delta, sigma, solved, floor, cx, cy, initial);
 }
 
 vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, const vpMorphRigidTransform &initial)
@@ -565,5 +573,5 @@ vpMorphRigidTransform vpMorphOutlineFit::search(const vpMorphContour &input, con
   }
   Solver::graduate(*m_goalData, P, edges.get(), x, delta, sigma, m_withScale, m_withOffset, m_maxIterations, floor,
                    m_maxSigma, spread);
-  return Solver::finish(*this, P, edges.get(), x, delta, sigma, true, floor, cx, cy, initial);
+  return Solver::finish(*this, input, P, edges.get(), x, delta, sigma, true, floor, cx, cy, initial);
 }

@@ -175,6 +175,87 @@ TEST_CASE("vpMorphOutlineFit takes an outline grown all round for an edge offset
   CHECK(std::fabs(Tp.scale() - 1.0) > 5e-4); // without the offset the band is taken for scale
 }
 
+namespace
+{
+// The blob with a part sticking out at angle \e a: a neck \e neck wide and \e length long, ending in a disc of
+// radius \e knob (0: a round cap as wide as the neck), in place of the outline's points across the neck's base.
+vpMorphContour withPart(const vpMorphContour &c, double a, double neck, double length, double knob)
+{
+  std::size_t k0 = 0;
+  for (std::size_t k = 0; k < c.size(); ++k)
+    if (std::fabs(std::remainder(std::atan2(c.y(k) - 240.0, c.x(k) - 320.0) - a, 2 * M_PI)) <
+        std::fabs(std::remainder(std::atan2(c.y(k0) - 240.0, c.x(k0) - 320.0) - a, 2 * M_PI)))
+      k0 = k;
+  const double px = c.x(k0), py = c.y(k0);
+  const double tx = c.x((k0 + 1) % c.size()) - c.x((k0 + c.size() - 1) % c.size()),
+               ty = c.y((k0 + 1) % c.size()) - c.y((k0 + c.size() - 1) % c.size()), tn = std::hypot(tx, ty);
+  const double ux = tx / tn, uy = ty / tn, nx = uy, ny = -ux; // along the outline, and out of the blob (CCW)
+  std::vector<double> x, y;
+  bool done = false;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const double along = (c.x(k) - px) * ux + (c.y(k) - py) * uy;
+    if (std::fabs(along) <= 0.5 * neck + 0.5 && std::hypot(c.x(k) - px, c.y(k) - py) < neck + 1.0) {
+      if (done)
+        continue;
+      done = true;
+      const double r = knob > 0.0 ? knob : 0.5 * neck;
+      const double stem = knob > 0.0 ? length : length - r;
+      for (double s = 0.0; s < stem; s += 0.5) // out along one side
+        x.push_back(px - 0.5 * neck * ux + s * nx), y.push_back(py - 0.5 * neck * uy + s * ny);
+      const double cx = px + (stem + (knob > 0.0 ? std::sqrt(r * r - 0.25 * neck * neck) : 0.0)) * nx,
+                   cy = py + (stem + (knob > 0.0 ? std::sqrt(r * r - 0.25 * neck * neck) : 0.0)) * ny;
+      const double b0 = std::atan2(py - 0.5 * neck * uy + stem * ny - cy, px - 0.5 * neck * ux + stem * nx - cx);
+      const double b1 = std::atan2(py + 0.5 * neck * uy + stem * ny - cy, px + 0.5 * neck * ux + stem * nx - cx);
+      double sweep = std::remainder(b1 - b0, 2 * M_PI); // round the end, through the tip
+      if (sweep > 0.0)
+        sweep -= 2 * M_PI;
+      const int steps = std::max(4, static_cast<int>(std::fabs(sweep) * r / 0.5));
+      for (int i = 0; i <= steps; ++i)
+        x.push_back(cx + r * std::cos(b0 + sweep * i / steps)), y.push_back(cy + r * std::sin(b0 + sweep * i / steps));
+      for (double s = stem - 0.5; s > 0.0; s -= 0.5) // and back along the other
+        x.push_back(px + 0.5 * neck * ux + s * nx), y.push_back(py + 0.5 * neck * uy + s * ny);
+      continue;
+    }
+    x.push_back(c.x(k));
+    y.push_back(c.y(k));
+  }
+  return vpMorphContour(x, y);
+}
+} // namespace
+
+TEST_CASE("vpMorphOutlineFit does not take a part finer than the pixel grid's phase for a bent one",
+          "[morph][outline_fit]")
+{
+  // A filament, and a knob on a neck, thinner than the fine width: seen in one image and not in the next as the grid
+  // moves under them; a tab wider than it is a part the goal lacks.
+  const vpMorphContour goal = blob();
+  const double fineWidth = vpMorphOutlineFit::fineWidth(1.0, 0.45); // a pixel, the renderer's blur
+  struct Part
+  {
+    const char *name;
+    double neck, length, knob;
+    bool counted;
+  };
+  for (const Part &part : {Part{"filament", 1.0, 20.0, 0.0, false}, Part{"knob on a neck", 1.2, 8.0, 5.0, false},
+                           Part{"tab", 8.0, 14.0, 0.0, true}}) {
+    INFO(part.name);
+    const vpMorphContour view = withPart(blob(), 1.0, part.neck, part.length, part.knob);
+    for (const double width : {0.0, fineWidth}) {
+      vpMorphOutlineFit fit(goal);
+      fit.setMinimumSigma(0.1);
+      fit.setFineWidth(width);
+      fit.fit(view, vpMorphRigidTransform());
+      INFO("fine width " << width);
+      CHECK(fit.getInsideShare() == 0.0);
+      CHECK((fit.getOutsideShare() > 0.0) == (part.counted || width == 0.0));
+    }
+  }
+  vpMorphOutlineFit fit(goal);
+  CHECK_THROWS_AS(fit.setFineWidth(-1.0), vpMorphException);
+  CHECK_THROWS_AS(fit.setFineWidth(std::nan("")), vpMorphException);
+  CHECK(fit.getFineWidth() == 0.0);
+}
+
 TEST_CASE("vpMorphOutlineFit settings and bad input", "[morph][outline_fit][bad]")
 {
   CHECK_THROWS_AS(vpMorphOutlineFit(vpMorphContour()), vpMorphException);

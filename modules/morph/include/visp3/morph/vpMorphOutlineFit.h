@@ -14,6 +14,8 @@
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 
+class vpMorphNearestEdge;
+
 /*!
   \class vpMorphOutlineFit
   \ingroup group_morph
@@ -83,6 +85,22 @@ public:
   void setMaximumSigma(double sigma);
   //! Largest robust scale of the noise (the contours' units; infinite: none).
   double getMaximumSigma() const { return m_maxSigma; }
+  /*!
+    The width under which a neck of the input may be seen joined or parted from one image to the next (the contours'
+    units, >= 0, default 0: none): the part it holds (a filament, a knob, the gap behind a slit) keeps or loses its
+    pixels as the pixel grid moves under it, and the outline goes round the part or not. A run of outliers on such a
+    part is not counted in getOutsideShare() and getInsideShare(); fineWidth() gives the width for an outline measured
+    on an image. \throw vpMorphException::badParameterError on a negative or non-finite value.
+  */
+  void setFineWidth(double width);
+  /*!
+    The fine width of an outline measured on an image whose pixel is \e pixel wide and whose edges are blurred by
+    \e blur (Gaussian sigma), both in the contours' units: a bar 2 sqrt(2) erf^-1(1/2) blur = 1.349 blur wide keeps
+    half its contrast at its middle, where the object mask is cut; one pixel more for the grid's phase.
+  */
+  static double fineWidth(double pixel, double blur) { return pixel + 1.3489795003921634 * blur; }
+  //! The width under which a neck may be seen joined or parted (the contours' units; 0: none).
+  double getFineWidth() const { return m_fineWidth; }
   //! Reweighting rounds at most (>= 1, default 20). \throw vpMorphException::badParameterError on 0.
   void setMaxIterations(unsigned int n);
   //! Reweighting rounds at most.
@@ -126,7 +144,8 @@ public:
   /*!
     Share of the input's samples in runs of outliers that lie outside the goal's region (a part that sticks out: a
     bend). Runs no longer than the noise's isolated outliers make by chance do not count: at the rate p of the
-    isolated ones, a run of m comes by chance about n p^m times, so only runs beyond the m that makes it 1e-3 do.
+    isolated ones, a run of m comes by chance about n p^m times, so only runs beyond the m that makes it 1e-3 do. Nor
+    does a run on a part held by a neck narrower than getFineWidth().
   */
   double getOutsideShare() const { return m_outsideShare; }
   //! The same for runs inside the goal's region (an occluder's edge, a cut).
@@ -155,13 +174,15 @@ public:
 private:
   struct Goal;   // the goal's edge grid, samples and normals: built once, shared by copies
   struct Solver; // the fits' machinery (vpMorphOutlineFit.cpp)
-  void structuredOutliers(const std::vector<double> &weights);
+  // edges: the input outline's, when the fit has them (else built if needed).
+  void structuredOutliers(const std::vector<double> &weights, const vpMorphContour &outline,
+                          const vpMorphNearestEdge *edges);
 
   std::shared_ptr<const Goal> m_goalData;
   vpMorphContour m_goal;
   bool m_goalCcw = true;
   bool m_withOffset = true, m_withScale = true;
-  double m_minSigma = 0.0, m_maxSigma = std::numeric_limits<double>::infinity();
+  double m_minSigma = 0.0, m_maxSigma = std::numeric_limits<double>::infinity(), m_fineWidth = 0.0;
   unsigned int m_maxIterations = 20, m_samples = 256;
 
   double m_sigma = 0.0, m_offset = 0.0, m_inlierShare = 0.0, m_outsideShare = 0.0, m_insideShare = 0.0;
