@@ -221,7 +221,7 @@ bool vpMorphSimRobot::solveCamera(const vpHomogeneousMatrix &fMc, vpColVector &q
   }
   // The solvers give one wrist among the two that orient the tool alike, (q4, q5, q6) and (q4 + pi, -q5, q6 + pi)
   // (or pi - q5 about a wrist whose singularity is at q5 = +-pi/2), the nearest by their own measure: each is tried,
-  // and the first in the configuration of the seed is kept (placeCamera()).
+  // and the first in the configuration of the seed is kept (below).
   std::vector<vpColVector> candidates{q};
   for (const double mirror : {0.0, M_PI}) {
     vpColVector f = q;
