@@ -243,7 +243,7 @@ bool vpMorphViewAligner::perspective(const vpMorphContour &currentN, const vpMor
       const vpMorphContour laid = c.G.apply(currentN.outline());
       vpMorphOutlineFit check(goalN);
       check.setMinimumSigma(floor);
-      check.setFineWidth(measured ? vpMorphOutlineFit::fineWidth(normalisedPixels(1.0), currentN.outlineBlur()) : 0.0);
+      check.setFineWidth(fineWidth(currentN, measured));
       check.setMaxIterations(1);
       check.setEdgeOffset(outlineFitOffset(currentN, goalN));
       check.fit(laid, vpMorphRigidTransform());
@@ -344,7 +344,7 @@ vpMorphViewAlignment vpMorphViewAligner::align(const vpMorphContour &current)
       const bool measured = currentN.hasOutline() && goalN->hasOutline();
       fit.setEdgeOffset(outlineFitOffset(currentN, *goalN));
       fit.setMinimumSigma(normalisedPixels(measured ? outlineSigmaFloorPx() : polygonSigmaFloorPx()));
-      fit.setFineWidth(measured ? vpMorphOutlineFit::fineWidth(normalisedPixels(1.0), currentN.outlineBlur()) : 0.0);
+      fit.setFineWidth(fineWidth(currentN, measured));
       // Residuals beyond the noise's limit are not the goal's edges seen again: the fit settles on the part that is.
       fit.setMaximumSigma(normalisedPixels(measured ? outlineSigmaLimitPx() : polygonSigmaLimitPx()));
       bool haveWarm = false;

@@ -166,6 +166,11 @@ private:
   //! The goal at \e currentN's blur; \e currentN laid at the goal's when it is the sharper.
   BlurredGoal &atOneBlur(vpMorphContour &currentN);
   double normalisedPixels(double px) const { return px / std::max(m_cam.get_px(), m_cam.get_py()); }
+  //! The width of the view's necks the grid may join or part (vpMorphOutlineFit::fineWidth()); 0 on polygons.
+  double fineWidth(const vpMorphContour &currentN, bool measured) const
+  {
+    return measured ? vpMorphOutlineFit::fineWidth(normalisedPixels(1.0), currentN.outlineBlur()) : 0.0;
+  }
   vpMorphViewAlignment fromFit(const vpMorphRigidTransform &T, const vpMorphOutlineFit &fit,
                                const vpMorphContour &currentN, bool cold, bool measured) const;
   //! A view no similarity explains, tried as \e goalN (the goal at the view's blur) seen tilted (a homography): true,
