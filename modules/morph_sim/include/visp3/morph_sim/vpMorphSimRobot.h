@@ -136,8 +136,9 @@ public:
   /*!
     A sudden, uncommanded displacement of the camera (the robot or its mount was bumped): the true camera moves
     instantly by \e cMcp, expressed in its current frame (the new camera pose is fMc * cMcp), through inverse
-    kinematics from the current joints for the arms. Not a commanded motion: the path length, the step count
-    and the status are kept. Returns false, robot not moved, when the new pose is out of reach.
+    kinematics in the current joints' configuration for the arms. Not a commanded motion: the path length, the step
+    count and the status are kept. Returns false, robot not moved, when that configuration does not reach the new
+    pose within the limits.
   */
   bool displaceCamera(const vpHomogeneousMatrix &cMcp);
   //! The desired pose given to setDesiredPose().
