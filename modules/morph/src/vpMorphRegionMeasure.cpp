@@ -26,6 +26,7 @@ using vpMorphLevelSpread::fourSigma;
 using vpMorphLevelSpread::median;
 using vpMorphLevelSpread::medianOf;
 using vpMorphLevelSpread::oneSidedMad;
+using vpMorphLevelSpread::quantizedDeviationMedian;
 
 /*
   The histogram of the grey levels under a mask: built once per mask, it gives the level under it, the share of it at
@@ -76,7 +77,8 @@ struct LevelHistogram
     The histogram's median (the lowest level with half the counts at or under it) and a window about it of 4 sigma
     (at least half a grey level): the levels of the mask's main surface. n > 0. Sigma is 1.4826 times the median
     deviation of the side of the median that deviates less (oneSidedMad()): another surface in the mask (a card
-    beside the object) lies on one side and would widen the window over its own levels.
+    beside the object) lies on one side and would widen the window over its own levels. The deviations are the
+    levels' rounded ones (quantizedDeviationMedian()).
   */
   void window(int &med, double &halfWidth) const
   {
@@ -85,7 +87,8 @@ struct LevelHistogram
     for (int v = 0; v < 256; ++v)
       (v <= med ? below : above)[std::abs(v - med)] += h[v];
     above[0] += h[med];
-    halfWidth = fourSigma(oneSidedMad(medianOf(below), h[0] > 0, medianOf(above), h[255] > 0));
+    halfWidth = fourSigma(oneSidedMad(quantizedDeviationMedian(below), h[0] > 0, quantizedDeviationMedian(above),
+                                      h[255] > 0));
   }
 
   /*

@@ -907,6 +907,37 @@ TEST_CASE("extractor: a light falling off across the view neither joins the plan
     }
 }
 
+// vpMorphLevelSpread (internal to the module): the spread of a surface's levels, from their rounded values.
+#include "../src/vpMorphLevelSpread.h"
+
+TEST_CASE("level spread: the median deviation read from rounded levels is the continuous levels' one",
+          "[extract][light]")
+{
+  // Levels spread evenly over +-h about 40 (a dark surface under a light that falls off spans a few grey levels),
+  // rounded; the deviations below the median level binned as vpMorphRegionMeasure bins them, the median's own bin
+  // included. The continuous median deviation is h / 2.
+  std::mt19937 rng(3);
+  for (double h : {1.5, 3.0, 6.0}) {
+    std::uniform_real_distribution<double> level(40.0 - h, 40.0 + h);
+    std::array<long, 256> below{};
+    for (int k = 0; k < 60000; ++k) {
+      const long v = std::lround(level(rng));
+      if (v <= 40)
+        ++below[std::size_t(40 - v)];
+    }
+    INFO("levels 40 +- " << h << ": median deviation " << vpMorphLevelSpread::quantizedDeviationMedian(below)
+                         << ", of the rounded deviations " << vpMorphLevelSpread::medianOf(below));
+    CHECK(std::fabs(vpMorphLevelSpread::quantizedDeviationMedian(below) - 0.5 * h) < 0.03);
+    if (h == 1.5) // a third of the levels at the median's: the rounded deviations' median is 0
+      CHECK(vpMorphLevelSpread::medianOf(below) == 0.0);
+  }
+  // Every level at the median's (a flat surface, no noise): half a rounding step's median, a quarter of a grey level.
+  std::array<long, 256> flat{};
+  flat[0] = 1000;
+  CHECK(vpMorphLevelSpread::quantizedDeviationMedian(flat) == Approx(0.25));
+  CHECK(vpMorphLevelSpread::quantizedDeviationMedian(std::array<long, 256>{}) == 0.0);
+}
+
 // vpMorphGreyClasses (internal to the module) splits a shaded view pixel by pixel at its threshold plane.
 #include "../src/vpMorphGreyClasses.h"
 
