@@ -16,8 +16,8 @@ namespace vpMorphLevelSpread
 // half a grey level (the quantization's).
 inline double fourSigma(double mad) { return std::max(0.5, 4.0 * 1.4826 * mad); }
 
-// The median of a histogram (of levels or of deviations): its lowest bin with half the counts at or under it, 0 when
-// empty.
+// The median of a histogram of levels: its lowest bin with half the counts at or under it, 0 when empty (the spread
+// about it is quantizedDeviationMedian()'s).
 inline double medianOf(const std::array<long, 256> &dev)
 {
   long total = 0, acc = 0;
