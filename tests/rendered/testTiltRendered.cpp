@@ -42,8 +42,8 @@ TEST_CASE("A light that falls off across the view adds no tilt to the one the pi
 {
   // The benchmark's gradient set: the light's gain 1 + f d, d the position along a direction over the half-diagonal, no
   // noise. The dark object (40) then spans a few grey levels only, the plane (210) tens. Fall-offs of 0.3 and 0.45: the
-  // plane stays under the sensor's limit about the object (at 0.6 it clips on one side of some, which the region's
-  // levels take as clipped only where most of the object's surroundings are).
+  // plane stays under the sensor's limit about the object (at 0.6 it clips beside some on one side, where the edge
+  // outline lies off the rest: a known limit, on the morph design page).
   const vpHomogeneousMatrix cdMo(0.01, -0.005, 0.5, 0, 0, vpMath::rad(25));
   for (const std::string name : {"hammer", "key", "pliers", "screwdriver", "wedge", "wrench"}) {
     const vpMorphPlanarScene plain(std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png");
