@@ -12,14 +12,20 @@
 
 namespace vpMorphRenderedTest
 {
+//! The object seen from \e cMo, its silhouette extracted (the image's noise seeded by \e frame).
+inline vpMorphContour seenFrom(const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cMo, unsigned int frame)
+{
+  vpImage<unsigned char> I;
+  scene.render(cMo, I, frame);
+  return vpMorphTagPoseEstimator::silhouette(I, scene.projectedTagCorners(cMo));
+}
+
 //! The object seen from the desired camera turned by \e deg about its optical axis, its silhouette extracted (the
 //! image's noise seeded by the turn).
 inline vpMorphContour view(const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cdMo, int deg)
 {
-  const vpHomogeneousMatrix cMo = vpHomogeneousMatrix(0, 0, 0, 0, 0, vpMath::rad(deg)).inverse() * cdMo;
-  vpImage<unsigned char> I;
-  scene.render(cMo, I, static_cast<unsigned int>(deg + 360));
-  return vpMorphTagPoseEstimator::silhouette(I, scene.projectedTagCorners(cMo));
+  return seenFrom(scene, vpHomogeneousMatrix(0, 0, 0, 0, 0, vpMath::rad(deg)).inverse() * cdMo,
+                  static_cast<unsigned int>(deg + 360));
 }
 
 //! \e current aligned on \e goal from no start, with \e scene's camera.

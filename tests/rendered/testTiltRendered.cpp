@@ -9,12 +9,12 @@
 #include <string>
 
 #include <visp3/core/vpHomogeneousMatrix.h>
-#include <visp3/core/vpImage.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/morph/vpMorphRigidTransform.h>
 #include <visp3/morph_sim/vpMorphPlanarScene.h>
-#include <visp3/morph_sim/vpMorphTagPoseEstimator.h>
 #include <visp3/morph_vs/vpMorphTiltEstimator.h>
+
+#include "testRenderedView.h"
 
 namespace
 {
@@ -23,10 +23,8 @@ namespace
 double tiltRead(const vpMorphPlanarScene &scene, const vpHomogeneousMatrix &cMo, const vpMorphContour &taughtN,
                 double Zd, double *deviation = nullptr)
 {
-  vpImage<unsigned char> I;
-  scene.render(cMo, I, 1);
   const vpCameraParameters cam = scene.camera();
-  const vpMorphContour viewN = vpMorphTagPoseEstimator::silhouette(I, scene.projectedTagCorners(cMo)).toNormalized(cam);
+  const vpMorphContour viewN = vpMorphRenderedTest::seenFrom(scene, cMo, 1).toNormalized(cam);
   vpMorphTiltEstimator tilt;
   tilt.setPixelSize(1.0 / cam.get_px());
   vpMorphTiltEstimator::Reading r;
@@ -47,10 +45,7 @@ TEST_CASE("A light that falls off across the view adds no tilt to the one the pi
   const vpHomogeneousMatrix cdMo(0.01, -0.005, 0.5, 0, 0, vpMath::rad(25));
   for (const std::string name : {"hammer", "key", "pliers", "screwdriver", "wedge", "wrench"}) {
     const vpMorphPlanarScene plain(std::string(VISPMORPH_DATA_DIR) + "/objects/" + name + ".png");
-    vpImage<unsigned char> I;
-    plain.render(cdMo, I, 1);
-    const vpMorphContour taughtN =
-        vpMorphTagPoseEstimator::silhouette(I, plain.projectedTagCorners(cdMo)).toNormalized(plain.camera());
+    const vpMorphContour taughtN = vpMorphRenderedTest::seenFrom(plain, cdMo, 1).toNormalized(plain.camera());
     // What the evenly lit goal reads from the camera moved parallel to the plane by about half a pixel and a pixel (no
     // tilt): the edges' rounding to the pixel grid alone.
     double grid = 0.0, gridDeviation = 0.0;
