@@ -358,8 +358,10 @@ vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const s
     sumMeasure += cmd.measureMs;
     sumControl += cmd.controlMs;
     res.maxControlMs = std::max(res.maxControlMs, cmd.controlMs);
-    if (measuredIterations > 1) // the first period's recognition and plan excluded
+    if (measuredIterations > 1) { // the first period's recognition and plan excluded
       res.periodMs.push_back(cmd.measureMs + cmd.controlMs);
+      res.periodMeasureMs.push_back(cmd.measureMs);
+    }
     if (cmd.converged) {
       res.converged = true;
       still = true;

@@ -33,7 +33,8 @@ nlohmann::json jnum(double x) { return std::isfinite(x) ? nlohmann::json(x) : nl
 
 std::string vpMorphBenchTimings::header()
 {
-  return "set,robot,controller,scenario,object,yardstick_ms,measure_ms,control_ms,max_control_ms,run_cpu_s,period_ms";
+  return "set,robot,controller,scenario,object,yardstick_ms,measure_ms,control_ms,max_control_ms,run_cpu_s,period_ms,"
+         "period_measure_ms";
 }
 
 void vpMorphBenchTimings::add(const vpMorphBenchResult &r, double yardstickMs)
@@ -50,6 +51,7 @@ void vpMorphBenchTimings::add(const vpMorphBenchResult &r, double yardstickMs)
   e.maxControl = r.maxControlMs;
   e.runCpu = r.runCpuS;
   e.periods = r.periodMs;
+  e.periodMeasures = r.periodMeasureMs;
   m_entries.push_back(e);
 }
 
@@ -63,8 +65,8 @@ void vpMorphBenchTimings::readTimings(std::istream &in, const std::string &what)
     if (line.empty())
       continue;
     const std::vector<std::string> f = vpMorphBenchCsv::split(line);
-    if (f.size() != 11)
-      throw vpMorphException(vpMorphException::ioError, what + ": a row without its 11 fields: " + line);
+    if (f.size() != 12)
+      throw vpMorphException(vpMorphException::ioError, what + ": a row without its 12 fields: " + line);
     Entry e;
     e.set = f[0];
     e.robot = f[1];
@@ -76,10 +78,15 @@ void vpMorphBenchTimings::readTimings(std::istream &in, const std::string &what)
     e.control = vpMorphBenchCsv::number(f[7]);
     e.maxControl = vpMorphBenchCsv::number(f[8]);
     e.runCpu = vpMorphBenchCsv::number(f[9]);
-    std::istringstream periods(f[10]);
+    std::istringstream periods(f[10]), measures(f[11]);
     double p;
     while (periods >> p)
       e.periods.push_back(p);
+    while (measures >> p)
+      e.periodMeasures.push_back(p);
+    if (!e.periodMeasures.empty() && e.periodMeasures.size() != e.periods.size())
+      throw vpMorphException(vpMorphException::ioError,
+                             what + ": a row whose periods and their measures differ in number: " + line);
     m_entries.push_back(e);
   }
 }
@@ -103,8 +110,13 @@ std::vector<std::string> vpMorphBenchTimings::rows() const
     os << e.set << ',' << e.robot << ',' << e.controller << ',' << e.scenario << ',' << e.object << ','
        << num(e.yardstick) << ',' << num(e.measure) << ',' << num(e.control) << ',' << num(e.maxControl) << ','
        << num(e.runCpu) << ',';
-    for (std::size_t k = 0; k < e.periods.size(); ++k)
-      os << (k ? " " : "") << num(e.periods[k]);
+    auto list = [&os](const std::vector<double> &v) {
+      for (std::size_t k = 0; k < v.size(); ++k)
+        os << (k ? " " : "") << num(v[k]);
+    };
+    list(e.periods);
+    os << ',';
+    list(e.periodMeasures);
     out.push_back(os.str());
   }
   return out;
@@ -128,7 +140,7 @@ std::vector<vpMorphBenchTimings::Summary> vpMorphBenchTimings::summarize() const
     s.set = g.second.front()->set;
     s.robot = g.second.front()->robot;
     s.controller = g.second.front()->controller;
-    std::vector<double> ms, ratio;
+    std::vector<double> ms, ratio, measures, controls;
     double sumM = 0, sumC = 0, sumRun = 0;
     unsigned int measured = 0;
     for (const Entry *e : g.second) {
@@ -138,6 +150,10 @@ std::vector<vpMorphBenchTimings::Summary> vpMorphBenchTimings::summarize() const
         ms.push_back(p);
         if (e->yardstick > 0)
           ratio.push_back(p / e->yardstick);
+      }
+      for (std::size_t k = 0; k < e->periodMeasures.size() && k < e->periods.size(); ++k) {
+        measures.push_back(e->periodMeasures[k]);
+        controls.push_back(e->periods[k] - e->periodMeasures[k]);
       }
       if (e->measure > 0 || e->control > 0) {
         ++measured;
@@ -151,6 +167,8 @@ std::vector<vpMorphBenchTimings::Summary> vpMorphBenchTimings::summarize() const
     s.p95Ms = quantile(ms, 0.95);
     s.medianRatio = quantile(ratio, 0.5);
     s.p95Ratio = quantile(ratio, 0.95);
+    s.medianMeasureMs = quantile(measures, 0.5);
+    s.medianControlMs = quantile(controls, 0.5);
     s.meanMeasureMs = measured ? sumM / measured : kNaN;
     s.meanControlMs = measured ? sumC / measured : kNaN;
     s.meanRunCpuS = s.runs ? sumRun / s.runs : kNaN;
@@ -176,6 +194,8 @@ std::string vpMorphBenchTimings::json(const std::map<std::string, std::string> &
                               {"p95_period_ms", jnum(s.p95Ms)},
                               {"median_period_over_yardstick", jnum(s.medianRatio)},
                               {"p95_period_over_yardstick", jnum(s.p95Ratio)},
+                              {"median_measure_ms", jnum(s.medianMeasureMs)},
+                              {"median_control_ms", jnum(s.medianControlMs)},
                               {"mean_measure_ms", jnum(s.meanMeasureMs)},
                               {"mean_control_ms", jnum(s.meanControlMs)},
                               {"max_control_ms", jnum(s.maxControlMs)},
@@ -187,12 +207,14 @@ std::string vpMorphBenchTimings::markdown() const
 {
   std::ostringstream os;
   os << "| set | robot | controller | periods | compute a period, median / p95 (ms) | over the yardstick, median / p95 "
-        "| mean measure / control (ms) | CPU a run (s) |\n|---|---|---|---|---|---|---|---|\n";
+        "| a period's measure / control, median (ms) | mean measure / control (ms) | CPU a run (s) |\n"
+        "|---|---|---|---|---|---|---|---|---|\n";
   auto dash = [](const std::string &x) { return x.empty() ? std::string("-") : x; };
   for (const Summary &s : summarize())
     os << "| " << s.set << " | " << s.robot << " | " << s.controller << " | " << s.periods << " | "
        << dash(num(s.medianMs, 3)) << " / " << dash(num(s.p95Ms, 3)) << " | " << dash(num(s.medianRatio, 3)) << " / "
-       << dash(num(s.p95Ratio, 3)) << " | " << dash(num(s.meanMeasureMs, 3)) << " / " << dash(num(s.meanControlMs, 3))
-       << " | " << dash(num(s.meanRunCpuS, 3)) << " |\n";
+       << dash(num(s.p95Ratio, 3)) << " | " << dash(num(s.medianMeasureMs, 3)) << " / "
+       << dash(num(s.medianControlMs, 3)) << " | " << dash(num(s.meanMeasureMs, 3)) << " / "
+       << dash(num(s.meanControlMs, 3)) << " | " << dash(num(s.meanRunCpuS, 3)) << " |\n";
   return os.str();
 }

@@ -445,8 +445,10 @@ TEST_CASE("bench timings: per-period compute, median and 95th percentile, over t
   r.controller = "morph";
   r.measureMs = 0.5;
   r.controlMs = 1.0;
-  for (int k = 1; k <= 100; ++k)
-    r.periodMs.push_back(k * 0.1); // 0.1 .. 10 ms
+  for (int k = 1; k <= 100; ++k) {
+    r.periodMs.push_back(k * 0.1);                      // 0.1 .. 10 ms
+    r.periodMeasureMs.push_back(k % 2 ? 0.1 : k * 0.1); // the odd periods' control is all but 0.1 ms
+  }
   t.add(r, 2.0);
   const auto s = t.summarize();
   REQUIRE(s.size() == 1);
@@ -455,12 +457,23 @@ TEST_CASE("bench timings: per-period compute, median and 95th percentile, over t
   CHECK(s[0].p95Ms == Approx(9.5));
   CHECK(s[0].medianRatio == Approx(2.5));
   CHECK(s[0].meanControlMs == Approx(1.0));
+  // Measures: 50 at 0.1 ms and the even 0.2 .. 10 ms: the 50th of the 100 is 0.1. Controls: 50 at 0 and the odd
+  // 0 .. 9.8 ms: the 50th is 0.
+  CHECK(s[0].medianMeasureMs == Approx(0.1));
+  CHECK(s[0].medianControlMs == Approx(0.0).margin(1e-12));
   std::ostringstream text;
   text << vpMorphBenchTimings::header() << "\n" << t.rows()[0] << "\n";
   vpMorphBenchTimings back;
   std::istringstream in(text.str());
   back.readTimings(in);
   CHECK(back.summarize()[0].p95Ms == Approx(9.5));
+  CHECK(back.summarize()[0].medianMeasureMs == Approx(0.1));
+  CHECK(t.markdown().find("| 0.1 / 0 |") != std::string::npos);
+  // A row whose periods and their measures differ in number is refused.
+  std::string row = t.rows()[0];
+  row.erase(row.rfind(' '));
+  std::istringstream bad(vpMorphBenchTimings::header() + "\n" + row + "\n");
+  CHECK_THROWS_AS(vpMorphBenchTimings().readTimings(bad), vpMorphException);
 }
 
 TEST_CASE("bench: the settling iteration does not depend on recording the curves", "[bench][loop]")

@@ -22,7 +22,7 @@ RUN_HEADER = ("set,robot,controller,scenario,seed,object,start_rotation_deg,star
               "false_converged,truth,tag_size_mm,taught_tag_t_mm,taught_tag_r_deg,final_overlap_t_mm,"
               "final_overlap_r_deg,symmetry,unobservable")
 TIMINGS_HEADER = ("set,robot,controller,scenario,object,yardstick_ms,measure_ms,control_ms,max_control_ms,run_cpu_s,"
-                  "period_ms")
+                  "period_ms,period_measure_ms")
 
 
 def main():
@@ -66,7 +66,8 @@ def main():
                 period = float(measure) + float(control)
                 timings.append(",".join(str(v) for v in [
                     s, robot, c, scenario, "pliers", 0.8, measure, control, control, "%.3g" % (0.01 * iters * period),
-                    " ".join("%.4g" % (period * f) for f in (0.9, 1.0, 1.1))]))
+                    " ".join("%.4g" % (period * f) for f in (0.9, 1.0, 1.1)),
+                    " ".join("%.4g" % (float(measure) * f) for f in (0.9, 1.0, 1.1))]))
                 if s == "noise" and c == "moments":
                     continue  # a run without curve
                 t0, r0 = max(trans, 1.0), max(abs(rot), 1.0)

@@ -71,6 +71,8 @@ public:
   double maxControlMs = 0;        //!< worst control-law time
   //! Compute (measure + control, CPU ms) of each measured period but the first (its recognition and plan).
   std::vector<double> periodMs;
+  //! The measure's part of each of periodMs (CPU ms).
+  std::vector<double> periodMeasureMs;
   double runCpuS = 0;              //!< CPU time of the whole run on its thread, rendering and set-up included (s)
   double tagSize = 0;              //!< the scene's tag (black border), m
   double taughtTagTranslation = 0; //!< the tag pose's error in the taught view (the tag truth's accuracy), m
