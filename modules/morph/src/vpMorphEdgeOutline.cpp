@@ -31,8 +31,7 @@ template <typename T> double bilinear(const cv::Mat &m, double x, double y)
   The level about which the edge profiles through \e profiles (pixel, gradient direction) are antisymmetric, searched
   within half a step (\e slope per pixel) of \e level0: a blurred step g(x0 + u) + g(x0 - u) = 2 g(x0) whatever the
   blur, and on that level, x0 is the edge. Only samples off the sensor's limits count, so a side clipped beyond the
-  middle of the step does not move it; the gradient peak does, through the 3x3 support of its derivative (measured:
-  10 grey levels low on a step lifted to 285 and clipped at 255 under a 1.2 px blur, the edge 0.15 px out).
+  middle of the step does not move it; the gradient peak does, through the 3x3 support of its derivative.
   Returns \e level0 when too few samples are left. Profile k's level is the level times \e scale[k] (1 for every
   profile of an evenly lit edge; under a light that falls off, the shading there).
 */

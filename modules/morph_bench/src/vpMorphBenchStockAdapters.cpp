@@ -136,9 +136,8 @@ private:
   surface, mu3 and alpha references, current L), the desired moments from the taught template, the plane of the
   interaction matrix from the tag pose.
   - The moments are those of the measured edge outline (to a few hundredths of a pixel, see fill()), not of the
-    polygon that approximates it: the polygon's vertices move from one image to the next, and their moments kept the
-    loop wandering a millimetre and a degree about the goal (seed 1's planar starts that converged: path ratios
-    15-50, none within 1 mm and 0.5 deg).
+    polygon that approximates it: the polygon's vertices move from one image to the next, and their moments keep the
+    loop wandering about the goal (\ref page_benchmark_history).
   - "moments": ViSP's six features, xn, yn, an, c-invariants sx and sy, alpha, on the six degrees of freedom
     (EYEINHAND_L_cVe_eJe). On a thin object the c-invariants barely depend on the tilt (singular values of L down to
     0.003 on the pliers), and the pseudo-inverse commands metres per second from the first image.
@@ -200,8 +199,7 @@ private:
     spaced vertices for vpMomentObject, counter-clockwise in the moment sense (positive m00). Oriented before the
     moments are computed: ViSP's dense-polygon moments to order 6 cost about 15 us per vertex (128 vertices: 2 ms;
     the whole outline, a point per boundary pixel: 15-20 ms), and 128 vertices, every 4 px or so on these objects,
-    leave the final errors within hundredths of a millimetre of the whole outline's (planar, planar-hard and noise
-    sets, seed 1).
+    leave the final errors where the whole outline's are (\ref page_benchmark_history).
   */
   static void fill(vpMomentObject &obj, const vpMorphContour &normalized)
   {

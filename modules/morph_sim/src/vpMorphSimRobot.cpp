@@ -165,8 +165,7 @@ vpColVector vpMorphSimRobot::referenceJointPositions() const
   case AFMA6:
     // Gantry in the middle of its workspace, joint 5 at 45 deg. Not at 90 deg, where the tool looks straight down:
     // there joints 4 and 6 turn about one axis (the wrist singularity, eJe of rank 5), and a turn about the optical
-    // axis commanded near it became large joint velocities and a sudden jump of the camera (measured: runs that
-    // succeed on the other robots left the view, 0.2-0.5 m off).
+    // axis commanded near it becomes large joint velocities and a sudden jump of the camera.
     q[0] = 0.05;
     q[1] = -0.04;
     q[2] = 0.0;

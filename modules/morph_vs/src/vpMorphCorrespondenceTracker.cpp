@@ -114,9 +114,9 @@ const vpMorphCorrespondence &vpMorphCorrespondenceTracker::update(const vpMorphC
     vpMorphCorrespondence all; // the least work over all starts, when it was solved to confirm a jump
     if (jumpOnly && m_regionCheck) {
       // A real contour that gains or loses a vertex changes its work by far more than the jump factor while the
-      // window still holds the best start (measured: 508 of the 558 rejected windows of the deformable set, camera,
-      // seed 2). The least work over all starts, no lower than the window's, confirms it, and the region check is not
-      // repeated: it was passed by the correspondence tracked here (see m_lastOverride), which it confirms.
+      // window still holds the best start. The least work over all starts, no lower than the window's, confirms it,
+      // and the region check is not repeated: it was passed by the correspondence tracked here (see m_lastOverride),
+      // which it confirms.
       all = m_matcher.match(current, target);
       confirmed = !(all.work() < windowWork * (1.0 - 1e-12));
       if (confirmed) {

@@ -64,10 +64,9 @@ void vpMorphHandEyeEstimator::addMove(const vpHomogeneousMatrix &eMe, const vpHo
   vpColVector b(2);
   b[0] = -tax;
   b[1] = -tay;
-  // One wrong view (a contour re-digitised across an occluder for a period: measured, an image motion 30 times the
-  // commanded one, twice in a row) would otherwise pull the scale to 0.01 and stall the servo for good. What the
-  // current estimate fails to explain is at most the move's own size (twice: any error about the axis, a projection
-  // off by up to 3x) plus what the rotation does to an offset error of up to kOutlierOffset.
+  // One wrong view (a contour re-digitized across an occluder) must not pull the scale toward 0 and stall the servo:
+  // what the current estimate fails to explain is at most the move's own size (twice: any error about the axis, a
+  // projection off by up to 3x) plus what the rotation does to an offset error of up to kOutlierOffset.
   const double slack = kOutlierMoves * b.frobeniusNorm() + std::fabs(phi) * kOutlierOffset;
   if ((J * m_u - b).frobeniusNorm() > slack) {
     ++m_rejected;
@@ -91,10 +90,8 @@ void vpMorphHandEyeEstimator::solve()
   const double k = std::hypot(u[2], u[3]);
   if (!std::isfinite(k) || k < 1e-3 || !std::isfinite(u[0]) || !std::isfinite(u[1]))
     return;
-  // The intrinsics given are a calibrated camera's: a scale beyond kMaxTranslationScale is the planar model failing,
-  // not a calibration. Measured: a pliers seen 21 deg tilted (hand-eye and intrinsics exact) pulled k from 1 to 0.02
-  // in 80 periods through moves the outlier gate let through; every translation command shrank fifty times and the
-  // camera stopped 4.4 mm off after 419 iterations.
+  // The intrinsics given are a calibrated camera's: a scale beyond kMaxTranslationScale is the planar model failing
+  // (a tilted view), not a calibration, and would shrink every translation command (\ref page_design_servo).
   const double kb = std::min(kMaxTranslationScale, std::max(1.0 / kMaxTranslationScale, k));
   u[2] *= kb / k;
   u[3] *= kb / k;
