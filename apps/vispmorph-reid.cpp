@@ -26,7 +26,9 @@
   Each model (vpMorphShapeDistance::fromName(), default the database's default; "part+MODEL": vpMorphPartRecognizer
   over MODEL's database, its RIGID twin first) gets a database of the same templates, calibrated, and every query. The
   answer is right (the exact template, accepted), wrong (another, accepted) or rejected; an accepted view of an absent
-  shape is a false accept. Query time: the CPU time of recognize() on the thread that runs it (one core). Writes
+  shape is a false accept. A rejected view is counted apart when it was rejected as ambiguous
+  (vpMorphRecognition::ambiguous: two templates fit it and it does not tell them apart, a look-alike's refusal rather
+  than no fit). Query time: the CPU time of recognize() on the thread that runs it (one core). Writes
   DIR/queries.csv (a row per query and model), DIR/summary.md and DIR/summary.json (with the commit the tool was built
   at); the textures drawn (DIR/textures) are kept for a replay.
 
@@ -250,6 +252,12 @@ std::string outcome(const Query &q, const Entry &e, const Model &tested, std::si
   return tested.db[r.index].name() == e.shape.id ? "right" : "wrong";
 }
 
+//! A view rejected because two templates fit it alike (vpMorphRecognition::ambiguous).
+bool lookAlikes(const Query &q, std::size_t model)
+{
+  return !q.contour.empty() && !q.answers[model].accepted && q.answers[model].ambiguous;
+}
+
 //! Wilson's 95 % interval of a proportion k / n, in percent.
 std::string interval(std::size_t k, std::size_t n)
 {
@@ -308,7 +316,7 @@ void writeRows(std::ostream &f, const std::vector<Query> &queries, const std::ve
                const std::vector<Model> &dbs, const std::vector<std::string> &models)
 {
   f << "model,condition,shape,class,present,view,answer,accepted,outcome,distance,threshold,support,margin,reranked,"
-       "evaluated,ms\n"
+       "ambiguous,evaluated,ms\n"
     << std::setprecision(6);
   for (std::size_t m = 0; m < models.size(); ++m)
     for (const Query &q : queries) {
@@ -316,23 +324,25 @@ void writeRows(std::ostream &f, const std::vector<Query> &queries, const std::ve
       f << models[m] << ',' << q.condition << ',' << e.shape.id << ',' << e.shape.cls << ',' << e.present << ','
         << q.view << ',';
       if (q.contour.empty()) {
-        f << ",0,no-silhouette,,,,,,,\n";
+        f << ",0,no-silhouette,,,,,,,,\n";
         continue;
       }
       const vpMorphRecognition &r = q.answers[m];
       f << dbs[m].db[r.index].name() << ',' << r.accepted << ',' << outcome(q, e, dbs[m], m) << ',' << r.distance << ','
-        << r.threshold << ',' << r.support << ',' << r.margin << ',' << r.reranked << ',' << r.evaluated << ','
-        << q.ms[m] << '\n';
+        << r.threshold << ',' << r.support << ',' << r.margin << ',' << r.reranked << ',' << r.ambiguous << ','
+        << r.evaluated << ',' << q.ms[m] << '\n';
     }
 }
 
-//! Per model and condition: right, wrong, rejected (present shapes), false accepts (absent ones), query time.
+//! Per model and condition: right, wrong, rejected and of those the look-alikes' (present shapes), false accepts
+//! (absent ones), query time.
 json summarise(const std::vector<Query> &queries, const std::vector<Entry> &entries, const std::vector<Model> &dbs,
                const std::vector<std::string> &models, const std::vector<std::string> &conditions, std::ostream &md)
 {
   json j = json::array();
-  md << "| model | condition | views | right | wrong | rejected | no silhouette | absent: views | false accepts |\n"
-        "|---|---|---|---|---|---|---|---|---|\n";
+  md << "| model | condition | views | right | wrong | rejected | rejected as look-alikes | no silhouette | absent: views | "
+        "false accepts |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
   std::ostringstream timeMd;
   timeMd << "\n| model | templates | queries | median ms | mean ms | 95th percentile ms |\n|---|---|---|---|---|---|\n";
   for (std::size_t m = 0; m < models.size(); ++m) {
@@ -346,12 +356,14 @@ json summarise(const std::vector<Query> &queries, const std::vector<Entry> &entr
         const Entry &e = entries[q.entry];
         ++(e.present ? present : absent);
         ++n[(e.present ? "" : "absent-") + outcome(q, e, dbs[m], m)];
+        if (e.present && lookAlikes(q, m))
+          ++n["look-alikes"];
         if (!q.contour.empty())
           ms.push_back(q.ms[m]);
       }
       md << "| " << models[m] << " | " << c << " | " << present << " | " << interval(n["right"], present) << " | "
          << interval(n["wrong"], present) << " | " << interval(n["rejected"], present) << " | "
-         << n["no-silhouette"] + n["absent-no-silhouette"] << " | " << absent << " | "
+         << interval(n["look-alikes"], present) << " | " << n["no-silhouette"] + n["absent-no-silhouette"] << " | " << absent << " | "
          << interval(n["absent-false-accept"], absent) << " |\n";
       j.push_back({{"model", models[m]},
                    {"condition", c},
@@ -359,6 +371,7 @@ json summarise(const std::vector<Query> &queries, const std::vector<Entry> &entr
                    {"right", n["right"]},
                    {"wrong", n["wrong"]},
                    {"rejected", n["rejected"]},
+                   {"rejected_look_alikes", n["look-alikes"]},
                    {"no_silhouette", n["no-silhouette"]},
                    {"absent_views", absent},
                    {"absent_no_silhouette", n["absent-no-silhouette"]},

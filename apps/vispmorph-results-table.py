@@ -7,8 +7,9 @@ Usage: vispmorph-results-table.py --reid OUTDIR
 
 --reid reads OUTDIR/summary.json of a vispmorph-reid run and prints a row per model and group of conditions (pose,
 noise, blur, tilt; occlusion, combined-occlusion; any other condition of the run after them): the right answers,
-the wrong ones and the rejections over the views of present shapes, and the false accepts over the views of absent
-ones, in per cent of the condition's views.
+the wrong ones, the rejections and of those the look-alikes' (two templates fit the view alike; "-" for runs that did
+not count them) over the views of present shapes, and the false accepts over the views of absent ones, in per cent
+of the condition's views.
 --retrieval reads OUTDIR/summary.json of vispmorph-retrieval runs (Kimia-99 and MPEG-7, told apart by the name of
 their image folder) and prints a row per distance: the Kimia-99 counts at ranks 1..10 and their sum, the MPEG-7
 bull's-eye score and the wall time of the MPEG-7 matrix. The first row is Shape Context's published figures (a
@@ -97,6 +98,9 @@ def reid_table(outdir):
             raise ResultsFileError("'%s': a row of results lacks one of %s" % (path, ", ".join(REID_FIELDS)))
         if not all(isinstance(r[k], int) and r[k] >= 0 for k in REID_FIELDS[2:]):
             raise ResultsFileError("'%s': a row of results has a count that is not a whole number" % path)
+        lk = r.get("rejected_look_alikes", 0)
+        if not isinstance(lk, int) or isinstance(lk, bool) or not 0 <= lk <= r["rejected"]:
+            raise ResultsFileError("'%s': a row's rejected_look_alikes is not a count within its rejections" % path)
         if r["views"] == 0 or r["absent_views"] == 0:
             raise ResultsFileError("'%s': %s, %s has no views" % (path, r["model"], r["condition"]))
         if r["model"] not in models:
@@ -111,16 +115,18 @@ def reid_table(outdir):
     groups = [g for g in groups if g] + [[c] for c in conditions if c not in grouped]
     absent = sorted({r["absent_views"] for r in rows})
     lines = [commit_stamp([(outdir, summary.get("commit"))]), "",
-             "| model | condition | right | wrong | rejected | false accepts (%s absent) |" %
-             " / ".join(str(a) for a in absent), "|---|---|---|---|---|---|"]
+             "| model | condition | right | wrong | rejected | rejected as look-alikes | false accepts (%s absent) |" %
+             " / ".join(str(a) for a in absent), "|---|---|---|---|---|---|---|"]
     for m in models:
         for g in groups:
             if any((m, c) not in by for c in g):
                 raise ResultsFileError("'%s': %s lacks a condition of %s" % (path, m, " / ".join(g)))
             rs = [by[(m, c)] for c in g]
-            lines.append("| %s | %s | %s | %s | %s | %s |" % (
+            counted = all("rejected_look_alikes" in r for r in rs)
+            lines.append("| %s | %s | %s | %s | %s | %s | %s |" % (
                 m, " / ".join(g), cells([(r["right"], r["views"]) for r in rs]),
                 cells([(r["wrong"], r["views"]) for r in rs]), cells([(r["rejected"], r["views"]) for r in rs]),
+                cells([(r["rejected_look_alikes"], r["views"]) for r in rs]) if counted else "-",
                 cells([(r["false_accepts"], r["absent_views"]) for r in rs])))
     return lines
 
