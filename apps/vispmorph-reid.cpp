@@ -340,8 +340,8 @@ json summarise(const std::vector<Query> &queries, const std::vector<Entry> &entr
                const std::vector<std::string> &models, const std::vector<std::string> &conditions, std::ostream &md)
 {
   json j = json::array();
-  md << "| model | condition | views | right | wrong | rejected | rejected as look-alikes | no silhouette | absent: views | "
-        "false accepts |\n"
+  md << "| model | condition | views | right | wrong | rejected | rejected as look-alikes | no silhouette | "
+        "absent: views | false accepts |\n"
         "|---|---|---|---|---|---|---|---|---|---|\n";
   std::ostringstream timeMd;
   timeMd << "\n| model | templates | queries | median ms | mean ms | 95th percentile ms |\n|---|---|---|---|---|---|\n";
@@ -363,8 +363,8 @@ json summarise(const std::vector<Query> &queries, const std::vector<Entry> &entr
       }
       md << "| " << models[m] << " | " << c << " | " << present << " | " << interval(n["right"], present) << " | "
          << interval(n["wrong"], present) << " | " << interval(n["rejected"], present) << " | "
-         << interval(n["look-alikes"], present) << " | " << n["no-silhouette"] + n["absent-no-silhouette"] << " | " << absent << " | "
-         << interval(n["absent-false-accept"], absent) << " |\n";
+         << interval(n["look-alikes"], present) << " | " << n["no-silhouette"] + n["absent-no-silhouette"] << " | "
+         << absent << " | " << interval(n["absent-false-accept"], absent) << " |\n";
       j.push_back({{"model", models[m]},
                    {"condition", c},
                    {"views", present},
