@@ -18,7 +18,9 @@ bool vpMorphDatabase::rigidFits(const vpMorphRigidCheck::Result &r) const
 
 bool vpMorphDatabase::rigidAccepted(const vpMorphRigidCheck::Result &r) const
 {
-  return rigidFits(r) && r.absentShare <= maximumOutside();
+  // The same majority both ways: the view shows at least minimumSupport() of the template's outline, and the template
+  // explains as much of the view's outline (an occluder's edge aside: it only hides).
+  return rigidFits(r) && r.absentShare <= maximumOutside() && r.unexplainedShare <= 1.0 - m_minSupport;
 }
 
 const vpMorphRigidShape &vpMorphDatabase::rigidView(std::size_t k, std::size_t pose) const

@@ -1,6 +1,6 @@
 // Tests of the object's own edges: the marks the extractor sets on an edge outline (vpMorphContour::ownEdge(): the
 // background or the object itself beyond, not an occluder nor a bridge), how contours carry them, the background's
-// level beside an occluder, and how the rigid check uses them (fit, unexplained share).
+// level beside an occluder, and how the rigid check and the database use them (fit, unexplained share).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -13,6 +13,7 @@
 
 #include <visp3/morph/vpMorphContour.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
+#include <visp3/morph/vpMorphDatabase.h>
 #include <visp3/morph/vpMorphException.h>
 #include <visp3/morph/vpMorphRigidCheck.h>
 #include <visp3/morph/vpMorphRigidShape.h>
@@ -331,4 +332,57 @@ TEST_CASE("rigid check: the view's own edge that the template lacks is unexplain
   CHECK(card.unexplainedShare < 0.01);                        // ...and no edge of the key's own
   // Fitted on the view's own edges, not pulled by the card's: as much of the key shown as when fitted on them all.
   CHECK(card.targetShare >= unmarked.targetShare);
+}
+
+TEST_CASE("RIGID: a view whose own edge is mostly not the template's is refused, however much of it lies on it",
+          "[rigid][own]")
+{
+  // A disc, and a ring cut from its rim, open by a slit, whose inner edge is a comb: teeth reaching far into the disc
+  // lay most of the view's own edge inside the disc's region, where the disc has none (a coiled spring taken for an
+  // apple). The same disc under a card is accepted.
+  const cv::Point2d c(320.0, 240.0);
+  const double R = 150.0;
+  auto drawn = [](const std::vector<cv::Point> &poly) {
+    cv::Mat m(480, 640, CV_8UC1, cv::Scalar(210));
+    cv::fillPoly(m, std::vector<std::vector<cv::Point>>{poly}, cv::Scalar(40), cv::LINE_AA);
+    cv::GaussianBlur(m, m, cv::Size(0, 0), 0.7);
+    return m;
+  };
+  auto at = [&](double r, double deg) {
+    const double a = deg * M_PI / 180.0;
+    return cv::Point(static_cast<int>(std::lround(c.x + r * std::cos(a))),
+                     static_cast<int>(std::lround(c.y + r * std::sin(a))));
+  };
+  std::vector<cv::Point> disc, comb;
+  for (int k = 0; k < 360; ++k)
+    disc.push_back(at(R, k));
+  for (int k = 0; k <= 350; ++k) // the rim, but a slit of 10 deg
+    comb.push_back(at(R, k));
+  for (int k = 350; k >= 12; k -= 12) { // the comb, back along the inside: a tooth every 12 deg
+    comb.push_back(at(0.85 * R, k));
+    comb.push_back(at(0.30 * R, k - 4.0));
+    comb.push_back(at(0.30 * R, k - 8.0));
+    comb.push_back(at(0.85 * R, k - 12.0));
+  }
+  const vpMorphContour discView = vpMorphContourExtractor().extract(noisy(drawn(disc), 3.0, 1));
+  const vpMorphContour combView = vpMorphContourExtractor().extract(noisy(drawn(comb), 3.0, 2));
+  const vpMorphContour cardView =
+      vpMorphContourExtractor().extractJoined(noisy(vpMorphTest::squareOccluder(drawn(disc), 0.3, 0.2), 3.0, 3));
+
+  vpMorphDatabase db(vpMorphShapeDistance(vpMorphShapeDistance::RIGID));
+  db.add(vpMorphTemplate("disc", discView));
+  db.calibrate(1);
+  // The comb lies on the disc as the other rules read it: nearly all the rim shown, nothing outside the disc, none of
+  // the disc's outline absent from a view that hides nothing but the slit.
+  const vpMorphRigidShape t(discView), q(combView);
+  const vpMorphRigidCheck::Result r = vpMorphRigidCheck::check(q, t, q.alignOn(t));
+  CAPTURE(r.targetShare, r.outsideShare, r.absentShare, r.unexplainedShare, r.inputShare);
+  REQUIRE(r.fitted);
+  CHECK(r.targetShare >= db.minimumSupport());
+  CHECK(r.outsideShare <= vpMorphDatabase::maximumOutside());
+  CHECK(r.absentShare <= vpMorphDatabase::maximumOutside());
+  CHECK(r.unexplainedShare > 1.0 - db.minimumSupport());
+  CHECK_FALSE(db.recognize(combView).accepted);
+  CHECK(db.recognize(discView).accepted);
+  CHECK(db.recognize(cardView).accepted);
 }

@@ -56,7 +56,9 @@ struct vpMorphRigidView; // a template view of the RIGID search (internal)
   The view is accepted when it shows at least minimumSupport() of the template's
   outline, sticks out of it by at most maximumOutside() of its own, leaves at most
   as much of the template's outline outside its region when nothing cuts its outline
-  (vpMorphRigidCheck::Result::absentShare: such a view hides nothing, so what it lacks is absent, not hidden), and the
+  (vpMorphRigidCheck::Result::absentShare: such a view hides nothing, so what it lacks is absent, not hidden), has at
+  most 1 - minimumSupport() of its outline on its own edge where the template has none
+  (vpMorphRigidCheck::Result::unexplainedShare: the same majority both ways; an occluder only hides), and the
   runner-up, if acceptable too, is told from it by at least ambiguity() (vpMorphRigidCheck::evidence(): outline that
   one explains and the other not, on the view's side, and on the templates' side what the view says is absent rather
   than hidden; look-alikes that differ only where the view is hidden are not told apart: rejected).
@@ -310,7 +312,8 @@ private:
   void findLookAlikes(unsigned int threads);
   //! RIGID: whether the view lies on that template as far as it shows it (minimumSupport(), nothing outside it).
   bool rigidFits(const vpMorphRigidCheck::Result &r) const;
-  //! RIGID: whether a comparison accepts the view as that template (rigidFits(), and it lacks none of it in sight).
+  //! RIGID: whether a comparison accepts the view as that template (rigidFits(), it lacks none of it in sight, and
+  //! its own edge is mostly the template's).
   bool rigidAccepted(const vpMorphRigidCheck::Result &r) const;
   //! support(), with an articulated template's poses or (\e poses false) its taught view only.
   double support(const vpMorphContour &c, std::size_t k, bool mirrored, bool poses) const;
