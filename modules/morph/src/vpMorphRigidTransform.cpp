@@ -142,22 +142,34 @@ vpMorphRigidTransform toTransform(const Similarity &T, const vpMorphContour &inp
   return vpMorphRigidTransform(T.theta, t.x(), t.y(), T.scale, cx, cy);
 }
 
-// Weighted covariance of a point set: principal angle and anisotropy (l1 - l2) / (l1 + l2).
-void principalAxis(const std::vector<Eigen::Vector2d> &X, const std::vector<double> &w, const Eigen::Vector2d &mu,
-                   double &angle, double &anisotropy, double &spread2)
+// A shape's elongation vector: the centroid and principal axis of the region its contour encloses, from the region's
+// moments (the measured ones when the contour carries them: vpMorphContour::hasRegion()), which neither the vertices'
+// placement along an edge nor the outline's pixel-scale detail moves. \e anisotropy: (l1 - l2) / (l1 + l2);
+// \e spread2: the trace of the covariance (the square of the shape's size up to a constant).
+void elongation(const vpMorphContour &c, Eigen::Vector2d &mu, double &angle, double &anisotropy, double &spread2)
 {
-  Eigen::Matrix2d C = Eigen::Matrix2d::Zero();
-  double W = 0.0;
-  for (std::size_t k = 0; k < X.size(); ++k) {
-    const Eigen::Vector2d d = X[k] - mu;
-    C += w[k] * d * d.transpose();
-    W += w[k];
+  double cx, cy, m20 = 0.0, m11 = 0.0, m02 = 0.0;
+  c.regionCentroid(cx, cy);
+  mu = Eigen::Vector2d(cx, cy);
+  if (c.hasRegion())
+    c.regionMoments(m20, m11, m02);
+  else { // the polygon's (Green's theorem), per unit area
+    double a = 0.0;
+    const std::size_t n = c.size();
+    for (std::size_t k = 0, p = n - 1; k < n; p = k++) {
+      const double x0 = c.x(p) - cx, y0 = c.y(p) - cy, x1 = c.x(k) - cx, y1 = c.y(k) - cy, d = x0 * y1 - x1 * y0;
+      a += d;
+      m20 += (x0 * x0 + x0 * x1 + x1 * x1) * d;
+      m02 += (y0 * y0 + y0 * y1 + y1 * y1) * d;
+      m11 += (x0 * y1 + 2.0 * x0 * y0 + 2.0 * x1 * y1 + x1 * y0) * d;
+    }
+    m20 /= 6.0 * a; // (a / 2 the signed area) x 12
+    m02 /= 6.0 * a;
+    m11 /= 12.0 * a;
   }
-  C /= W;
-  angle = 0.5 * std::atan2(2.0 * C(0, 1), C(0, 0) - C(1, 1));
-  const double tr = C.trace();
-  const double diff = std::hypot(C(0, 0) - C(1, 1), 2.0 * C(0, 1)); // l1 - l2
-  anisotropy = tr > 0.0 ? diff / tr : 0.0;
+  angle = 0.5 * std::atan2(2.0 * m11, m20 - m02);
+  const double tr = m20 + m02;
+  anisotropy = tr > 0.0 ? std::hypot(m20 - m02, 2.0 * m11) / tr : 0.0;
   spread2 = tr;
 }
 } // namespace
@@ -307,11 +319,11 @@ vpMorphRigidTransform vpMorphRigidTransform::fitElongation(const vpMorphContour 
 {
   checkCorrespondence(input, target, corr, "vpMorphRigidTransform::fitElongation");
   const PairSet s = buildPairs(input, target, corr);
+  // Every vertex of both polygons is corresponded: each shape's corresponded points are its whole contour.
   Similarity T;
-  weightedMeans(s, s.w, T.muP, T.muQ);
   double aP, aQ, anP, anQ, vP, vQ;
-  principalAxis(s.P, s.w, T.muP, aP, anP, vP);
-  principalAxis(s.Q, s.w, T.muQ, aQ, anQ, vQ);
+  elongation(input, T.muP, aP, anP, vP);
+  elongation(target, T.muQ, aQ, anQ, vQ);
   if (anisotropy)
     *anisotropy = std::min(anP, anQ);
   if (withScale && vP > 0.0 && vQ > 0.0)

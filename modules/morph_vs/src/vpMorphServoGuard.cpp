@@ -141,6 +141,11 @@ vpMorphServoGuard::Status vpMorphServoGuard::verify(const vpMorphViewAlignment &
 {
   if (!a.explained() || !tiltVerified)
     return UNVERIFIED;
+  // Within the thresholds by its own residual (a measurement other than the one the servo stopped on may disagree).
+  const vpMorphRigidTransform &T = a.transform;
+  if (!(std::fabs(T.theta()) < rotationRad && std::hypot(T.tx(), T.ty()) * pixelsPerUnit < translationPx &&
+        std::fabs(T.scale() - 1.0) * radiusPx < scalePx))
+    return UNVERIFIED;
   // A view explained only in part may be another shape with more than half of the target's outline: only the target
   // check can say it is the target.
   if (a.model != vpMorphViewAlignment::RIGID && !hasTargetCheck())

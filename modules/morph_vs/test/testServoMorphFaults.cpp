@@ -290,3 +290,44 @@ TEST_CASE("vpMorphServoGuard: with a recognizer, a view its rigid stage names as
   }
   CHECK_THROWS_AS(vpMorphServoGuard().setTargetCheck(recognizer, "saw"), vpMorphException);
 }
+
+TEST_CASE("vpMorphServoGuard: CONVERGED only for an alignment within the final thresholds that pins the pose",
+          "[servo][faults]")
+{
+  const vpMorphServoGuard guard;
+  const double px = 800.0, radius = 100.0; // pixels per normalised unit, the view's RMS radius (px)
+  auto alignment = [&](double tPx, double sigmaPx) {
+    vpMorphViewAlignment a;
+    a.model = vpMorphViewAlignment::RIGID;
+    a.transform = vpMorphRigidTransform(0.0, tPx / px, 0.0, 1.0, 0.0, 0.0);
+    const double s = sigmaPx / px;
+    for (unsigned int i = 0; i < 4; ++i)
+      a.covariance[i][i] = s * s;
+    return a;
+  };
+  CHECK(guard.verify(alignment(0.05, 0.01), 0.002, 0.2, 0.2, radius, px, true) == vpServoMorph::CONVERGED);
+  // Beyond the threshold by its own residual: another measurement stopped there (vpServoMorph::PAPER).
+  CHECK(guard.verify(alignment(0.5, 0.01), 0.002, 0.2, 0.2, radius, px, true) == vpServoMorph::UNVERIFIED);
+  // Within it, but not pinned within it.
+  CHECK(guard.verify(alignment(0.05, 0.1), 0.002, 0.2, 0.2, radius, px, true) == vpServoMorph::UNVERIFIED);
+  CHECK(guard.verify(alignment(0.05, 0.01), 0.002, 0.2, 0.2, radius, px, false) == vpServoMorph::UNVERIFIED);
+}
+
+TEST_CASE("vpServoMorph PAPER: the paper's measurement servoes to the goal and the outline measurement verifies it",
+          "[servo][faults]")
+{
+  for (const vpHomogeneousMatrix &start : {planarPose(120, 0.04, 0.03), planarPose(-60, -0.03, 0.05)}) {
+    Loop l(start);
+    l.servo.setMeasurement(vpServoMorph::PAPER);
+    l.servo.setTarget(projectPixels(cdMo), depth(cdMo));
+    REQUIRE(l.servo.getMeasurement() == vpServoMorph::PAPER);
+    const bool converged = l.run();
+    double t, r;
+    l.poseError(t, r);
+    INFO("status " << vpServoMorph::statusName(l.servo.getStatus()) << " after " << l.iterations << " periods, "
+                   << t * 1000 << " mm, " << r << " deg");
+    CHECK(converged);
+    CHECK(t < 0.001);
+    CHECK(r < 0.5);
+  }
+}

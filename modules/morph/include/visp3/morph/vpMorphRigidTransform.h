@@ -29,15 +29,14 @@
   scale of the image, not a deformation: leaving it to Eq. 1 would make the intermediate contours shrink
   or grow non-uniformly. Pass withScale = false for the paper's rotation + translation (scale fixed to 1).
 
-  <b>Estimators.</b> Both use only the corresponded vertex pairs of a vpMorphCorrespondence and give each
-  pair the weight of the contour length it stands for (half of the adjacent corresponded segments, on the
-  input and on the target, each normalised by its perimeter), so that a densely sampled part of a polygon
-  does not outweigh a sparsely sampled one.
+  <b>Estimators.</b>
   - fitElongation(): the paper's method, from the principal axes ("elongation vectors") of the two
-    corresponded point sets.
-  - fitLeastSquares(): weighted 2-D Procrustes (Umeyama, closed form in 2-D) over all pairs, made robust
-    by iteratively reweighted least squares. More accurate on noisy contours and well posed for shapes
-    with isotropic moments (a square, a disc), where the elongation axis does not exist.
+    shapes, the correspondence telling which way each axis points.
+  - fitLeastSquares(): weighted 2-D Procrustes (Umeyama, closed form in 2-D) over the corresponded vertex
+    pairs, each weighted by the contour length it stands for (half of the adjacent corresponded segments, on
+    the input and on the target, each normalised by its perimeter), so that a densely sampled part of a
+    polygon does not outweigh a sparsely sampled one; made robust by iteratively reweighted least squares.
+    Well posed for shapes with isotropic moments (a square, a disc), where the elongation axis does not exist.
 
   \code
   vpMorphCorrespondence c = vpMorphMatcher().match(input, target);
@@ -115,17 +114,20 @@ public:
 
   /*!
     The paper's estimator (section 2): the elongation vector of each shape is the principal (major) axis
-    of its corresponded point set \f$\{A_{i_k}\}\f$, \f$\{B_{j_k}\}\f$ (weighted second-order moments).
-    Translation = difference of the centres (weighted means); rotation = angle between the two axes,
-    with the 180 deg ambiguity of an axis resolved by the correspondence (the sign that makes the
-    corresponded points agree best); scale (if \e withScale) = ratio of the RMS spreads.
+    of its corresponded points, through their centre. Every vertex of both polygons is corresponded
+    (vpMorphCorrespondence), so each shape's corresponded points are its whole contour, and the axis and
+    centre are those of the region the contour encloses: its second-order moments and centroid (the
+    measured region's when the contour carries one, vpMorphContour::hasRegion(), else the polygon's).
+    Translation = difference of the centres; rotation = angle between the two axes, with the 180 deg
+    ambiguity of an axis resolved by the correspondence (the sign that makes the corresponded points
+    agree best); scale (if \e withScale) = ratio of the RMS spreads.
 
-    Why the corresponded point sets rather than the polygon regions: the paper derives the elongation
-    vectors from the correspondence; paired point sets with the same weights make the estimate exact for
-    an exact similarity whatever the vertex sampling, and keep both shapes' moments consistent when part
-    of a contour is matched to a single vertex. Region moments would ignore the correspondence entirely.
+    Why the region's moments rather than the vertices': two polygonal approximations of one outline put
+    their vertices at different places along its edges, and the vertices' moments (each weighted by the
+    length it stands for) move with them by up to a few percent of the spread on a long thin part, an
+    error that the region's moments, exact for the enclosed area, do not have.
 
-    Ill-posed when either point set has (nearly) isotropic second moments (a square, a disc, a regular
+    Ill-posed when either region has (nearly) isotropic second moments (a square, a disc, a regular
     polygon): the axis is then arbitrary. \e anisotropy (if not null) receives
     \f$\min_{A,B} (\lambda_1 - \lambda_2) / (\lambda_1 + \lambda_2)\f$ in [0, 1]: below about 0.05 the
     rotation is unreliable; use fitLeastSquares() instead.

@@ -36,12 +36,12 @@
     explains more of the view's outline (vpMorphDatabase::support()). Given a vpMorphPartRecognizer, its RIGID stage
     decides first where it names the view's part.
   - <b>Verification</b> (verify()): at the target, the measurement says aligned; CONVERGED only if the aligned view
-    explains the target (vpMorphViewAlignment::explained()) and pins the pose: three standard deviations of the
-    alignment's rotation, translation and scale (vpMorphViewAlignment::covariance) within the final thresholds, and,
-    when it is corrected, the tilt's estimate plus as many of its deviations within its own final threshold
-    (vpMorphTiltEstimator::isVerified()). A view explained only in part (a part hidden or bent) needs the target
-    check too: another shape may share more than half of the target's outline. Otherwise UNVERIFIED, a stop: a servo
-    that cannot tell where it stands says so instead of claiming the goal.
+    explains the target (vpMorphViewAlignment::explained()) within the final thresholds and pins the pose: three
+    standard deviations of the alignment's rotation, translation and scale (vpMorphViewAlignment::covariance) within
+    the final thresholds, and, when it is corrected, the tilt's estimate plus as many of its deviations within its own
+    final threshold (vpMorphTiltEstimator::isVerified()). A view explained only in part (a part hidden or bent) needs
+    the target check too: another shape may share more than half of the target's outline. Otherwise UNVERIFIED, a
+    stop: a servo that cannot tell where it stands says so instead of claiming the goal.
 
   \code
   vpMorphServoGuard &guard = servo.getGuard();
@@ -133,11 +133,12 @@ public:
   double getTargetDistance() const { return m_targetDistance; }
 
   /*!
-    CONVERGED or UNVERIFIED for an alignment \e a (normalised) that the measurement finds within the final thresholds
-    \e rotationRad, \e translationPx and \e scalePx (the scale's error in pixels at the view's RMS radius \e radiusPx),
-    with \e pixelsPerUnit the camera's pixels per normalised unit, and \e tiltVerified the tilt's own verdict (true
-    when it is not corrected). An alignment without a covariance (vpMorphViewAligner::PAPER) is UNVERIFIED, and so is
-    one explained only in part without a target check.
+    CONVERGED or UNVERIFIED for an alignment \e a (normalised) at the target: CONVERGED needs it within the final
+    thresholds \e rotationRad, \e translationPx and \e scalePx (the scale's error in pixels at the view's RMS radius
+    \e radiusPx) by its own residual, and pinned within them (the class description), with \e pixelsPerUnit the
+    camera's pixels per normalised unit, and \e tiltVerified the tilt's own verdict (true when it is not corrected).
+    An alignment without a covariance (vpMorphViewAligner::PAPER) is UNVERIFIED, and so is one explained only in part
+    without a target check.
   */
   Status verify(const vpMorphViewAlignment &a, double rotationRad, double translationPx, double scalePx,
                 double radiusPx, double pixelsPerUnit, bool tiltVerified) const;

@@ -46,8 +46,8 @@
   edge to edge, their robust scale floored at half a pixel (vertices on the pixel grid).
 
   <b>Method (PAPER).</b> The paper's rectification: the rotation and translation between the elongation vectors of the
-  corresponded vertex sets (vpMorphRigidTransform::fitElongation) over the correspondence of every period, and the
-  scale of their spreads. The model is then RIGID with an unknown covariance (infinite).
+  two shapes, their directions told by the correspondence of every period (vpMorphRigidTransform::fitElongation), and
+  the scale of their spreads. The model is then RIGID with an unknown covariance (infinite).
 
   Units: contours in pixels (converted with setCameraParameters()) or already normalised; transforms in normalised
   coordinates. The limits in pixels use the camera's px (800 by default).
@@ -188,7 +188,7 @@ private:
   vpMorphCorrespondenceTracker m_tracker;
   bool m_haveStart = false;
   vpMorphRigidTransform m_start;
-  double m_startSigma = 0.0; // the residuals' scale at the start (normalised; 0: unknown)
+  double m_startSigma = 0.0;     // the residuals' scale at the start (normalised; 0: unknown)
   bool m_startPredicted = false; // the start moved by the motion since the last view (setStart(), turnStart())
   vpMorphViewAlignment m_last;
   vpMorphHomography m_homography; // the last period's, when the view was seen tilted
