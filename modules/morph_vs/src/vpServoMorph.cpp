@@ -249,14 +249,6 @@ void vpServoMorph::residuals(const vpMorphViewAlignment &a, const vpMorphContour
   m_res.scalePixels = m_res.scale * m_res.radiusPx;
 }
 
-vpMorphViewAlignment vpServoMorph::outlineAlignment(const vpMorphContour &current) const
-{
-  vpMorphViewAligner outline; // OUTLINE, cold: nothing of the paper's measurement carried over
-  outline.setCameraParameters(m_camIso);
-  outline.setGoal(m_target.contour);
-  return outline.align(current);
-}
-
 bool vpServoMorph::passed() const
 {
   const vpMorphRigidTransform &T = m_alignment.transform;
@@ -428,12 +420,10 @@ vpColVector vpServoMorph::computeControlLaw(const vpMorphContour &current)
       if (m_guard.targetMismatch(current, m_target.contour,
                                  m_target.model.isArticulated())) // never CONVERGED on another shape
         return stop(m_guard.halt(TARGET_MISMATCH));
-      // The paper's measurement has no covariance: the view is verified by the outline measurement, fitted afresh on
-      // the target.
-      const Status s =
-          m_guard.verify(m_set.measurement == PAPER ? outlineAlignment(current) : m_alignment,
-                         m_set.thresholds.finalRotation, m_set.thresholds.finalPixels, m_set.thresholds.finalPixels,
-                         m_res.radiusPx, m_camIso.get_px(), !tiltOn || m_tilt.isVerified(sigmas));
+      // Verified by the guard (never the paper's measurement, which carries no covariance and sees no tilt).
+      const Status s = m_guard.verify(m_alignment, m_set.thresholds.finalRotation, m_set.thresholds.finalPixels,
+                                      m_set.thresholds.finalPixels, m_res.radiusPx, m_camIso.get_px(),
+                                      !tiltOn || m_tilt.isVerified(sigmas));
       return stop(m_guard.halt(s));
     }
 

@@ -59,9 +59,8 @@
   <b>Measurement</b> (setMeasurement()): OUTLINE, the project's (vpMorphViewAligner::OUTLINE: the robust outline fit,
   hidden and bent parts left out, the rigid frames on the straight camera path and no deformation frames), or PAPER,
   the paper's (elongation vectors over the correspondence, image-space rigid frames then the deformation frames of
-  Eq. 1, the paper's thresholds per axis, no tilt). The paper's thresholds stop it; the outline measurement, fitted
-  afresh on the target, verifies the stop (CONVERGED or UNVERIFIED as vpMorphServoGuard::verify()): the paper's
-  measurement carries no uncertainty of its own, so a stop it calls aligned is not claimed unchecked.
+  Eq. 1, the paper's thresholds per axis, no tilt). The paper's thresholds stop it, UNVERIFIED: its measurement
+  carries no uncertainty and sees no tilt, so it cannot vouch for the pose (vpMorphServoGuard::verify()).
 
   Not copyable (it owns a vpServo that points to its own features).
 
@@ -340,8 +339,6 @@ private:
   //! A similarity measured in the square-pixel camera, its centre and translation in the intrinsics' coordinates.
   vpMorphRigidTransform toIntrinsics(const vpMorphRigidTransform &T) const;
   void residuals(const vpMorphViewAlignment &a, const vpMorphContour &current);
-  // The outline measurement's alignment of \e current (pixels) on the target: PAPER's verification.
-  vpMorphViewAlignment outlineAlignment(const vpMorphContour &current) const;
   bool passed() const;
   bool atGoal() const;
   void observe(const vpMorphRigidTransform &T);
