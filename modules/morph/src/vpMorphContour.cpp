@@ -185,11 +185,11 @@ void vpMorphContour::centroid(double &cx, double &cy) const
   cy = oy + sy / (3.0 * a);
 }
 
-double vpMorphContour::orientation() const
+void vpMorphContour::polygonMoments(double &mu20, double &mu11, double &mu02) const
 {
   double cx, cy;
   centroid(cx, cy);
-  // Second-order central moments of the polygon region (Green's theorem), signs fixed by the area sign.
+  // Second-order central moments of the polygon region (Green's theorem), per unit area (a: twice the signed area).
   double a = 0.0, mxx = 0.0, myy = 0.0, mxy = 0.0;
   const std::size_t n = size();
   for (std::size_t k = 0, p = n - 1; k < n; p = k++) {
@@ -200,11 +200,16 @@ double vpMorphContour::orientation() const
     myy += (y0 * y0 + y0 * y1 + y1 * y1) * c;
     mxy += (x0 * y1 + 2 * x0 * y0 + 2 * x1 * y1 + x1 * y0) * c;
   }
-  const double s = a < 0 ? -1.0 : 1.0;
-  mxx *= s / 12.0;
-  myy *= s / 12.0;
-  mxy *= s / 24.0;
-  double theta = 0.5 * std::atan2(2.0 * mxy, mxx - myy);
+  mu20 = mxx / (6.0 * a);
+  mu02 = myy / (6.0 * a);
+  mu11 = mxy / (12.0 * a);
+}
+
+double vpMorphContour::orientation() const
+{
+  double mu20, mu11, mu02;
+  polygonMoments(mu20, mu11, mu02);
+  double theta = 0.5 * std::atan2(2.0 * mu11, mu20 - mu02);
   if (theta <= -M_PI / 2)
     theta += M_PI;
   return theta;
@@ -267,6 +272,10 @@ void vpMorphContour::regionCentroid(double &cx, double &cy) const
 
 void vpMorphContour::regionMoments(double &mu20, double &mu11, double &mu02) const
 {
+  if (!hasRegion()) {
+    polygonMoments(mu20, mu11, mu02);
+    return;
+  }
   mu20 = m_regionMu20;
   mu11 = m_regionMu11;
   mu02 = m_regionMu02;

@@ -148,25 +148,10 @@ vpMorphRigidTransform toTransform(const Similarity &T, const vpMorphContour &inp
 // \e spread2: the trace of the covariance (the square of the shape's size up to a constant).
 void elongation(const vpMorphContour &c, Eigen::Vector2d &mu, double &angle, double &anisotropy, double &spread2)
 {
-  double cx, cy, m20 = 0.0, m11 = 0.0, m02 = 0.0;
+  double cx, cy, m20, m11, m02;
   c.regionCentroid(cx, cy);
+  c.regionMoments(m20, m11, m02);
   mu = Eigen::Vector2d(cx, cy);
-  if (c.hasRegion())
-    c.regionMoments(m20, m11, m02);
-  else { // the polygon's (Green's theorem), per unit area
-    double a = 0.0;
-    const std::size_t n = c.size();
-    for (std::size_t k = 0, p = n - 1; k < n; p = k++) {
-      const double x0 = c.x(p) - cx, y0 = c.y(p) - cy, x1 = c.x(k) - cx, y1 = c.y(k) - cy, d = x0 * y1 - x1 * y0;
-      a += d;
-      m20 += (x0 * x0 + x0 * x1 + x1 * x1) * d;
-      m02 += (y0 * y0 + y0 * y1 + y1 * y1) * d;
-      m11 += (x0 * y1 + 2.0 * x0 * y0 + 2.0 * x1 * y1 + x1 * y0) * d;
-    }
-    m20 /= 6.0 * a; // (a / 2 the signed area) x 12
-    m02 /= 6.0 * a;
-    m11 /= 12.0 * a;
-  }
   angle = 0.5 * std::atan2(2.0 * m11, m20 - m02);
   const double tr = m20 + m02;
   anisotropy = tr > 0.0 ? std::hypot(m20 - m02, 2.0 * m11) / tr : 0.0;

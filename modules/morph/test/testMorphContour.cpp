@@ -142,6 +142,11 @@ TEST_CASE("contour region: unset by construction, carried through similarities, 
   double cx, cy, m20, m11, m02;
   r.regionCentroid(cx, cy);
   CHECK(cx == Approx(20));
+  r.regionMoments(m20, m11, m02);
+  CHECK(m20 == Approx(1600.0 / 12));
+  CHECK(m11 == Approx(0.0).margin(1e-9));
+  CHECK(m02 == Approx(400.0 / 12));
+  CHECK(r.reversed().orientation() == Approx(0.0).margin(1e-12)); // clockwise too
   // A measured region slightly off the polygon (as an image gives it), to tell region from polygon below.
   r.setRegion(810, 20.5, 10.25, 1600.0 / 12, 0.0, 400.0 / 12);
   REQUIRE(r.hasRegion());

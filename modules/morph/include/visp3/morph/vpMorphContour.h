@@ -113,7 +113,8 @@ public:
   double regionArea() const { return hasRegion() ? m_regionArea : area(); }
   //! The measured region's centroid, or the polygon's centroid() when none was measured.
   void regionCentroid(double &cx, double &cy) const;
-  //! The measured region's central moments mu20, mu11, mu02 divided by its area (zeros when none was measured).
+  //! The measured region's central moments mu20, mu11, mu02 divided by its area, or the polygon's when none was
+  //! measured.
   void regionMoments(double &mu20, double &mu11, double &mu02) const;
   /*!
     The object's edge as measured on the image, densely (about a point per boundary pixel, each from the grey
@@ -193,6 +194,8 @@ public:
 
 private:
   void validate() const;
+  // The polygon region's central moments divided by its area (Green's theorem).
+  void polygonMoments(double &mu20, double &mu11, double &mu02) const;
 
   std::vector<double> m_x, m_y;
   Units m_units = PIXEL;
