@@ -143,11 +143,12 @@ def quantile(values, q):
 
 
 def report(paths):
-    """One table per robot: every set and controller, success with its 95 % interval, false convergences, the views
-    apart (unobservable: their successes and false convergences; symmetric), the set-up failures, the median final
-    error and the compute per period (median / p95 and over the yardstick), from the runs and timings of \a paths."""
+    """One table per robot: every set and controller, success with its 95 % interval, the successes that declared
+    convergence, false convergences, the views apart (unobservable: their successes and false convergences;
+    symmetric), the set-up failures, the median final error and the compute per period (median / p95 and over the
+    yardstick), from the runs and timings of \a paths."""
     columns = ("set", "robot", "controller", "success", "failure", "iterations", "final_t_mm", "final_r_deg",
-               "false_converged", "unobservable", "symmetry", "period_ms", "yardstick_ms", "run_cpu_s")
+               "converged", "false_converged", "unobservable", "symmetry", "period_ms", "yardstick_ms", "run_cpu_s")
     rows = []
     dirs_of = {}  # robot -> the paths with its runs
     for p in paths:
@@ -163,10 +164,10 @@ def report(paths):
     out = []
     for robot in ordered([r["robot"] for r in rows], []):
         out += ["", "**%s**" % robot, "", stamp(dirs_of[robot]), "",
-                "| set | controller | success (95 % interval) | false-converged | unobservable: runs (successes, "
-                "false-converged) | symmetric | set-up failures | median final error (mm / deg) | compute a period, "
-                "median / p95 (ms) | over the yardstick, median / p95 | CPU a run (s) |",
-                "|---|---|---|---|---|---|---|---|---|---|---|"]
+                "| set | controller | success (95 % interval) | declared converged | false-converged | unobservable: "
+                "runs (successes, false-converged) | symmetric | set-up failures | median final error (mm / deg) | "
+                "compute a period, median / p95 (ms) | over the yardstick, median / p95 | CPU a run (s) |",
+                "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         mine = [r for r in rows if r["robot"] == robot]
         for s in ordered([r["set"] for r in mine], SETS):
             for c in ordered([r["controller"] for r in mine if r["set"] == s], CONTROLLERS):
@@ -176,6 +177,7 @@ def report(paths):
                 main = [r for r in runs if r not in setup and r not in apart]
                 ok = sum(1 for r in main if success(r))
                 false = sum(1 for r in main if r["false_converged"] == "1")
+                declared = sum(1 for r in main if success(r) and r["converged"] == "1")
                 lo, hi = interval(ok, len(main))
                 _, false_hi = interval(false, len(main))
                 started = [r for r in main if (number(r["iterations"]) or 0) > 0]
@@ -194,10 +196,11 @@ def report(paths):
                 def pair(a, b, fmt):
                     return "%s / %s" % (fmt % a if a is not None else "-", fmt % b if b is not None else "-")
                 cpu = [v for v in (number(r.get("run_cpu_s")) for r in runs) if v is not None]
-                out.append("| %s | %s | %s | %s | %s | %d | %d | %s | %s | %s | %s |" % (
+                out.append("| %s | %s | %s | %s | %s | %s | %d | %d | %s | %s | %s | %s |" % (
                     s, c,
                     "%d/%d (%.0f %%, %.0f-%.0f)" % (ok, len(main), 100.0 * ok / len(main), 100 * lo, 100 * hi)
                     if main else "-",
+                    "%d/%d" % (declared, ok) if main else "-",
                     "%d (<= %.1f %%)" % (false, 100 * false_hi) if main else "-",
                     "%d (%d, %d)" % (len(apart), sum(1 for r in apart if success(r)),
                                      sum(1 for r in apart if r["false_converged"] == "1")) if apart else "0",

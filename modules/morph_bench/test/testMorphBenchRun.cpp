@@ -353,6 +353,7 @@ TEST_CASE("bench report: CSV rows match the header, summaries count and aggregat
   // Medians over the two runs that started, not pulled to 0 by the unreachable one.
   CHECK(sums[0].medianFinalTranslation == Approx(0.0003));
   CHECK(sums[0].falseConverged == 0);
+  CHECK(sums[0].declaredConverged == 0);
   CHECK(sums[1].controller == "pbvs");
 
   const nlohmann::json j = nlohmann::json::parse(rep.summaryJson({{"seed", "1"}}));
@@ -364,7 +365,8 @@ TEST_CASE("bench report: CSV rows match the header, summaries count and aggregat
   CHECK(j["summaries"][0]["success_ci95"][1] == Approx(0.7923).margin(1e-3));
   CHECK(j["summaries"][0]["false_converged_upper95"] == Approx(1.0)); // 3 / 3: the rule of three caps at 1
   const std::string md = rep.summaryMarkdown();
-  CHECK(md.find("| planar | camera | morph | 1/3 (33.3 %, 6.15-79.2) | 0 (<= 100 %) | 0 |") != std::string::npos);
+  // The success stopped at the goal without declaring convergence (a.converged false).
+  CHECK(md.find("| planar | camera | morph | 1/3 (33.3 %, 6.15-79.2) | 0/1 | 0 (<= 100 %) | 0 |") != std::string::npos);
   CHECK(md.find("out-of-view 1") != std::string::npos);
 
   // A group where no start was reachable: no final error.
@@ -407,6 +409,7 @@ TEST_CASE("bench report: false convergences, set-up failures and views apart are
   CHECK(sums[0].attempted() == 59);
   CHECK(sums[0].successes == 58);
   CHECK(sums[0].falseConverged == 1);
+  CHECK(sums[0].declaredConverged == 58); // k >= 2: successes, each declared
   CHECK(sums[0].successRate() == Approx(58.0 / 59.0));
   double lo = 0, hi = 0;
   vpMorphBenchReport::interval(0, 60, lo, hi);

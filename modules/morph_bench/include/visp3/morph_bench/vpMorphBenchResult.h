@@ -28,8 +28,9 @@
   (stopped away from the goal).
 
   False convergence (\e falseConverged): the controller declared itself done (vpMorphBenchController::Command::
-  converged) while the truth is out of tolerance. A stop that is not a convergence is a failure, never a false
-  convergence.
+  converged) while the truth is out of tolerance. A stop that is not a convergence is never a false convergence; it
+  is scored by its truth as any run (a safe stop at the goal is a success that declared no convergence), except that
+  out-of-view, diverged and feature-lost fail whatever the truth.
 
   \code
   vpMorphBenchResult r = bench.run(scenario, "morph");
