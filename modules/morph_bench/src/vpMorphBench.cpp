@@ -339,6 +339,8 @@ vpMorphBenchResult vpMorphBench::runOnce(const vpMorphBenchScenario &sc, const s
     }
     if (observer && !dropped)
       observer({it, I, *controller, cmd, cMo});
+    if (cmd.stop || cmd.converged)
+      res.verification = cmd.verification;
     if (cmd.stop) {
       // The clipped joint moved the camera off the command: what the controller stopped on followed from it.
       failure = clippedLast ? "joint-limit" : cmd.reason;

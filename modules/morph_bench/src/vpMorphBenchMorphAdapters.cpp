@@ -17,6 +17,13 @@
 
 namespace
 {
+// A status or verification name as one word of runs.csv ("tilt unbounded" -> "tilt-unbounded").
+std::string dashed(std::string name)
+{
+  std::replace(name.begin(), name.end(), ' ', '-');
+  return name;
+}
+
 /*!
   VISPMorph's controller: vpServoMorph through 10 sub-goals, Eq. 5-11, online hand-eye estimation, and the
   out-of-plane (tilt) correction on the final approach (vpServoMorph::TILT_FINAL_APPROACH: the contour's homography
@@ -119,12 +126,12 @@ private:
       // Every other status is a stop with zero velocity (a fault, or "not sure"): a failure with its reason,
       // never a convergence.
       cmd.stop = true;
-      std::string r = vpServoMorph::statusName(s);
-      std::replace(r.begin(), r.end(), ' ', '-');
-      cmd.reason = r;
+      cmd.reason = dashed(vpServoMorph::statusName(s));
       break;
     }
     }
+    if (s == vpServoMorph::CONVERGED || s == vpServoMorph::UNVERIFIED)
+      cmd.verification = dashed(vpMorphServoGuard::verificationName(m_servo->getGuard().getVerification()));
     return cmd;
   }
   void reset() override
@@ -232,9 +239,13 @@ public:
                                   outlineNoisePx(c.outline().size()));
       const double sigmas = vpMorphServoGuard::getVerificationSigmas();
       if (atGoal && !m_tilt.isLevelling(sigmas)) {
-        if (!m_tilt.isVerified(sigmas))
-          return stopCommand("unverified");
+        if (!m_tilt.isVerified(sigmas)) {
+          Command stop = stopCommand("unverified");
+          stop.verification = dashed(vpMorphServoGuard::verificationName(vpMorphServoGuard::TILT_UNBOUNDED));
+          return stop;
+        }
         cmd.converged = true;
+        cmd.verification = dashed(vpMorphServoGuard::verificationName(vpMorphServoGuard::VERIFIED));
       }
     } catch (const vpException &e) {
       return stopCommand("feature-error");

@@ -107,14 +107,15 @@ const char *const kColumns[] = {"set",
                                 "final_overlap_t_mm",
                                 "final_overlap_r_deg",
                                 "symmetry",
-                                "unobservable"};
+                                "unobservable",
+                                "verification"};
 const std::size_t kColumnCount = sizeof(kColumns) / sizeof(kColumns[0]);
 } // namespace
 
 //! What the summaries read of a row.
 struct vpMorphBenchReport::Record
 {
-  std::string set, robot, controller, faults, failure, unobservable;
+  std::string set, robot, controller, faults, failure, unobservable, verification;
   int scenario = 0;
   bool success = false, converged = false, falseConverged = false;
   unsigned int iterations = 0, holds = 0, replans = 0, rerecognitions = 0, symmetry = 1;
@@ -154,6 +155,7 @@ struct vpMorphBenchReport::Record
     r.faults = at("faults");
     r.failure = at("failure");
     r.unobservable = at("unobservable");
+    r.verification = at("verification");
     r.scenario = static_cast<int>(count("scenario"));
     r.success = at("success") == "1";
     r.converged = at("converged") == "1";
@@ -292,6 +294,8 @@ std::vector<vpMorphBenchReport::Summary> vpMorphBenchReport::summarize() const
       if (r->success) {
         ++s.successes;
         s.declaredConverged += r->converged ? 1 : 0;
+        if (!r->converged && !r->verification.empty())
+          ++s.unverifiedSuccesses[r->verification];
         its.push_back(r->convergedIteration);
         path.push_back(r->pathLength);
         ratio.push_back(r->pathRatio);
@@ -343,7 +347,8 @@ std::string vpMorphBenchReport::runsRow(const vpMorphBenchResult &r)
      << truthName(s) << ',' << (tag ? num(1000 * r.tagSize) : std::string()) << ','
      << (tag ? num(1000 * r.taughtTagTranslation) : std::string()) << ','
      << (tag ? num(vpMath::deg(r.taughtTagRotation)) : std::string()) << ',' << num(1000 * r.finalOverlapTranslation)
-     << ',' << num(vpMath::deg(r.finalOverlapRotation)) << ',' << r.symmetry << ',' << r.unobservable;
+     << ',' << num(vpMath::deg(r.finalOverlapRotation)) << ',' << r.symmetry << ',' << r.unobservable << ','
+     << r.verification;
   return os.str();
 }
 
@@ -400,6 +405,7 @@ std::string vpMorphBenchReport::summaryJson(const std::map<std::string, std::str
     e["false_converged"] = s.falseConverged;
     e["false_converged_upper95"] = s.falseConvergedHigh;
     e["declared_converged"] = s.declaredConverged;
+    e["unverified_successes"] = s.unverifiedSuccesses;
     e["median_iterations"] = jnum(s.medianIterations);
     e["median_path_length_m"] = jnum(s.medianPathLength);
     e["median_path_ratio"] = jnum(s.medianPathRatio);
@@ -432,10 +438,16 @@ std::string vpMorphBenchReport::summaryMarkdown() const
     std::ostringstream fails;
     for (const auto &f : s.failures)
       fails << (fails.tellp() > 0 ? ", " : "") << f.first << " " << f.second;
+    // The successes that declared convergence, and why the others did not (their verification).
+    std::ostringstream declared;
+    declared << s.declaredConverged << "/" << s.successes;
+    for (auto u = s.unverifiedSuccesses.begin(); u != s.unverifiedSuccesses.end(); ++u)
+      declared << (u == s.unverifiedSuccesses.begin() ? " (" : ", ") << u->first << " " << u->second;
+    declared << (s.unverifiedSuccesses.empty() ? "" : ")");
     os << "| " << s.set << " | " << s.robot << " | " << s.controller << " | " << s.successes << "/" << s.attempted()
        << " (" << num(100 * s.successRate(), 3) << " %, " << num(100 * s.successLow, 3) << "-"
-       << num(100 * s.successHigh, 3) << ") | " << s.declaredConverged << "/" << s.successes << " | "
-       << s.falseConverged << " (<= " << num(100 * s.falseConvergedHigh, 3) << " %) | " << s.setups << " | "
+       << num(100 * s.successHigh, 3) << ") | " << declared.str() << " | " << s.falseConverged
+       << " (<= " << num(100 * s.falseConvergedHigh, 3) << " %) | " << s.setups << " | "
        << dash(num(s.medianIterations, 4)) << " | " << dash(num(1000 * s.medianPathLength, 4)) << " | "
        << dash(num(s.medianPathRatio, 3)) << " | " << dash(num(1000 * s.medianFinalTranslation, 3)) << " / "
        << dash(num(vpMath::deg(s.medianFinalRotation), 3)) << " | " << dash(num(1000 * s.medianFinalTagTranslation, 3))

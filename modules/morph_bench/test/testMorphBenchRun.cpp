@@ -299,6 +299,7 @@ TEST_CASE("bench report: CSV rows match the header, summaries count and aggregat
   a.robot = "camera";
   a.controller = "morph";
   a.success = true;
+  a.verification = "tilt-unbounded"; // stopped at the goal, its tilt not bounded: a success that declared nothing
   a.convergedIteration = 40;
   a.pathLength = 0.02;
   a.straightLine = 0.01;
@@ -329,7 +330,7 @@ TEST_CASE("bench report: CSV rows match the header, summaries count and aggregat
   rep.add(u);
 
   const std::size_t n = fields(vpMorphBenchReport::runsHeader());
-  CHECK(n == 41);
+  CHECK(n == 42);
   CHECK(fields(vpMorphBenchReport::runsRow(a)) == n);
   CHECK(fields(vpMorphBenchReport::runsRow(b)) == n);
   std::istringstream curves(vpMorphBenchReport::curvesRows(a));
@@ -354,6 +355,7 @@ TEST_CASE("bench report: CSV rows match the header, summaries count and aggregat
   CHECK(sums[0].medianFinalTranslation == Approx(0.0003));
   CHECK(sums[0].falseConverged == 0);
   CHECK(sums[0].declaredConverged == 0);
+  CHECK(sums[0].unverifiedSuccesses == std::map<std::string, unsigned int>{{"tilt-unbounded", 1}});
   CHECK(sums[1].controller == "pbvs");
 
   const nlohmann::json j = nlohmann::json::parse(rep.summaryJson({{"seed", "1"}}));
@@ -364,9 +366,11 @@ TEST_CASE("bench report: CSV rows match the header, summaries count and aggregat
   CHECK(j["summaries"][0]["success_ci95"][0] == Approx(0.0615).margin(1e-3)); // Wilson, 1 in 3
   CHECK(j["summaries"][0]["success_ci95"][1] == Approx(0.7923).margin(1e-3));
   CHECK(j["summaries"][0]["false_converged_upper95"] == Approx(1.0)); // 3 / 3: the rule of three caps at 1
+  CHECK(j["summaries"][0]["unverified_successes"]["tilt-unbounded"] == 1);
   const std::string md = rep.summaryMarkdown();
-  // The success stopped at the goal without declaring convergence (a.converged false).
-  CHECK(md.find("| planar | camera | morph | 1/3 (33.3 %, 6.15-79.2) | 0/1 | 0 (<= 100 %) | 0 |") != std::string::npos);
+  // The success stopped at the goal without declaring convergence (a.converged false), and why.
+  CHECK(md.find("| planar | camera | morph | 1/3 (33.3 %, 6.15-79.2) | 0/1 (tilt-unbounded 1) | 0 (<= 100 %) | 0 |") !=
+        std::string::npos);
   CHECK(md.find("out-of-view 1") != std::string::npos);
 
   // A group where no start was reachable: no final error.

@@ -67,6 +67,7 @@ void vpMorphServoGuard::reset()
 {
   m_lost = m_replans = 0;
   m_halted = NOT_STARTED;
+  m_verification = NOT_VERIFIED;
   m_targetDistance = std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -135,24 +136,48 @@ bool vpMorphServoGuard::targetMismatch(const vpMorphContour &current, const vpMo
   return !(std::isfinite(r.support) && db.support(current, m_index, db.distance().mirrors()) > r.support);
 }
 
+const char *vpMorphServoGuard::verificationName(Verification v)
+{
+  switch (v) {
+  case NOT_VERIFIED:
+    return "not verified";
+  case VERIFIED:
+    return "verified";
+  case UNEXPLAINED:
+    return "unexplained";
+  case OUTSIDE_THRESHOLDS:
+    return "outside thresholds";
+  case PART_UNCHECKED:
+    return "part unchecked";
+  case NOT_PINNED:
+    return "not pinned";
+  case TILT_UNBOUNDED:
+    return "tilt unbounded";
+  }
+  return "?";
+}
+
 vpMorphServoGuard::Status vpMorphServoGuard::verify(const vpMorphViewAlignment &a, double rotationRad,
                                                     double translationPx, double scalePx, double radiusPx,
-                                                    double pixelsPerUnit, bool tiltVerified) const
+                                                    double pixelsPerUnit, bool tiltVerified)
 {
-  if (!a.explained() || !tiltVerified)
-    return UNVERIFIED;
-  // Within the thresholds by its own residual (a measurement other than the one the servo stopped on may disagree).
-  const vpMorphRigidTransform &T = a.transform;
-  if (!(std::fabs(T.theta()) < rotationRad && std::hypot(T.tx(), T.ty()) * pixelsPerUnit < translationPx &&
-        std::fabs(T.scale() - 1.0) * radiusPx < scalePx))
-    return UNVERIFIED;
-  // A view explained only in part may be another shape with more than half of the target's outline: only the target
-  // check can say it is the target.
-  if (a.model != vpMorphViewAlignment::RIGID && !hasTargetCheck())
-    return UNVERIFIED;
-  const double k = getVerificationSigmas();
-  const bool pinned = k * a.rotationDeviation() <= rotationRad &&
-                      k * a.translationDeviation() * pixelsPerUnit <= translationPx &&
-                      k * a.scaleDeviation() * radiusPx <= scalePx;
-  return pinned ? CONVERGED : UNVERIFIED;
+  m_verification = [&] {
+    if (!a.explained())
+      return UNEXPLAINED;
+    // Within the thresholds by its own residual (a measurement other than the one the servo stopped on may disagree).
+    const vpMorphRigidTransform &T = a.transform;
+    if (!(std::fabs(T.theta()) < rotationRad && std::hypot(T.tx(), T.ty()) * pixelsPerUnit < translationPx &&
+          std::fabs(T.scale() - 1.0) * radiusPx < scalePx))
+      return OUTSIDE_THRESHOLDS;
+    // A view explained only in part may be another shape with more than half of the target's outline: only the
+    // target check can say it is the target.
+    if (a.model != vpMorphViewAlignment::RIGID && !hasTargetCheck())
+      return PART_UNCHECKED;
+    const double k = getVerificationSigmas();
+    if (!(k * a.rotationDeviation() <= rotationRad && k * a.translationDeviation() * pixelsPerUnit <= translationPx &&
+          k * a.scaleDeviation() * radiusPx <= scalePx))
+      return NOT_PINNED;
+    return tiltVerified ? VERIFIED : TILT_UNBOUNDED;
+  }();
+  return m_verification == VERIFIED ? CONVERGED : UNVERIFIED;
 }

@@ -53,17 +53,26 @@ std::vector<std::string> vpServoMorph::statusText() const
   std::vector<std::string> lines;
   const std::size_t n = getSubGoals().size();
   const bool exploring = getHandEyeExploration().isActive();
+  // An UNVERIFIED stop says which test of the verification it failed.
+  std::string status = statusName(getStatus());
+  if (getStatus() == UNVERIFIED)
+    status += std::string(" (") + vpMorphServoGuard::verificationName(getGuard().getVerification()) + ")";
   if (n > 0)
-    std::snprintf(line, sizeof line, "%s  sub-goal %zu/%zu  (%s)", statusName(getStatus()), getSubGoalIndex() + 1, n,
+    std::snprintf(line, sizeof line, "%s  sub-goal %zu/%zu  (%s)", status.c_str(), getSubGoalIndex() + 1, n,
                   exploring ? "exploration turn" : vpMorphViewAlignment::modelName(getAlignment().model));
   else
-    std::snprintf(line, sizeof line, "%s%s", statusName(getStatus()), exploring ? "  (exploration turn)" : "");
+    std::snprintf(line, sizeof line, "%s%s", status.c_str(), exploring ? "  (exploration turn)" : "");
   lines.emplace_back(line);
   if (n > 0 && !exploring) { // the turn measures no residual
     std::snprintf(line, sizeof line, "residual %.3f rad  %.2f px", getRotationResidual(), getTranslationResidual());
     std::string l = line;
     if (getTiltEstimator().isEstimated()) {
-      std::snprintf(line, sizeof line, "  tilt %.2f deg", vpMath::deg(getTiltEstimator().getResidual()));
+      const double deviation = getTiltEstimator().getDeviation();
+      if (std::isfinite(deviation))
+        std::snprintf(line, sizeof line, "  tilt %.2f +- %.2f deg", vpMath::deg(getTiltEstimator().getResidual()),
+                      vpMath::deg(deviation));
+      else
+        std::snprintf(line, sizeof line, "  tilt %.2f deg", vpMath::deg(getTiltEstimator().getResidual()));
       l += line;
     }
     lines.push_back(l);

@@ -385,6 +385,7 @@ TEST_CASE("vpServoMorph state: history, sub-goals, template target", "[servo]")
     robot.setVelocity(vpRobot::CAMERA_FRAME, vpVelocityTwistMatrix(servo.get_eMc().inverse()) * ve);
   }
   REQUIRE(servo.getStatus() == vpServoMorph::CONVERGED);
+  CHECK(servo.getGuard().getVerification() == vpMorphServoGuard::VERIFIED);
   vpImage<vpRGBa> I(480, 640);
   CHECK_NOTHROW(servo.display(I)); // headless: no display attached, nothing drawn
   {

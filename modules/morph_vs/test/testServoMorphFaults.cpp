@@ -294,7 +294,8 @@ TEST_CASE("vpMorphServoGuard: with a recognizer, a view its rigid stage names as
 TEST_CASE("vpMorphServoGuard: CONVERGED only for an alignment within the final thresholds that pins the pose",
           "[servo][faults]")
 {
-  const vpMorphServoGuard guard;
+  vpMorphServoGuard guard;
+  CHECK(guard.getVerification() == vpMorphServoGuard::NOT_VERIFIED);
   const double px = 800.0, radius = 100.0; // pixels per normalised unit, the view's RMS radius (px)
   auto alignment = [&](double tPx, double sigmaPx) {
     vpMorphViewAlignment a;
@@ -306,11 +307,27 @@ TEST_CASE("vpMorphServoGuard: CONVERGED only for an alignment within the final t
     return a;
   };
   CHECK(guard.verify(alignment(0.05, 0.01), 0.002, 0.2, 0.2, radius, px, true) == vpServoMorph::CONVERGED);
+  CHECK(guard.getVerification() == vpMorphServoGuard::VERIFIED);
   // Beyond the threshold by its own residual: another measurement stopped there (vpServoMorph::PAPER).
   CHECK(guard.verify(alignment(0.5, 0.01), 0.002, 0.2, 0.2, radius, px, true) == vpServoMorph::UNVERIFIED);
+  CHECK(guard.getVerification() == vpMorphServoGuard::OUTSIDE_THRESHOLDS);
   // Within it, but not pinned within it.
   CHECK(guard.verify(alignment(0.05, 0.1), 0.002, 0.2, 0.2, radius, px, true) == vpServoMorph::UNVERIFIED);
+  CHECK(guard.getVerification() == vpMorphServoGuard::NOT_PINNED);
+  // Pinned in the plane, the tilt not bounded.
   CHECK(guard.verify(alignment(0.05, 0.01), 0.002, 0.2, 0.2, radius, px, false) == vpServoMorph::UNVERIFIED);
+  CHECK(guard.getVerification() == vpMorphServoGuard::TILT_UNBOUNDED);
+  CHECK(std::string(vpMorphServoGuard::verificationName(guard.getVerification())) == "tilt unbounded");
+  // Explained only in part: the target check must name it.
+  vpMorphViewAlignment part = alignment(0.05, 0.01);
+  part.model = vpMorphViewAlignment::PART_HIDDEN;
+  CHECK(guard.verify(part, 0.002, 0.2, 0.2, radius, px, true) == vpServoMorph::UNVERIFIED);
+  CHECK(guard.getVerification() == vpMorphServoGuard::PART_UNCHECKED);
+  // Not explained (no model), whatever else.
+  CHECK(guard.verify(vpMorphViewAlignment(), 0.002, 0.2, 0.2, radius, px, true) == vpServoMorph::UNVERIFIED);
+  CHECK(guard.getVerification() == vpMorphServoGuard::UNEXPLAINED);
+  guard.reset();
+  CHECK(guard.getVerification() == vpMorphServoGuard::NOT_VERIFIED);
 }
 
 TEST_CASE("vpServoMorph PAPER: the paper's measurement servoes to the goal and stops there UNVERIFIED",
@@ -328,6 +345,12 @@ TEST_CASE("vpServoMorph PAPER: the paper's measurement servoes to the goal and s
     INFO("status " << vpServoMorph::statusName(l.servo.getStatus()) << " after " << l.iterations << " periods, "
                    << t * 1000 << " mm, " << r << " deg");
     CHECK(l.servo.getStatus() == vpServoMorph::UNVERIFIED);
+    // Why, as the display says it: never verified (no covariance to pin the pose with).
+    CHECK(l.servo.getGuard().getVerification() != vpMorphServoGuard::VERIFIED);
+    CHECK(l.servo.getGuard().getVerification() != vpMorphServoGuard::NOT_VERIFIED);
+    CHECK(l.servo.statusText()[0].rfind(std::string("unverified (") +
+                                            vpMorphServoGuard::verificationName(l.servo.getGuard().getVerification()),
+                                        0) == 0);
     CHECK(l.servo.getSubGoalIndex() + 1 == l.servo.getSubGoals().size()); // stopped at the target
     CHECK(t < 0.001);
     CHECK(r < 0.5);

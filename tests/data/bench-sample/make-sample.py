@@ -20,7 +20,7 @@ RUN_HEADER = ("set,robot,controller,scenario,seed,object,start_rotation_deg,star
               "path_ratio,final_t_mm,final_r_deg,final_tag_t_mm,final_tag_r_deg,recognized,recognition_correct,"
               "faults,holds,replans,rerecognitions,max_speed_mps,max_rotation_speed_degps,goal,setup,converged,"
               "false_converged,truth,tag_size_mm,taught_tag_t_mm,taught_tag_r_deg,final_overlap_t_mm,"
-              "final_overlap_r_deg,symmetry,unobservable")
+              "final_overlap_r_deg,symmetry,unobservable,verification")
 TIMINGS_HEADER = ("set,robot,controller,scenario,object,yardstick_ms,measure_ms,control_ms,max_control_ms,run_cpu_s,"
                   "period_ms,period_measure_ms")
 
@@ -61,7 +61,7 @@ def main():
                 # A run that stopped as converged away from the goal is a false convergence.
                 false_converged = int(failure == "final-error")
                 fields += ["", 0, 0, 0, "", "", 0, "", int(ok or false_converged), false_converged, "rigid", 80, "",
-                           "", "", "", 1, ""]
+                           "", "", "", 1, "", "verified" if ok or false_converged else ""]
                 runs.append(",".join(str(v) for v in fields))
                 period = float(measure) + float(control)
                 timings.append(",".join(str(v) for v in [

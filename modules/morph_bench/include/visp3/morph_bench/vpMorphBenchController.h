@@ -101,10 +101,13 @@ public:
   {
     vpColVector v = vpColVector(6, 0.0);                      //!< velocity, in \e frame
     vpRobot::vpControlFrameType frame = vpRobot::JOINT_STATE; //!< the frame of \e v
-    bool measured = true;      //!< features were measured in this image (false: zero velocity, hold)
-    bool stop = false;         //!< the controller gave up (see reason); zero velocity
-    bool converged = false;    //!< the controller's own convergence test passed
-    std::string reason;        //!< short word when stop (e.g. "recognition", "unreliable-correspondence")
+    bool measured = true;   //!< features were measured in this image (false: zero velocity, hold)
+    bool stop = false;      //!< the controller gave up (see reason); zero velocity
+    bool converged = false; //!< the controller's own convergence test passed
+    std::string reason;     //!< short word when stop (e.g. "recognition", "unreliable-correspondence")
+    //! At a stop at the goal (converged or not), what the controller's verification found
+    //! (vpMorphServoGuard::verificationName(), dashed: "verified", "tilt-unbounded"...); empty otherwise.
+    std::string verification;
     bool replanned = false;    //!< the view jumped and the controller re-planned from it (zero velocity)
     bool rerecognized = false; //!< the target was found wrong and the object recognised anew
     double measureMs = 0;      //!< CPU time to measure the features (tag masking for silhouettes excluded)

@@ -44,24 +44,27 @@ public:
   //! One group's figures (see the class description).
   struct Summary
   {
-    std::string set;                      //!< the set, with its fault kinds or its scoring ("planar/symmetric")
-    std::string robot;                    //!< robot kind name
-    std::string controller;               //!< controller name
-    unsigned int runs = 0;                //!< rows
-    unsigned int setups = 0;              //!< rows that could not be set up (failure "setup"): out of the rates
-    unsigned int successes = 0;           //!< successful runs
-    unsigned int falseConverged = 0;      //!< runs converged with the truth out of tolerance
-    unsigned int declaredConverged = 0;   //!< successful runs whose controller declared convergence (others stopped)
-    double successLow = 0;                //!< low end of the success rate's 95 % interval
-    double successHigh = 0;               //!< high end of the success rate's 95 % interval
-    double falseConvergedHigh = 0;        //!< upper end of the false-convergence rate's 95 % interval
-    double medianIterations = 0;          //!< settling iteration of the successful runs (NaN if none)
-    double medianPathLength = 0;          //!< m, successful runs
-    double medianPathRatio = 0;           //!< successful runs with a defined ratio (NaN if none)
-    double medianFinalTranslation = 0;    //!< truth, runs that started (m)
-    double medianFinalRotation = 0;       //!< truth, runs that started (rad)
-    double medianFinalTagTranslation = 0; //!< tag, runs that started where it was seen (m)
-    double medianFinalTagRotation = 0;    //!< tag (rad)
+    std::string set;                    //!< the set, with its fault kinds or its scoring ("planar/symmetric")
+    std::string robot;                  //!< robot kind name
+    std::string controller;             //!< controller name
+    unsigned int runs = 0;              //!< rows
+    unsigned int setups = 0;            //!< rows that could not be set up (failure "setup"): out of the rates
+    unsigned int successes = 0;         //!< successful runs
+    unsigned int falseConverged = 0;    //!< runs converged with the truth out of tolerance
+    unsigned int declaredConverged = 0; //!< successful runs whose controller declared convergence (others stopped)
+    //! Successful runs that stopped at the goal without declaring convergence, by what their verification found
+    //! (vpMorphBenchResult::verification; runs without one not counted).
+    std::map<std::string, unsigned int> unverifiedSuccesses;
+    double successLow = 0;                        //!< low end of the success rate's 95 % interval
+    double successHigh = 0;                       //!< high end of the success rate's 95 % interval
+    double falseConvergedHigh = 0;                //!< upper end of the false-convergence rate's 95 % interval
+    double medianIterations = 0;                  //!< settling iteration of the successful runs (NaN if none)
+    double medianPathLength = 0;                  //!< m, successful runs
+    double medianPathRatio = 0;                   //!< successful runs with a defined ratio (NaN if none)
+    double medianFinalTranslation = 0;            //!< truth, runs that started (m)
+    double medianFinalRotation = 0;               //!< truth, runs that started (rad)
+    double medianFinalTagTranslation = 0;         //!< tag, runs that started where it was seen (m)
+    double medianFinalTagRotation = 0;            //!< tag (rad)
     double medianFinalOverlapTranslation = 0;     //!< largest overlap, part truth (m)
     double medianFinalOverlapRotation = 0;        //!< largest overlap, part truth (rad)
     std::map<std::string, unsigned int> failures; //!< reason -> count (without "none")

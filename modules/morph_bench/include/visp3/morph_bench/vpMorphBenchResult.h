@@ -54,6 +54,9 @@ public:
   unsigned int symmetry = 1;
   //! Why the view's pose cannot be bounded at pixel noise (vpMorphBenchObservability::reason()), empty when it can.
   std::string unobservable;
+  //! What the controller's verification found where it stopped at its goal, converged or not
+  //! (vpMorphBenchController::Command::verification: "verified", "tilt-unbounded"...); empty otherwise.
+  std::string verification;
   unsigned int iterations = 0; //!< iterations run
   int convergedIteration = -1; //!< first iteration after which the truth error stayed below the thresholds
   double pathLength = 0;       //!< camera centre path, m

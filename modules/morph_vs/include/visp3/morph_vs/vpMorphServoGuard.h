@@ -41,7 +41,8 @@
     the final thresholds, and, when it is corrected, the tilt's estimate plus as many of its deviations within its own
     final threshold (vpMorphTiltEstimator::isVerified()). A view explained only in part (a part hidden or bent) needs
     the target check too: another shape may share more than half of the target's outline. Otherwise UNVERIFIED, a
-    stop: a servo that cannot tell where it stands says so instead of claiming the goal.
+    stop: a servo that cannot tell where it stands says so instead of claiming the goal; getVerification() says
+    which test failed.
 
   \code
   vpMorphServoGuard &guard = servo.getGuard();
@@ -132,16 +133,31 @@ public:
   //! The last distance to the target's template (NaN before any check).
   double getTargetDistance() const { return m_targetDistance; }
 
+  //! What the last verify() found: the first of its tests that failed, in this order, or VERIFIED.
+  enum Verification {
+    NOT_VERIFIED,       //!< no verification since reset()
+    VERIFIED,           //!< every test passed: CONVERGED
+    UNEXPLAINED,        //!< the aligned view does not explain the target (vpMorphViewAlignment::explained())
+    OUTSIDE_THRESHOLDS, //!< the alignment's own residual is beyond the final thresholds
+    PART_UNCHECKED,     //!< explained only in part (a part hidden or bent), and no target check to name it
+    NOT_PINNED,    //!< three deviations of its rotation, translation or scale beyond the thresholds (or none known)
+    TILT_UNBOUNDED //!< the tilt's estimate plus its deviations beyond the tilt's final threshold, or unknown
+  };
+  //! A short name of \e v ("tilt unbounded", ...).
+  static const char *verificationName(Verification v);
+
   /*!
     CONVERGED or UNVERIFIED for an alignment \e a (normalised) at the target: CONVERGED needs it within the final
     thresholds \e rotationRad, \e translationPx and \e scalePx (the scale's error in pixels at the view's RMS radius
     \e radiusPx) by its own residual, and pinned within them (the class description), with \e pixelsPerUnit the
     camera's pixels per normalised unit, and \e tiltVerified the tilt's own verdict (true when it is not corrected).
     An alignment without a covariance (vpMorphViewAligner::PAPER) is UNVERIFIED, and so is one explained only in part
-    without a target check.
+    without a target check. Why is kept (getVerification()).
   */
   Status verify(const vpMorphViewAlignment &a, double rotationRad, double translationPx, double scalePx,
-                double radiusPx, double pixelsPerUnit, bool tiltVerified) const;
+                double radiusPx, double pixelsPerUnit, bool tiltVerified);
+  //! What the last verify() found (NOT_VERIFIED before any in this task): why a stop at the goal is UNVERIFIED.
+  Verification getVerification() const { return m_verification; }
   //! Standard deviations within the thresholds that verify() requires (3: 99.7 % of a Gaussian estimate's errors).
   static double getVerificationSigmas() { return 3.0; }
 
@@ -154,6 +170,7 @@ private:
   double m_slack = getDefaultSlack();
   unsigned int m_lost = 0, m_replans = 0;
   Status m_halted = NOT_STARTED;
+  Verification m_verification = NOT_VERIFIED;
   double m_targetDistance = std::numeric_limits<double>::quiet_NaN();
 };
 
