@@ -427,11 +427,9 @@ std::string vpMorphBenchReport::summaryJson(const std::map<std::string, std::str
 std::string vpMorphBenchReport::summaryMarkdown() const
 {
   std::ostringstream os;
-  os << "| set | robot | controller | success (95 % interval) | declared converged | false-converged | set-up failures "
-        "| "
-        "median iter. | "
-        "median path (mm) | path ratio | final error truth (mm / deg) | final error tag (mm / deg) | failures | "
-        "holds / re-plans / re-recognitions |\n";
+  os << "| set | robot | controller | success (95 % interval) | declared converged | false-converged | "
+        "set-up failures | median iter. | median path (mm) | path ratio | final error truth (mm / deg) | "
+        "final error tag (mm / deg) | failures | holds / re-plans / re-recognitions |\n";
   os << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   auto dash = [](const std::string &x) { return x.empty() ? std::string("-") : x; };
   for (const Summary &s : summarize()) {

@@ -14,31 +14,6 @@ bool sameContour(const vpMorphContour &a, const vpMorphContour &b)
 {
   return a.size() == b.size() && a.xs() == b.xs() && a.ys() == b.ys();
 }
-
-// Region moments of a polygon (Green's theorem): area a, centroid, normalised centred moments mu_ij / a.
-void regionMoments(const vpMorphContour &c, double &a, double &xg, double &yg, double &n20, double &n02, double &n11)
-{
-  double A = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
-  const std::size_t n = c.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t j = (i + 1) % n;
-    const double x0 = c.x(i), y0 = c.y(i), x1 = c.x(j), y1 = c.y(j);
-    const double cr = x0 * y1 - x1 * y0;
-    A += cr;
-    sx += (x0 + x1) * cr;
-    sy += (y0 + y1) * cr;
-    sxx += (x0 * x0 + x0 * x1 + x1 * x1) * cr;
-    syy += (y0 * y0 + y0 * y1 + y1 * y1) * cr;
-    sxy += (x0 * y1 + 2 * x0 * y0 + 2 * x1 * y1 + x1 * y0) * cr;
-  }
-  A *= 0.5; // signed; the ratios below do not depend on the orientation
-  xg = sx / (6 * A);
-  yg = sy / (6 * A);
-  n20 = sxx / (12 * A) - xg * xg;
-  n02 = syy / (12 * A) - yg * yg;
-  n11 = sxy / (24 * A) - xg * yg;
-  a = std::fabs(A);
-}
 } // namespace
 
 vpFeatureMorph::vpFeatureMorph() : vpBasicFeature() { init(); }
@@ -105,8 +80,12 @@ void vpFeatureMorph::buildFrom(const vpMorphContour &contour, const vpCameraPara
 
 void vpFeatureMorph::setContour(const vpMorphContour &normalized, double A, double B, double C)
 {
-  double a, xg, yg, n20, n02, n11;
-  regionMoments(normalized, a, xg, yg, n20, n02, n11);
+  // The region measured on the image where there is one (see vpMorphContour::hasRegion(): the polygon's area and
+  // centroid move by a percent when a vertex appears or shifts from one image to the next), else the polygon's.
+  const double a = normalized.regionArea();
+  double xg, yg, n20, n02, n11;
+  normalized.regionCentroid(xg, yg);
+  normalized.regionMoments(n20, n11, n02);
   const double Z = 1.0 / (A * xg + B * yg + C);
   // A valid contour can still be too small for its moments in normalised coordinates (a polygon of 1e-160: the
   // area underflows to 0, the centroid divides by it): refuse it rather than give vpServo an infinite error
@@ -126,17 +105,10 @@ void vpFeatureMorph::setContour(const vpMorphContour &normalized, double A, doub
   m_A = A;
   m_B = B;
   m_C = C;
-  if (normalized.hasRegion()) {
-    // The region measured on the image (see vpMorphContour::hasRegion()): the polygon's area and centroid move by a
-    // percent when a vertex appears or shifts from one image to the next.
-    a = normalized.regionArea();
-    normalized.regionCentroid(xg, yg);
-    normalized.regionMoments(n20, n11, n02);
-  }
   m_n20 = n20;
   m_n02 = n02;
   m_n11 = n11;
-  m_Z = 1.0 / (A * xg + B * yg + C);
+  m_Z = Z;
   s[0] = xg;
   s[1] = yg;
   s[3] = 0.5 * std::log(a);
