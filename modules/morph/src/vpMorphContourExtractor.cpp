@@ -42,20 +42,32 @@ cv::Mat greyOf(const vpImage<unsigned char> &I)
                  const_cast<unsigned char *>(I.bitmap));
 }
 
-/*
-  Object mask (255 = object) from the two grey classes (vpMorphGreyClasses) and the border-minority polarity rule. It
-  is a view of \e padded, which has one pixel of background all round (what findContours() needs to close objects that
-  touch the border), written in place rather than copied into it.
-*/
-cv::Mat mask(const vpImage<unsigned char> &I, cv::Mat &padded)
+// The object's class in an image: the two grey classes (vpMorphGreyClasses) fitted on the whole image, and which of
+// them is the object (the border-minority polarity rule).
+struct Segmentation
+{
+  vpMorphGreyClasses classes;
+  bool objectIsBright;
+};
+
+// \e rect of the image classified into the same rectangle of \e bin (image coordinates): 255 for the object's class.
+void classify(const cv::Mat &grey, const Segmentation &s, const cv::Rect &rect, cv::Mat &bin)
+{
+  cv::Mat dst = bin(rect);
+  s.classes.bright(grey(rect), dst, rect.tl());
+  if (!s.objectIsBright)
+    cv::bitwise_not(dst, dst);
+}
+
+Segmentation segmentation(const vpImage<unsigned char> &I)
 {
   if (I.getSize() == 0 || I.bitmap == nullptr)
     fail("the image is empty");
   const unsigned int minSide = vpMorphContourExtractor::minImageSize();
   if (I.getWidth() < minSide || I.getHeight() < minSide) {
     std::ostringstream os;
-    os << "the image is " << I.getWidth() << "x" << I.getHeight() << ", smaller than the minimum " << minSide
-       << "x" << minSide;
+    os << "the image is " << I.getWidth() << "x" << I.getHeight() << ", smaller than the minimum " << minSide << "x"
+       << minSide;
     fail(os.str());
   }
   const cv::Mat grey = greyOf(I);
@@ -67,45 +79,59 @@ cv::Mat mask(const vpImage<unsigned char> &I, cv::Mat &padded)
     os << "the image is uniform (every pixel is " << (lo - h.begin()) << "): no contrast to separate an object";
     fail(os.str());
   }
+  Segmentation s{vpMorphGreyClasses(grey, vpMorphGreyClasses::otsu(h, total)), true};
+  // Polarity: the class that dominates the border is the background.
+  const int rows = grey.rows, cols = grey.cols;
+  auto bright = [&grey, &s](const cv::Rect &part) {
+    cv::Mat dst(part.size(), CV_8UC1);
+    s.classes.bright(grey(part), dst, part.tl());
+    return static_cast<long>(cv::countNonZero(dst));
+  };
+  long count = 0, border = 0;
+  for (const cv::Rect &side : {cv::Rect(0, 0, cols, 1), cv::Rect(0, rows - 1, cols, 1), cv::Rect(0, 1, 1, rows - 2),
+                               cv::Rect(cols - 1, 1, 1, rows - 2)}) {
+    count += bright(side);
+    border += side.area();
+  }
+  s.objectIsBright = 2 * count != border ? 2 * count < border : 2 * bright(cv::Rect(0, 0, cols, rows)) < total;
+  return s;
+}
+
+/*
+  The object mask of \e rect (image coordinates) in \e padded, which has one pixel of background all round the image
+  (what findContours() needs to close objects that touch the border): its view of the image, of which \e rect alone is
+  written, and the ring of pixels round \e rect set to background.
+*/
+cv::Mat mask(const cv::Mat &grey, const Segmentation &s, const cv::Rect &rect, cv::Mat &padded)
+{
   const int rows = grey.rows, cols = grey.cols;
   padded.create(rows + 2, cols + 2, CV_8UC1);
-  padded.row(0).setTo(0);
-  padded.row(rows + 1).setTo(0);
-  for (int r = 1; r <= rows; ++r) { // a column's setTo() goes through OpenCV's generic strided iteration
+  const cv::Rect ring(rect.x, rect.y, rect.width + 2, rect.height + 2); // in padded coordinates
+  padded(cv::Rect(ring.x, ring.y, ring.width, 1)).setTo(0);
+  padded(cv::Rect(ring.x, ring.br().y - 1, ring.width, 1)).setTo(0);
+  for (int r = ring.y + 1; r < ring.br().y - 1; ++r) { // a column's setTo() goes through OpenCV's generic iteration
     unsigned char *row = padded.ptr<unsigned char>(r);
-    row[0] = row[cols + 1] = 0;
+    row[ring.x] = row[ring.br().x - 1] = 0;
   }
   cv::Mat bin = padded(cv::Rect(1, 1, cols, rows));
-  vpMorphGreyClasses(grey, vpMorphGreyClasses::otsu(h, total)).bright(grey, bin);
-
-  // Polarity: the class that dominates the border is the background.
-  long bright = 0, border = 0;
-  const unsigned char *top = bin.ptr<unsigned char>(0), *bottom = bin.ptr<unsigned char>(rows - 1);
-  for (int c = 0; c < cols; ++c) {
-    bright += (top[c] != 0) + (bottom[c] != 0);
-    border += 2;
-  }
-  for (int r = 1; r < rows - 1; ++r) {
-    const unsigned char *row = bin.ptr<unsigned char>(r);
-    bright += (row[0] != 0) + (row[cols - 1] != 0);
-    border += 2;
-  }
-  const bool objectIsBright = 2 * bright != border ? 2 * bright < border : 2 * cv::countNonZero(bin) < total;
-  if (!objectIsBright)
-    cv::bitwise_not(bin, bin);
+  classify(grey, s, rect, bin);
   return bin;
 }
 
-// The first \e measured regions (largest first) also get their grey-level area and centroid. \e binOut, if not
-// null, receives the object mask they were found in.
-std::vector<Region> regions(const vpImage<unsigned char> &I, std::size_t measured = 0, cv::Mat *binOut = nullptr)
+/*
+  The object regions of \e rect (image coordinates; larger than the minimum area, largest first), their chains in image
+  coordinates; \e bin receives the object mask they were found in (valid over \e rect). The first \e measured also get
+  their grey-level area and centroid. None found throws, unless \e none is given: then set and nothing thrown.
+*/
+std::vector<Region> regions(const vpImage<unsigned char> &I, const Segmentation &s, const cv::Rect &rect, cv::Mat &bin,
+                            std::size_t measured = 0, bool *none = nullptr)
 {
+  const cv::Mat grey = greyOf(I);
   cv::Mat padded;
-  const cv::Mat bin = mask(I, padded);
-  if (binOut)
-    *binOut = bin;
-  std::vector<std::vector<cv::Point> > contours;
-  cv::findContours(padded, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  bin = mask(grey, s, rect, padded);
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(padded(cv::Rect(rect.x, rect.y, rect.width + 2, rect.height + 2)), contours, cv::RETR_EXTERNAL,
+                   cv::CHAIN_APPROX_NONE, cv::Point(rect.x - 1, rect.y - 1));
 
   std::vector<Region> out;
   for (std::vector<cv::Point> &c : contours) {
@@ -113,14 +139,16 @@ std::vector<Region> regions(const vpImage<unsigned char> &I, std::size_t measure
     if (a < vpMorphContourExtractor::minRegionArea())
       continue;
     Region r{std::move(c), a, cv::Point()};
-    for (cv::Point &p : r.chain)
-      p -= cv::Point(1, 1);
     r.first = *std::min_element(r.chain.begin(), r.chain.end(), [](const cv::Point &p, const cv::Point &q) {
       return p.y < q.y || (p.y == q.y && p.x < q.x);
     });
     out.push_back(std::move(r));
   }
   if (out.empty()) {
+    if (none) {
+      *none = true;
+      return out;
+    }
     std::ostringstream os;
     os << "no object found in the " << I.getWidth() << "x" << I.getHeight() << " image (" << contours.size()
        << " region(s), all enclosing less than the validity floor of " << vpMorphContourExtractor::minRegionArea()
@@ -132,9 +160,19 @@ std::vector<Region> regions(const vpImage<unsigned char> &I, std::size_t measure
       return a.area > b.area;
     return a.first.y < b.first.y || (a.first.y == b.first.y && a.first.x < b.first.x);
   });
-  const cv::Mat grey = greyOf(I);
   for (std::size_t k = 0; k < std::min(measured, out.size()); ++k)
     measure(grey, bin, out[k]);
+  return out;
+}
+
+// The regions of the whole image, as regions() gives them.
+std::vector<Region> regions(const vpImage<unsigned char> &I, std::size_t measured = 0, cv::Mat *binOut = nullptr)
+{
+  cv::Mat bin;
+  std::vector<Region> out =
+      regions(I, segmentation(I), cv::Rect(0, 0, int(I.getWidth()), int(I.getHeight())), bin, measured);
+  if (binOut)
+    *binOut = bin;
   return out;
 }
 
@@ -182,8 +220,8 @@ vpMorphContour polygon(const Region &r)
   carries no measured region: part of its area is a bridge, not the object's grey levels. \e joined, if not null,
   tells whether a piece was joined.
 */
-vpMorphContour silhouette(const cv::Mat &grey, const cv::Mat &bin, Region &seed, const std::vector<const Region *> &pieces,
-                          bool *joined = nullptr)
+vpMorphContour silhouette(const cv::Mat &grey, const cv::Mat &bin, Region &seed,
+                          const std::vector<const Region *> &pieces, bool *joined = nullptr)
 {
   const cv::Rect box = cv::boundingRect(seed.chain);
   const double maxGap = vpMorphContourExtractor::joinedMaxGap() * std::hypot(double(box.width), double(box.height));
@@ -237,6 +275,27 @@ std::vector<cv::Point> clippedPixels(std::vector<cv::Point2d> poly, const cv::Po
     px.emplace_back(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
   return px;
 }
+
+// Per region, how many of its pixels lie inside the polygon \e poly (pixels, its box \e pbox in the image).
+std::vector<long> overlaps(const std::vector<Region> &regs, const std::vector<cv::Point> &poly, const cv::Rect &pbox)
+{
+  std::vector<long> inside(regs.size(), 0);
+  if (pbox.area() == 0)
+    return inside;
+  cv::Mat was = cv::Mat::zeros(pbox.size(), CV_8UC1);
+  cv::fillPoly(was, std::vector<std::vector<cv::Point>>{poly}, cv::Scalar(255), cv::LINE_8, 0, -pbox.tl());
+  for (std::size_t k = 0; k < regs.size(); ++k) {
+    const cv::Rect box = cv::boundingRect(regs[k].chain);
+    const cv::Rect common = box & pbox;
+    if (common.area() == 0)
+      continue;
+    cv::Mat is = cv::Mat::zeros(box.size(), CV_8UC1);
+    cv::drawContours(is, std::vector<std::vector<cv::Point>>{regs[k].chain}, 0, cv::Scalar(255), cv::FILLED, cv::LINE_8,
+                     cv::noArray(), INT_MAX, -box.tl());
+    inside[k] = cv::countNonZero(is(common - box.tl()) & was(common - pbox.tl()));
+  }
+  return inside;
+}
 } // namespace
 
 vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned char> &I) const
@@ -286,30 +345,45 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
   if (previous.units() != vpMorphContour::PIXEL)
     throw vpMorphException(vpMorphException::badParameterError,
                            "vpMorphContourExtractor::extractJoined: the previous contour must be in PIXEL units");
-  cv::Mat bin;
-  std::vector<Region> regs = regions(I, 0, &bin);
   // The previous outline's pixels, over its box clipped to the image (a pixel of margin all round).
   std::vector<cv::Point2d> outline;
   outline.reserve(previous.size());
   for (std::size_t k = 0; k < previous.size(); ++k)
     outline.emplace_back(previous.x(k), previous.y(k));
-  const std::vector<cv::Point> poly = clippedPixels(outline, {-1.0, -1.0}, {double(bin.cols), double(bin.rows)});
-  const cv::Rect image(0, 0, bin.cols, bin.rows);
+  const cv::Rect image(0, 0, static_cast<int>(I.getWidth()), static_cast<int>(I.getHeight()));
+  const std::vector<cv::Point> poly = clippedPixels(outline, {-1.0, -1.0}, {double(image.width), double(image.height)});
   const cv::Rect pbox = poly.empty() ? cv::Rect() : cv::boundingRect(poly) & image;
-  std::vector<long> inside(regs.size(), 0);
-  if (pbox.area() > 0) {
-    cv::Mat was = cv::Mat::zeros(pbox.size(), CV_8UC1);
-    cv::fillPoly(was, std::vector<std::vector<cv::Point> >{poly}, cv::Scalar(255), cv::LINE_8, 0, -pbox.tl());
-    for (std::size_t k = 0; k < regs.size(); ++k) {
-      const cv::Rect box = cv::boundingRect(regs[k].chain);
-      const cv::Rect common = box & pbox;
-      if (common.area() == 0)
-        continue;
-      cv::Mat is = cv::Mat::zeros(box.size(), CV_8UC1);
-      cv::drawContours(is, std::vector<std::vector<cv::Point> >{regs[k].chain}, 0, cv::Scalar(255), cv::FILLED,
-                       cv::LINE_8, cv::noArray(), INT_MAX, -box.tl());
-      inside[k] = cv::countNonZero(is(common - box.tl()) & was(common - pbox.tl()));
-    }
+  const Segmentation seg = segmentation(I);
+  cv::Mat bin;
+  std::vector<Region> regs;
+  std::vector<long> inside;
+  // First in a window about where the object was (tracing the whole image is most of the extraction's cost when the
+  // object is small in it), grown by a quarter of the box's diagonal for the motion since and by the reach of the
+  // regions' measure. Its answer is the whole image's when every region that overlaps where the object was lies in
+  // the window with that reach around it (a region is then the same in both); else the whole image is traced. So
+  // the margin sets the cost, never the result.
+  const int reach = vpMorphRegionMeasure::kReach;
+  const int margin = reach + static_cast<int>(std::ceil(0.25 * std::hypot(double(pbox.width), double(pbox.height))));
+  const cv::Rect window =
+      pbox.area() > 0
+          ? cv::Rect(pbox.x - margin, pbox.y - margin, pbox.width + 2 * margin, pbox.height + 2 * margin) & image
+          : image;
+  if (window != image) {
+    bool none = false;
+    regs = regions(I, seg, window, bin, 0, &none);
+    inside = overlaps(regs, poly, pbox);
+    const bool whole = std::all_of(regs.begin(), regs.end(), [&](const Region &r) {
+      const cv::Rect box = cv::boundingRect(r.chain);
+      const cv::Rect read =
+          cv::Rect(box.x - reach, box.y - reach, box.width + 2 * reach, box.height + 2 * reach) & image;
+      return inside[static_cast<std::size_t>(&r - regs.data())] == 0 || (read & window) == read;
+    });
+    if (none || !whole || std::none_of(inside.begin(), inside.end(), [](long n) { return n > 0; }))
+      regs.clear();
+  }
+  if (regs.empty()) {
+    regs = regions(I, seg, image, bin);
+    inside = overlaps(regs, poly, pbox);
   }
   // The object's regions: those that overlap where it was (a distractor lies elsewhere); the largest is the seed.
   const std::size_t seed = static_cast<std::size_t>(
@@ -336,7 +410,7 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<vpRGBa> &I) 
 vpImage<unsigned char> vpMorphContourExtractor::objectMask(const vpImage<unsigned char> &I) const
 {
   cv::Mat padded;
-  const cv::Mat bin = mask(I, padded);
+  const cv::Mat bin = mask(greyOf(I), segmentation(I), cv::Rect(0, 0, int(I.getWidth()), int(I.getHeight())), padded);
   vpImage<unsigned char> M(I.getHeight(), I.getWidth());
   for (int r = 0; r < bin.rows; ++r)
     std::copy(bin.ptr<unsigned char>(r), bin.ptr<unsigned char>(r) + bin.cols, M[static_cast<unsigned int>(r)]);
@@ -350,15 +424,15 @@ int vpMorphContourExtractor::otsuThreshold(const vpImage<unsigned char> &I)
   return vpMorphGreyClasses::otsu(vpMorphGreyClasses::histogram(I.bitmap, I.getSize()), static_cast<long>(I.getSize()));
 }
 
-std::vector<std::vector<vpImagePoint> > vpMorphContourExtractor::boundaries(const vpImage<unsigned char> &I) const
+std::vector<std::vector<vpImagePoint>> vpMorphContourExtractor::boundaries(const vpImage<unsigned char> &I) const
 {
-  std::vector<std::vector<vpImagePoint> > out;
+  std::vector<std::vector<vpImagePoint>> out;
   for (const Region &r : regions(I))
     out.push_back(toVisp(r.chain));
   return out;
 }
 
-std::vector<std::vector<vpImagePoint> > vpMorphContourExtractor::boundaries(const vpImage<vpRGBa> &I) const
+std::vector<std::vector<vpImagePoint>> vpMorphContourExtractor::boundaries(const vpImage<vpRGBa> &I) const
 {
   return boundaries(toGrey(I));
 }

@@ -467,7 +467,7 @@ vpMorphGreyClasses::vpMorphGreyClasses(const cv::Mat &grey, int t) : m_t0(t), m_
   m_t0 = mid(0) - m_tu * L.cu - m_tv * L.cv;
 }
 
-void vpMorphGreyClasses::bright(const cv::Mat &grey, cv::Mat &dst) const
+void vpMorphGreyClasses::bright(const cv::Mat &grey, cv::Mat &dst, const cv::Point &origin) const
 {
   if (m_tu == 0.0 && m_tv == 0.0) {
     // One level: a pixel is above it as it is above its floor (levels are integers).
@@ -481,12 +481,12 @@ void vpMorphGreyClasses::bright(const cv::Mat &grey, cv::Mat &dst) const
   const float tu = static_cast<float>(m_tu);
   std::vector<float> slope(static_cast<std::size_t>(grey.cols));
   for (int u = 0; u < grey.cols; ++u)
-    slope[std::size_t(u)] = tu * static_cast<float>(u);
+    slope[std::size_t(u)] = tu * static_cast<float>(origin.x + u);
   std::vector<unsigned char> level(slope.size());
   for (int v = 0; v < grey.rows; ++v) {
     const unsigned char *g = grey.ptr<unsigned char>(v);
     unsigned char *d = dst.ptr<unsigned char>(v);
-    const float t = static_cast<float>(m_t0 + m_tv * v);
+    const float t = static_cast<float>(m_t0 + m_tv * (origin.y + v));
     for (std::size_t u = 0; u < slope.size(); ++u)
       level[u] = static_cast<unsigned char>(static_cast<int>(std::max(0.0f, std::min(254.0f, t + slope[u]))));
     for (std::size_t u = 0; u < slope.size(); ++u)

@@ -44,8 +44,9 @@ public:
   //! The level halfway between the two classes' at pixel (u, v) (column, row).
   double threshold(double u, double v) const { return m_t0 + m_tu * u + m_tv * v; }
   //! Writes 255 where \e grey is above threshold(), 0 elsewhere, into \e dst (allocated by the caller, same size);
-  //! under a shading a pixel at a sensor's limit goes to the class on its side (at 255 always, at 0 never).
-  void bright(const cv::Mat &grey, cv::Mat &dst) const;
+  //! under a shading a pixel at a sensor's limit goes to the class on its side (at 255 always, at 0 never). \e grey
+  //! may be a part of the image whose first pixel is \e origin: each pixel is classified as in the whole image.
+  void bright(const cv::Mat &grey, cv::Mat &dst, const cv::Point &origin = cv::Point()) const;
 
 private:
   double m_t0, m_tu, m_tv; // threshold(u, v) = t0 + tu u + tv v

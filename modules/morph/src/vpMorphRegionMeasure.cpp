@@ -87,8 +87,8 @@ struct LevelHistogram
     for (int v = 0; v < 256; ++v)
       (v <= med ? below : above)[std::abs(v - med)] += h[v];
     above[0] += h[med];
-    halfWidth = fourSigma(oneSidedMad(quantizedDeviationMedian(below), h[0] > 0, quantizedDeviationMedian(above),
-                                      h[255] > 0));
+    halfWidth =
+        fourSigma(oneSidedMad(quantizedDeviationMedian(below), h[0] > 0, quantizedDeviationMedian(above), h[255] > 0));
   }
 
   /*
@@ -225,11 +225,12 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
                                    bool levelsOnly)
 {
   const int B = 3;
+  static_assert(kReach == B + 3, "the band, and the ring 2 px beyond it");
   cv::Rect box = cv::boundingRect(reg.chain);
-  box.x -= B + 3;
-  box.y -= B + 3;
-  box.width += 2 * (B + 3);
-  box.height += 2 * (B + 3);
+  box.x -= kReach;
+  box.y -= kReach;
+  box.width += 2 * kReach;
+  box.height += 2 * kReach;
   box &= cv::Rect(0, 0, grey.cols, grey.rows);
   const cv::Mat g = grey(box);
   cv::Mat region = cv::Mat::zeros(box.size(), CV_8UC1);
@@ -260,7 +261,7 @@ void vpMorphRegionMeasure::measure(const cv::Mat &grey, const cv::Mat &bin, Regi
   const double uc = box.x + 0.5 * (box.width - 1), vc = box.y + 0.5 * (box.height - 1);
   auto contrast = [&] { return fg.valid && bg.valid ? std::fabs(fg.at(uc, vc) - bg.at(uc, vc)) : 0.0; };
   const double minContrast = 8.0; // grey levels: below, the levels are not told apart (the binary region is used)
-  cv::Mat gx, gy; // computed once for the edge's level, profile and outline
+  cv::Mat gx, gy;                 // computed once for the edge's level, profile and outline
   if (!given && innerLevels.n == 0 && contrast() >= minContrast) {
     gradient(g, gx, gy);
     fg = levelFromEdge(g, gx, gy, band, fg, bg, box.tl());

@@ -53,6 +53,8 @@ struct Region
 */
 void measure(const cv::Mat &grey, const cv::Mat &bin, Region &reg, const Region *levelsFrom = nullptr,
              bool levelsOnly = false);
+// How far beyond a region's bounding box measure() reads the image and the mask (pixels): the band and the ring beyond.
+constexpr int kReach = 6;
 } // namespace vpMorphRegionMeasure
 
 #endif

@@ -93,8 +93,11 @@ public:
     \e previous (the largest of them joined with the others near it). Why: between two images the object moves less
     than the gap that separates it from other regions, so where it was tells it from them without a rule on size,
     and an occluder's cut pieces, which lie where the object was, are joined back. A fast motion moves a small piece
-    farther than its own size: a caller that knows the camera's motion since passes \e previous moved by it. An empty
-    \e previous gives extractJoined(I). \throw vpMorphException::badImageError as extract(), and when no region
+    farther than its own size: a caller that knows the camera's motion since passes \e previous moved by it. The grey
+    classes are fitted on the whole image, but the pixels are classified and traced in a window about \e previous
+    (its box grown by a quarter of its diagonal) when the regions that overlap \e previous lie inside it, in the whole
+    image otherwise: the answer of the whole image at the window's cost (but for an object seen inside a hole of
+    another region, which the whole image's outer boundaries miss). An empty \e previous gives extractJoined(I). \throw vpMorphException::badImageError as extract(), and when no region
     overlaps \e previous (the object left the view or is lost); badParameterError when \e previous is not in PIXEL
     units.
   */
