@@ -72,6 +72,11 @@ template <typename Pixel> void run(const vpImage<Pixel> &I, const vpImage<unsign
     const vpMorphContour joined = extractor.extractJoined(I);
     checkPolygon(joined, w, h);
     VP_FUZZ_CHECK(joined.area() >= largest.area() - largest.perimeter(), "a joined outline holds the largest piece");
+    // Followed from its own outline (traced in a window about it when it is small in the image): valid, in the image.
+    try {
+      checkPolygon(extractor.extractJoined(I, largest), w, h);
+    } catch (const vpException &) {
+    }
   }
   try {
     for (const std::vector<vpImagePoint> &chain : extractor.boundaries(I))

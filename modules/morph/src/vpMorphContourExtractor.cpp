@@ -42,6 +42,12 @@ cv::Mat greyOf(const vpImage<unsigned char> &I)
                  const_cast<unsigned char *>(I.bitmap));
 }
 
+// The rectangle of the whole image.
+cv::Rect wholeOf(const vpImage<unsigned char> &I)
+{
+  return cv::Rect(0, 0, static_cast<int>(I.getWidth()), static_cast<int>(I.getHeight()));
+}
+
 // The object's class in an image: the two grey classes (vpMorphGreyClasses) fitted on the whole image, and which of
 // them is the object (the border-minority polarity rule).
 struct Segmentation
@@ -169,8 +175,7 @@ std::vector<Region> regions(const vpImage<unsigned char> &I, const Segmentation 
 std::vector<Region> regions(const vpImage<unsigned char> &I, std::size_t measured = 0, cv::Mat *binOut = nullptr)
 {
   cv::Mat bin;
-  std::vector<Region> out =
-      regions(I, segmentation(I), cv::Rect(0, 0, int(I.getWidth()), int(I.getHeight())), bin, measured);
+  std::vector<Region> out = regions(I, segmentation(I), wholeOf(I), bin, measured);
   if (binOut)
     *binOut = bin;
   return out;
@@ -350,18 +355,18 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
   outline.reserve(previous.size());
   for (std::size_t k = 0; k < previous.size(); ++k)
     outline.emplace_back(previous.x(k), previous.y(k));
-  const cv::Rect image(0, 0, static_cast<int>(I.getWidth()), static_cast<int>(I.getHeight()));
+  const cv::Rect image = wholeOf(I);
   const std::vector<cv::Point> poly = clippedPixels(outline, {-1.0, -1.0}, {double(image.width), double(image.height)});
   const cv::Rect pbox = poly.empty() ? cv::Rect() : cv::boundingRect(poly) & image;
   const Segmentation seg = segmentation(I);
   cv::Mat bin;
   std::vector<Region> regs;
   std::vector<long> inside;
-  // First in a window about where the object was (tracing the whole image is most of the extraction's cost when the
-  // object is small in it), grown by a quarter of the box's diagonal for the motion since and by the reach of the
-  // regions' measure. Its answer is the whole image's when every region that overlaps where the object was lies in
-  // the window with that reach around it (a region is then the same in both); else the whole image is traced. So
-  // the margin sets the cost, never the result.
+  // First in a window about where the object was (classifying and tracing cost in proportion to the pixels, of which
+  // the object's are often a small part), grown by a quarter of the box's diagonal for the motion since and by the
+  // reach of the regions' measure. Its answer is the whole image's when every region that overlaps where the object was
+  // lies in the window with that reach around it (a region is then the same in both); else the whole image is traced.
+  // So the margin sets the cost, never the result.
   const int reach = vpMorphRegionMeasure::kReach;
   const int margin = reach + static_cast<int>(std::ceil(0.25 * std::hypot(double(pbox.width), double(pbox.height))));
   const cv::Rect window =
@@ -410,7 +415,7 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<vpRGBa> &I) 
 vpImage<unsigned char> vpMorphContourExtractor::objectMask(const vpImage<unsigned char> &I) const
 {
   cv::Mat padded;
-  const cv::Mat bin = mask(greyOf(I), segmentation(I), cv::Rect(0, 0, int(I.getWidth()), int(I.getHeight())), padded);
+  const cv::Mat bin = mask(greyOf(I), segmentation(I), wholeOf(I), padded);
   vpImage<unsigned char> M(I.getHeight(), I.getWidth());
   for (int r = 0; r < bin.rows; ++r)
     std::copy(bin.ptr<unsigned char>(r), bin.ptr<unsigned char>(r) + bin.cols, M[static_cast<unsigned int>(r)]);
