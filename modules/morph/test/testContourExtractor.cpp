@@ -388,6 +388,12 @@ TEST_CASE("extractor: a larger region elsewhere is not the object: candidates fi
     spiked.y.insert(spiked.y.end(), {479.0, spiked.y.back()});
     checkSame(ex.extractJoined(*I, before), ex.extractJoined(*I, vpMorphContour(spiked.x, spiked.y)));
   }
+  // An outline inside the bar that none of its boundary pixels reach overlaps it all the same.
+  Poly core;
+  core.x = {315, 330, 330, 315};
+  core.y = {236, 236, 246, 246};
+  CHECK(ex.extractJoined(withSlab, vpMorphContour(core.x, core.y)).regionArea() ==
+        Approx(full.regionArea()).epsilon(1e-9));
   // The slab followed the same way is the slab, alone.
   const vpMorphContour slabBefore = ex.extract(render({slab}, 0, 255));
   CHECK(ex.extractJoined(cutWithSlab, slabBefore).regionArea() == Approx(slabBefore.regionArea()).epsilon(1e-9));
