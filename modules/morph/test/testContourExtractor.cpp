@@ -328,6 +328,17 @@ TEST_CASE("extractor: an object followed is read about where it was, with the wh
       }
   }
   CHECK(views == 36);
+  // Bad images are refused as the whole image's extraction refuses them, whatever the previous outline.
+  const vpMorphContour small({300, 340, 340, 300}, {220, 220, 260, 260});
+  for (const vpImage<unsigned char> &bad :
+       {vpImage<unsigned char>(), vpImage<unsigned char>(480, 640, 128), vpImage<unsigned char>(2, 2, 0)}) {
+    try {
+      (void)ex.extractJoined(bad, small);
+      FAIL("a bad image: an error expected");
+    } catch (const vpMorphException &e) {
+      CHECK(e.getCode() == vpMorphException::badImageError);
+    }
+  }
 }
 
 TEST_CASE("extractor: a larger region elsewhere is not the object: candidates first, then where the object was",

@@ -97,9 +97,9 @@ public:
     classes are fitted on the whole image, but the pixels are classified and traced in a window about \e previous
     (its box grown by a quarter of its diagonal) when the regions that overlap \e previous lie inside it, in the whole
     image otherwise: the answer of the whole image at the window's cost (but for an object seen inside a hole of
-    another region, which the whole image's outer boundaries miss). An empty \e previous gives extractJoined(I). \throw vpMorphException::badImageError as extract(), and when no region
-    overlaps \e previous (the object left the view or is lost); badParameterError when \e previous is not in PIXEL
-    units.
+    another region, which the whole image's outer boundaries miss). An empty \e previous gives extractJoined(I).
+    \throw vpMorphException::badImageError as extract(), and when no region overlaps \e previous (the object left the
+    view or is lost); badParameterError when \e previous is not in PIXEL units.
   */
   vpMorphContour extractJoined(const vpImage<unsigned char> &I, const vpMorphContour &previous) const;
   //! Same on a colour image.
