@@ -22,18 +22,57 @@ using Pt = vpMorphPixelChain::Pt;
 using EdgeError = vpMorphPixelChain::EdgeError;
 using Chain = vpMorphPixelChain;
 
-// Andrew's monotone chain: indices of the convex hull vertices.
-std::vector<std::size_t> hullIndices(const std::vector<Pt> &p)
+// The pixels that can be vertices of the convex hull, in lexicographic order, each at the lowest index of its
+// position. On a chain of integer rows (every traced boundary), only the leftmost and rightmost pixels of each row
+// can: one pass, in (y, x) order, where sorting every pixel in (x, y) order took a tenth of the approximation.
+std::vector<std::size_t> hullCandidates(const std::vector<Pt> &p)
 {
-  std::vector<std::size_t> idx(p.size());
+  double y0 = p[0].y, y1 = p[0].y;
+  bool integral = true;
+  for (const Pt &q : p) {
+    y0 = std::min(y0, q.y);
+    y1 = std::max(y1, q.y);
+    integral = integral && q.y == std::floor(q.y);
+  }
+  std::vector<std::size_t> idx;
+  // A chain of n 8-connected pixels spans at most n rows; other chains are sorted.
+  if (integral && y1 - y0 < double(p.size())) {
+    const std::size_t rows = std::size_t(y1 - y0) + 1, none = p.size();
+    std::vector<std::size_t> left(rows, none), right(rows, none);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const std::size_t r = std::size_t(p[i].y - y0);
+      if (left[r] == none || p[i].x < p[left[r]].x)
+        left[r] = i;
+      if (right[r] == none || p[i].x > p[right[r]].x)
+        right[r] = i;
+    }
+    idx.reserve(2 * rows);
+    for (std::size_t r = 0; r < rows; ++r) {
+      if (left[r] == none)
+        continue;
+      idx.push_back(left[r]);
+      if (p[right[r]].x != p[left[r]].x)
+        idx.push_back(right[r]);
+    }
+    return idx;
+  }
+  idx.resize(p.size());
   for (std::size_t i = 0; i < p.size(); ++i)
     idx[i] = i;
   std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
-    return p[a].x < p[b].x || (p[a].x == p[b].x && (p[a].y < p[b].y || (p[a].y == p[b].y && a < b)));
+    return p[a].y < p[b].y || (p[a].y == p[b].y && (p[a].x < p[b].x || (p[a].x == p[b].x && a < b)));
   });
   idx.erase(std::unique(idx.begin(), idx.end(),
                         [&](std::size_t a, std::size_t b) { return p[a].x == p[b].x && p[a].y == p[b].y; }),
             idx.end());
+  return idx;
+}
+
+// Andrew's monotone chain (on the (y, x) order, the same hull traversed the other way): indices of the strictly
+// convex hull vertices.
+std::vector<std::size_t> hullIndices(const std::vector<Pt> &p)
+{
+  const std::vector<std::size_t> idx = hullCandidates(p);
   if (idx.size() < 3)
     return idx;
   auto cross = [&](std::size_t o, std::size_t a, std::size_t b) {
