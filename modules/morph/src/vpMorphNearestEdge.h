@@ -232,9 +232,14 @@ private:
     if (reach > 0.0 && reach < std::numeric_limits<double>::infinity()) {
       const int i0 = cellX(px - reach), i1 = cellX(px + reach), j0 = cellY(py - reach), j1 = cellY(py + reach);
       if ((i1 - i0 + 1) * (j1 - j0 + 1) <= 4) {
+        // p's own cell first: its edges are mostly the nearest, and the other cells then mostly lie farther (skipped
+        // unread). The order does not change the result (equal distances: the lowest index).
+        const int ci = cellX(px), cj = cellY(py);
+        visitCell(ci, cj, px, py, b);
         for (int j = j0; j <= j1; ++j)
           for (int i = i0; i <= i1; ++i)
-            visitCell(i, j, px, py, b);
+            if (i != ci || j != cj)
+              visitCell(i, j, px, py, b);
         return b.d2 > reach * reach ? beyond(mx, my, along) : finish(b, px, py, mx, my, along);
       }
     }
