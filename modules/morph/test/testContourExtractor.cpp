@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <set>
 #include <string>
 
 #include <opencv2/imgcodecs.hpp>
@@ -551,6 +552,36 @@ TEST_CASE("approximation: exact on clean polygons, start-point independent, para
   CHECK(circ.size() >= 12);
   for (std::size_t k = 0; k < circ.size(); ++k)
     CHECK(std::hypot(circ.x(k) - 100.0, circ.y(k) - 100.0) == Approx(70.0).margin(1.5));
+}
+
+TEST_CASE("approximation: a thin spur at the diameter's end gives one polygon from any start", "[approx]")
+{
+  // A spur three pixels wide ends at the pixels farthest from the block's far corners: the diameter the split starts
+  // from, found among each row's leftmost and rightmost pixels. Whatever the chain's start, the polygon is the same.
+  vpImage<unsigned char> I(120, 160, 0);
+  for (unsigned int v = 40; v < 80; ++v)
+    for (unsigned int u = 30; u < 90; ++u)
+      I[v][u] = 255;
+  for (unsigned int v = 59; v < 62; ++v)
+    for (unsigned int u = 90; u < 140; ++u)
+      I[v][u] = 255;
+  const std::vector<vpImagePoint> chain = vpMorphContourExtractor().boundary(I);
+  auto vertices = [](const vpMorphContour &c) {
+    std::set<std::pair<double, double>> s;
+    for (std::size_t k = 0; k < c.size(); ++k)
+      s.insert({c.x(k), c.y(k)});
+    return s;
+  };
+  const vpMorphContour ref = vpMorphPolygonApproximation::approximate(chain);
+  checkValid(ref);
+  const std::set<std::pair<double, double>> refVertices = vertices(ref);
+  CHECK(refVertices.count({139.0, 59.0}) + refVertices.count({139.0, 61.0}) == 2); // the spur's end
+  for (std::size_t shift = 1; shift < chain.size(); shift += 7) {
+    std::vector<vpImagePoint> rotated(chain);
+    std::rotate(rotated.begin(), rotated.begin() + static_cast<std::ptrdiff_t>(shift), rotated.end());
+    INFO("start " << shift);
+    CHECK(vertices(vpMorphPolygonApproximation::approximate(rotated)) == refVertices);
+  }
 }
 
 // The L1 error of the chain pixels strictly between a and b (unwrapped indices) against the segment a-b.
