@@ -19,6 +19,8 @@
     goal and blur, and every period for a view sharper than its goal);
   - BM_approximate: its polygonal approximation alone (vpMorphPolygonApproximation on that image's boundary chain),
     the part of the extraction that grows with the boundary's length;
+  - BM_approximateTools: the same over the boundaries of the six tools' images turned by every 15 deg (144 chains), so
+    that a change to the approximation is timed on more than one outline;
   - BM_morphIteration: vpServoMorph::computeControlLaw() over the recorded run (tracked correspondence, fit,
     calibration update, Eq. 11), restarted at the end of the run; the first call of each pass also builds the
     morph and its sub-goals, so the mean includes them once per run;
@@ -47,6 +49,7 @@
 */
 #include <benchmark/benchmark.h>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "vispmorph-perf-reporter.h"
 
@@ -56,8 +59,10 @@
 #include <string>
 #include <vector>
 
+#include <visp3/core/vpImageConvert.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpVelocityTwistMatrix.h>
+#include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphArticulation.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphDatabase.h>
@@ -275,6 +280,31 @@ void BM_approximate(benchmark::State &state)
   state.counters["pixels"] = double(chain.size());
 }
 
+void BM_approximateTools(benchmark::State &state)
+{
+  std::vector<std::vector<vpImagePoint>> chains;
+  std::size_t pixels = 0;
+  for (const char *tool : {"hammer", "key", "pliers", "screwdriver", "wedge", "wrench"}) {
+    vpImage<unsigned char> I;
+    vpImageIo::read(I, std::string(VISPMORPH_DATA_DIR) + "/objects/" + tool + ".png");
+    cv::Mat M, W;
+    vpImageConvert::convert(I, M);
+    for (int deg = 0; deg < 360; deg += 15) {
+      const cv::Mat R = cv::getRotationMatrix2D(cv::Point2f(0.5f * M.cols, 0.5f * M.rows), deg, 1.0);
+      cv::warpAffine(M, W, R, M.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+      vpImage<unsigned char> J;
+      vpImageConvert::convert(W, J);
+      chains.push_back(vpMorphContourExtractor().boundary(J));
+      pixels += chains.back().size();
+    }
+  }
+  for (auto _ : state)
+    for (const std::vector<vpImagePoint> &chain : chains)
+      benchmark::DoNotOptimize(vpMorphPolygonApproximation::vertexIndices(chain).size());
+  state.counters["chains"] = double(chains.size());
+  state.counters["pixels"] = double(pixels);
+}
+
 void BM_morphIteration(benchmark::State &state)
 {
   const Recording &r = recording();
@@ -489,6 +519,7 @@ BENCHMARK(BM_extractCut)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_extractCutFollow)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_outlineBlur)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_approximate)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_approximateTools)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_morphIteration)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIterationTilt)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_morphIterationDeformed)->Unit(benchmark::kMicrosecond);
