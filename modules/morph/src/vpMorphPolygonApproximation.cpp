@@ -22,9 +22,9 @@ using Pt = vpMorphPixelChain::Pt;
 using EdgeError = vpMorphPixelChain::EdgeError;
 using Chain = vpMorphPixelChain;
 
-// The pixels that can be vertices of the convex hull, in lexicographic order, each at the lowest index of its
-// position. On a chain of integer rows (every traced boundary), only the leftmost and rightmost pixels of each row
-// can: one pass, in (y, x) order, where sorting every pixel in (x, y) order took a tenth of the approximation.
+// The pixels that can be vertices of the convex hull, in (y, x) order, each at the lowest index of its position. On a
+// chain of integer rows (every traced boundary), only the leftmost and rightmost pixels of each row can: one pass,
+// where sorting every pixel took a tenth of the approximation.
 std::vector<std::size_t> hullCandidates(const std::vector<Pt> &p)
 {
   double y0 = p[0].y, y1 = p[0].y;
