@@ -100,10 +100,7 @@ bool lessPt(const Pt &a, const Pt &b) { return a.x < b.x || (a.x == b.x && a.y <
 // Vertices as strictly increasing unwrapped chain indices spanning less than one turn.
 using Vertices = std::vector<std::ptrdiff_t>;
 
-std::ptrdiff_t prevOf(const Vertices &v, std::size_t j, std::ptrdiff_t n)
-{
-  return j == 0 ? v.back() - n : v[j - 1];
-}
+std::ptrdiff_t prevOf(const Vertices &v, std::size_t j, std::ptrdiff_t n) { return j == 0 ? v.back() - n : v[j - 1]; }
 std::ptrdiff_t nextOf(const Vertices &v, std::size_t j, std::ptrdiff_t n)
 {
   return j + 1 == v.size() ? v.front() + n : v[j + 1];
@@ -254,7 +251,8 @@ double orient(const Pt &a, const Pt &b, const Pt &c) { return (b.x - a.x) * (c.y
 
 bool onSeg(const Pt &a, const Pt &b, const Pt &c)
 {
-  return std::min(a.x, b.x) <= c.x && c.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= c.y && c.y <= std::max(a.y, b.y);
+  return std::min(a.x, b.x) <= c.x && c.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= c.y &&
+         c.y <= std::max(a.y, b.y);
 }
 
 bool segsIntersect(const Pt &a, const Pt &b, const Pt &c, const Pt &d)
@@ -349,7 +347,7 @@ bool repair(const std::vector<Pt> &p, Vertices v, vpMorphContour &out)
     // on a thousand-vertex noisy outline still cost O(V^3) (a benchmark run stuck for 45 minutes in one image).
     const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
     const Chain c(p);
-    std::vector<std::pair<double, std::size_t> > d(v.size());
+    std::vector<std::pair<double, std::size_t>> d(v.size());
     for (std::size_t j = 0; j < v.size(); ++j)
       d[j] = {Chain::segDist(c.at(prevOf(v, j, n)), c.at(nextOf(v, j, n)), c.at(v[j])), j};
     const std::size_t drop = v.size() <= 32 ? 1 : (v.size() + 15) / 16;
@@ -401,8 +399,8 @@ void stages(const std::vector<Pt> &p, Vertices &split, Vertices &refined, Vertic
       if (lessPt(p[b], p[a]))
         std::swap(a, b);
       const double d = (p[a].x - p[b].x) * (p[a].x - p[b].x) + (p[a].y - p[b].y) * (p[a].y - p[b].y);
-      const bool tie = d == best && (lessPt(p[a], p[ia]) || (p[a].x == p[ia].x && p[a].y == p[ia].y &&
-                                                              lessPt(p[b], p[ib])));
+      const bool tie =
+          d == best && (lessPt(p[a], p[ia]) || (p[a].x == p[ia].x && p[a].y == p[ia].y && lessPt(p[b], p[ib])));
       if (d > best || tie) {
         best = d;
         ia = a;
