@@ -312,8 +312,31 @@ std::vector<std::size_t> firstViolation(const std::vector<Pt> &p, const Vertices
   return out;
 }
 
-// Last resort: drop the vertex whose removal best restores simplicity, one at a time. Each round tries, in
-// order, the single removals that can help (the vertices of the first violation; the others cannot), so a round
+// \e v rotated to start where the cyclic sequence of its pixels is lexicographically least (the next turn's indices
+// shifted by n): a polygon's own order, whatever pixel the chain starts at.
+Vertices canonical(const std::vector<Pt> &p, const Vertices &v)
+{
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+  const std::size_t m = v.size();
+  auto pixel = [&](std::size_t j) -> const Pt & { return p[static_cast<std::size_t>(((v[j % m] % n) + n) % n)]; };
+  std::size_t first = 0;
+  for (std::size_t s = 1; s < m; ++s)
+    for (std::size_t k = 0; k < m; ++k) {
+      if (lessPt(pixel(s + k), pixel(first + k))) {
+        first = s;
+        break;
+      }
+      if (lessPt(pixel(first + k), pixel(s + k)))
+        break;
+    }
+  Vertices w(m);
+  for (std::size_t k = 0; k < m; ++k)
+    w[k] = first + k < m ? v[first + k] : v[first + k - m] + n;
+  return w;
+}
+
+// Last resort: drop the vertex whose removal best restores simplicity, one at a time. Each round tries, in the
+// polygon's own order (canonical()), the single removals that can help (the vertices of the first violation; the others cannot), so a round
 // costs O(V^2) instead of O(V^3) and the repair O(V^3) instead of O(V^4): with every vertex tried, a jagged
 // boundary of a few hundred vertices took minutes (found by fuzz_contour_extraction). The choice is the same as
 // trying every vertex (the first helpful one in order, else the vertex closest to its neighbours' chord), except
@@ -321,6 +344,9 @@ std::vector<std::size_t> firstViolation(const std::vector<Pt> &p, const Vertices
 bool repair(const std::vector<Pt> &p, Vertices v, vpMorphContour &out)
 {
   while (v.size() > 3) {
+    // From the chain's start instead, a chain that passes a pixel twice (a spur one pixel wide) lost or kept the spur
+    // depending on where it started.
+    v = canonical(p, v);
     bool done = false;
     std::vector<std::size_t> candidates = firstViolation(p, v);
     if (candidates.empty()) { // simple already, yet refused (degenerate): try every vertex, as before
