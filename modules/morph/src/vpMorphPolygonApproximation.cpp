@@ -336,11 +336,11 @@ Vertices canonical(const std::vector<Pt> &p, const Vertices &v)
 }
 
 // Last resort: drop the vertex whose removal best restores simplicity, one at a time. Each round tries, in the
-// polygon's own order (canonical()), the single removals that can help (the vertices of the first violation; the others cannot), so a round
-// costs O(V^2) instead of O(V^3) and the repair O(V^3) instead of O(V^4): with every vertex tried, a jagged
-// boundary of a few hundred vertices took minutes (found by fuzz_contour_extraction). The choice is the same as
-// trying every vertex (the first helpful one in order, else the vertex closest to its neighbours' chord), except
-// for a removal that only helps by merging two equal neighbours, which is tried when those are in the violation.
+// polygon's own order (canonical()), the single removals that can help (the vertices of the first violation; the others
+// cannot), so a round costs O(V^2) instead of O(V^3) and the repair O(V^3) instead of O(V^4): with every vertex tried,
+// a jagged boundary of a few hundred vertices took minutes (found by fuzz_contour_extraction). The choice is the same
+// as trying every vertex (the first helpful one in order, else the vertex closest to its neighbours' chord), except for
+// a removal that only helps by merging two equal neighbours, which is tried when those are in the violation.
 bool repair(const std::vector<Pt> &p, Vertices v, vpMorphContour &out)
 {
   while (v.size() > 3) {
