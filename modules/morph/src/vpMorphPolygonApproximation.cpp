@@ -332,6 +332,9 @@ Vertices canonical(const std::vector<Pt> &p, const Vertices &v)
   Vertices w(m);
   for (std::size_t k = 0; k < m; ++k)
     w[k] = first + k < m ? v[first + k] : v[first + k - m] + n;
+  const std::ptrdiff_t turns = w[0] / n; // the first vertex back in [0, n): indices stay within two turns
+  for (std::ptrdiff_t &i : w)
+    i -= turns * n;
   return w;
 }
 
