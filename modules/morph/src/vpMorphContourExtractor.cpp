@@ -377,12 +377,15 @@ vpMorphContour vpMorphContourExtractor::extractJoined(const vpImage<unsigned cha
     bool none = false;
     regs = regions(I, seg, window, bin, 0, &none);
     inside = overlaps(regs, poly, pbox);
-    const bool whole = std::all_of(regs.begin(), regs.end(), [&](const Region &r) {
-      const cv::Rect box = cv::boundingRect(r.chain);
+    bool whole = true;
+    for (std::size_t k = 0; k < regs.size() && whole; ++k) {
+      if (inside[k] == 0)
+        continue;
+      const cv::Rect box = cv::boundingRect(regs[k].chain);
       const cv::Rect read =
           cv::Rect(box.x - reach, box.y - reach, box.width + 2 * reach, box.height + 2 * reach) & image;
-      return inside[static_cast<std::size_t>(&r - regs.data())] == 0 || (read & window) == read;
-    });
+      whole = (read & window) == read;
+    }
     if (none || !whole || std::none_of(inside.begin(), inside.end(), [](long n) { return n > 0; }))
       regs.clear();
   }

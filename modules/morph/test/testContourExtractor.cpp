@@ -16,6 +16,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpImageConvert.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
@@ -69,9 +70,7 @@ bool readPng(const std::string &file, vpImage<unsigned char> &I)
   const cv::Mat m = cv::imread(file, cv::IMREAD_GRAYSCALE);
   if (m.empty())
     return false;
-  I.resize(static_cast<unsigned int>(m.rows), static_cast<unsigned int>(m.cols));
-  for (int r = 0; r < m.rows; ++r)
-    std::copy(m.ptr<unsigned char>(r), m.ptr<unsigned char>(r) + m.cols, I[static_cast<unsigned int>(r)]);
+  vpImageConvert::convert(m, I);
   return true;
 }
 
@@ -290,9 +289,8 @@ void checkSame(const vpMorphContour &a, const vpMorphContour &b)
 
 vpImage<unsigned char> toVisp(const cv::Mat &m)
 {
-  vpImage<unsigned char> I(static_cast<unsigned int>(m.rows), static_cast<unsigned int>(m.cols));
-  for (int v = 0; v < m.rows; ++v)
-    std::copy(m.ptr<unsigned char>(v), m.ptr<unsigned char>(v) + m.cols, I[static_cast<unsigned int>(v)]);
+  vpImage<unsigned char> I;
+  vpImageConvert::convert(m, I);
   return I;
 }
 } // namespace
