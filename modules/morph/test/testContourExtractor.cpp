@@ -808,9 +808,7 @@ TEST_CASE("extractor: Otsu's threshold is cv::threshold's, on rendered, noisy, r
     }
     if (trial == 5)
       m.setTo(a), m.at<unsigned char>(h - 1, w - 1) = static_cast<unsigned char>(255 - a); // one odd pixel
-    I.resize(static_cast<unsigned int>(h), static_cast<unsigned int>(w));
-    for (int r = 0; r < h; ++r)
-      std::copy(m.ptr<unsigned char>(r), m.ptr<unsigned char>(r) + w, I[static_cast<unsigned int>(r)]);
+    vpImageConvert::convert(m, I);
     check(I, "random image " + std::to_string(trial));
   }
   CHECK_THROWS_AS(vpMorphContourExtractor::otsuThreshold(vpImage<unsigned char>()), vpMorphException);

@@ -17,6 +17,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <visp3/core/vpImage.h>
+#include <visp3/core/vpImageConvert.h>
 #include <visp3/io/vpImageIo.h>
 #include <visp3/morph/vpMorphContourExtractor.h>
 #include <visp3/morph/vpMorphDatabase.h>
@@ -41,10 +42,8 @@ inline cv::Mat readObject(const std::string &name)
 //! benchmark extracts).
 inline vpMorphContour extract(const cv::Mat &m, bool joined = false)
 {
-  vpImage<unsigned char> I(static_cast<unsigned int>(m.rows), static_cast<unsigned int>(m.cols));
-  for (int v = 0; v < m.rows; ++v)
-    for (int u = 0; u < m.cols; ++u)
-      I[v][u] = m.at<unsigned char>(v, u);
+  vpImage<unsigned char> I;
+  vpImageConvert::convert(m, I);
   return joined ? vpMorphContourExtractor().extractJoined(I) : vpMorphContourExtractor().extract(I);
 }
 
